@@ -1,0 +1,126 @@
+#include "csmConvexBody.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace csm
+{
+
+ConvexBody ConvexBody::hexahedron(const std::array<glm::dvec3, 8>& c)
+{
+  ConvexBody body;
+  body.Faces = {
+    { c[0], c[1], c[2], c[3] }, // near
+    { c[4], c[7], c[6], c[5] }, // far
+    { c[0], c[4], c[5], c[1] },
+    { c[1], c[5], c[6], c[2] },
+    { c[2], c[6], c[7], c[3] },
+    { c[3], c[7], c[4], c[0] },
+  };
+  return body;
+}
+
+void ConvexBody::clip(const Plane& plane, double epsilon)
+{
+  std::vector<Polygon> kept;
+  kept.reserve(this->Faces.size() + 1);
+  Polygon cut; // points of the body on the plane: the new face
+  for (const Polygon& face : this->Faces)
+  {
+    Polygon out;
+    out.reserve(face.size() + 2);
+    const size_t count = face.size();
+    for (size_t i = 0; i < count; ++i)
+    {
+      const glm::dvec3& p = face[i];
+      const glm::dvec3& q = face[(i + 1) % count];
+      const double dp = glm::dot(plane.normal, p) + plane.offset;
+      const double dq = glm::dot(plane.normal, q) + plane.offset;
+      const bool pIn = dp >= -epsilon;
+      const bool qIn = dq >= -epsilon;
+      if (pIn)
+      {
+        out.push_back(p);
+        if (std::abs(dp) <= epsilon)
+        {
+          cut.push_back(p);
+        }
+      }
+      if (pIn != qIn && std::abs(dp) > epsilon && std::abs(dq) > epsilon)
+      {
+        const glm::dvec3 x = p + (q - p) * (dp / (dp - dq));
+        out.push_back(x);
+        cut.push_back(x);
+      }
+    }
+    if (out.size() >= 3)
+    {
+      kept.push_back(std::move(out));
+    }
+  }
+  if (cut.size() >= 3)
+  {
+    // Order the cut points around their centroid, in the plane.
+    glm::dvec3 centre(0.0);
+    for (const glm::dvec3& p : cut)
+    {
+      centre += p;
+    }
+    centre /= double(cut.size());
+    const glm::dvec3 n = glm::normalize(plane.normal);
+    const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 u = glm::normalize(glm::cross(n, helper));
+    const glm::dvec3 v = glm::cross(n, u);
+    std::sort(cut.begin(), cut.end(), [&](const glm::dvec3& a, const glm::dvec3& b) {
+      return std::atan2(glm::dot(a - centre, v), glm::dot(a - centre, u)) <
+        std::atan2(glm::dot(b - centre, v), glm::dot(b - centre, u));
+    });
+    Polygon face;
+    for (const glm::dvec3& p : cut)
+    {
+      if (face.empty() || glm::length(p - face.back()) > epsilon)
+      {
+        face.push_back(p);
+      }
+    }
+    if (face.size() >= 3)
+    {
+      kept.push_back(std::move(face));
+    }
+  }
+  this->Faces = std::move(kept);
+}
+
+std::vector<glm::dvec3> ConvexBody::vertices(double epsilon) const
+{
+  std::vector<glm::dvec3> result;
+  for (const Polygon& face : this->Faces)
+  {
+    for (const glm::dvec3& p : face)
+    {
+      const bool known = std::any_of(result.begin(), result.end(),
+        [&](const glm::dvec3& q) { return glm::length(p - q) <= epsilon; });
+      if (!known)
+      {
+        result.push_back(p);
+      }
+    }
+  }
+  return result;
+}
+
+std::array<Plane, 6> boxPlanes(const glm::dvec3& lo, const glm::dvec3& hi)
+{
+  return { {
+    { { 1, 0, 0 }, -lo.x },
+    { { -1, 0, 0 }, hi.x },
+    { { 0, 1, 0 }, -lo.y },
+    { { 0, -1, 0 }, hi.y },
+    { { 0, 0, 1 }, -lo.z },
+    { { 0, 0, -1 }, hi.z },
+  } };
+}
+
+} // namespace csm

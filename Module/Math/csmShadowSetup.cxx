@@ -1,0 +1,488 @@
+#include "csmShadowSetup.h"
+
+#include "csmConvexBody.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace csm
+{
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kDegree = kPi / 180.0;
+/// Beyond n' = kOrthoRatio * (light-space depth of the body) the warp differs from orthographic
+/// by < 0.2% in storage but costs precision (t = A - B/z' cancels): use the orthographic map.
+constexpr double kOrthoRatio = 1.0e3;
+constexpr int kMaxCascades = 64;
+
+bool finite(const glm::dvec3& v)
+{
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+/// Any unit vector perpendicular to the unit vector n.
+glm::dvec3 perpendicular(const glm::dvec3& n)
+{
+  const glm::dvec3 helper = std::abs(n.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  return glm::normalize(glm::cross(n, helper));
+}
+
+/// The part of u perpendicular to the unit vector n, normalized; fallback where u is (nearly)
+/// parallel to n.
+glm::dvec3 perpendicularPart(const glm::dvec3& u, const glm::dvec3& n, const glm::dvec3& fallback)
+{
+  const glm::dvec3 p = u - glm::dot(u, n) * n;
+  const double length = glm::length(p);
+  return length > 1e-9 ? p / length : fallback;
+}
+
+struct CameraFrame
+{
+  glm::dvec3 view, up, right; // orthonormal
+  double tanX = 0.0, tanY = 0.0;
+};
+
+CameraFrame cameraFrame(const Camera& camera)
+{
+  CameraFrame frame;
+  frame.view = glm::normalize(camera.wsDirection);
+  frame.up = perpendicularPart(camera.wsViewUp, frame.view, perpendicular(frame.view));
+  frame.right = glm::cross(frame.view, frame.up);
+  frame.tanY = std::tan(0.5 * camera.fovyDeg * kDegree);
+  frame.tanX = frame.tanY * camera.aspect;
+  return frame;
+}
+
+struct LightBasis
+{
+  glm::dvec3 x, y, z; // 003 Fig. 3; y is the light's direction of travel
+};
+
+LightBasis lightBasis(const CameraFrame& frame, const glm::dvec3& wsLightDirection)
+{
+  LightBasis ls;
+  ls.y = glm::normalize(wsLightDirection);
+  // z: the view direction projected onto the plane perpendicular to the light; when light and
+  // view are parallel, the view-up vector takes its place (it is perpendicular to both).
+  ls.z = perpendicularPart(
+    frame.view, ls.y, perpendicularPart(frame.up, ls.y, perpendicular(ls.y)));
+  ls.x = glm::cross(ls.y, ls.z);
+  return ls;
+}
+
+/// Half-widths of the view volume at a depth (perspective or parallel).
+glm::dvec2 halfSize(const Camera& camera, const CameraFrame& frame, double vsDepth)
+{
+  if (camera.parallel)
+  {
+    return { camera.parallelScale * camera.aspect, camera.parallelScale };
+  }
+  return { vsDepth * frame.tanX, vsDepth * frame.tanY };
+}
+
+/// The view-volume partition [d0, d1], in camera-centred world space.
+std::array<glm::dvec3, 8> partitionCorners(
+  const Camera& camera, const CameraFrame& frame, double d0, double d1)
+{
+  std::array<glm::dvec3, 8> corners;
+  const double signX[4] = { -1, 1, 1, -1 };
+  const double signY[4] = { -1, -1, 1, 1 };
+  for (int face = 0; face < 2; ++face)
+  {
+    const double depth = face == 0 ? d0 : d1;
+    const glm::dvec2 half = halfSize(camera, frame, depth);
+    for (int i = 0; i < 4; ++i)
+    {
+      corners[4 * face + i] =
+        frame.view * depth + frame.right * (signX[i] * half.x) + frame.up * (signY[i] * half.y);
+    }
+  }
+  return corners;
+}
+
+/// Parameter t >= 0 where the ray p - t d (toward the light) leaves the box [lo, hi].
+double exitTowardLight(const glm::dvec3& p, const glm::dvec3& d, const glm::dvec3& lo,
+  const glm::dvec3& hi)
+{
+  double t = kInf;
+  for (int i = 0; i < 3; ++i)
+  {
+    if (d[i] < 0.0)
+    {
+      t = std::min(t, (hi[i] - p[i]) / -d[i]);
+    }
+    else if (d[i] > 0.0)
+    {
+      t = std::min(t, (p[i] - lo[i]) / d[i]);
+    }
+  }
+  return std::isfinite(t) ? std::max(t, 0.0) : 0.0;
+}
+
+glm::dmat4 fromRows(const glm::dvec4& r0, const glm::dvec4& r1, const glm::dvec4& r2,
+  const glm::dvec4& r3)
+{
+  glm::dmat4 m;
+  for (int c = 0; c < 4; ++c)
+  {
+    m[c] = glm::dvec4(r0[c], r1[c], r2[c], r3[c]);
+  }
+  return m;
+}
+
+std::string validate(const Camera& camera, const glm::dvec3& light, const Bounds* bounds,
+  const Settings& settings)
+{
+  if (!finite(camera.wsPosition) || !finite(camera.wsDirection) || !finite(camera.wsViewUp))
+  {
+    return "camera position, direction and view-up must be finite";
+  }
+  if (!(glm::length(camera.wsDirection) > 0.0))
+  {
+    return "camera direction has zero length";
+  }
+  if (!std::isfinite(camera.vsNear) || !std::isfinite(camera.vsFar) || !(camera.vsNear > 0.0))
+  {
+    return "camera near distance must be finite and > 0";
+  }
+  if (!(camera.vsFar > camera.vsNear * (1.0 + 1e-9)))
+  {
+    return "camera far distance must be greater than near";
+  }
+  if (!(camera.aspect > 0.0) || !std::isfinite(camera.aspect))
+  {
+    return "aspect ratio must be finite and > 0";
+  }
+  if (!camera.parallel && !(camera.fovyDeg > 0.0 && camera.fovyDeg < 180.0))
+  {
+    return "field of view must be in (0, 180) degrees";
+  }
+  if (camera.parallel && !(camera.parallelScale > 0.0 && std::isfinite(camera.parallelScale)))
+  {
+    return "parallel scale must be finite and > 0";
+  }
+  if (!finite(light) || !(glm::length(light) > 0.0))
+  {
+    return "light direction must be finite and non-zero";
+  }
+  if (bounds && !bounds->isFinite())
+  {
+    return "scene bounds must be finite";
+  }
+  const SplitParameters& split = settings.split;
+  if (split.k < 1 || split.k > kMaxCascades)
+  {
+    return "number of cascades must be in [1, 64]";
+  }
+  if (!(split.lambda >= 0.0 && split.lambda <= 1.0))
+  {
+    return "lambda must be in [0, 1]";
+  }
+  if (!(split.alpha > 1.0) || !std::isfinite(split.alpha))
+  {
+    return "alpha must be finite and > 1";
+  }
+  return {};
+}
+
+} // namespace
+
+bool Bounds::isEmpty() const
+{
+  return !(this->wsMin.x <= this->wsMax.x && this->wsMin.y <= this->wsMax.y &&
+    this->wsMin.z <= this->wsMax.z);
+}
+
+bool Bounds::isFinite() const
+{
+  return finite(this->wsMin) && finite(this->wsMax);
+}
+
+ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDirection,
+  const Bounds* sceneBounds, const Settings& settings)
+{
+  ShadowSetup setup;
+  setup.message = validate(camera, wsLightDirection, sceneBounds, settings);
+  if (!setup.message.empty())
+  {
+    setup.status = Status::InvalidInput;
+    return setup;
+  }
+
+  const CameraFrame frame = cameraFrame(camera);
+  const LightBasis ls = lightBasis(frame, wsLightDirection);
+  const double gamma = std::atan2(glm::length(glm::cross(frame.view, ls.y)),
+    glm::dot(frame.view, ls.y));
+  const double gammaFolded = std::min(gamma, kPi - gamma); // light from behind ~ from the front
+  setup.gammaDeg = gamma / kDegree;
+
+  // Size of the partitions, for clipping tolerances.
+  const glm::dvec2 farHalf = halfSize(camera, frame, camera.vsFar);
+  const double extent = camera.vsFar + farHalf.x + farHalf.y;
+  const double epsilon = 1e-12 * extent;
+
+  // The scene box, camera-centred and inflated a little so that flat or point scenes keep a body.
+  const bool clipToScene = sceneBounds != nullptr;
+  glm::dvec3 cwsBoxMin(0.0), cwsBoxMax(0.0);
+  std::array<Plane, 6> boxClip{};
+  if (clipToScene)
+  {
+    if (sceneBounds->isEmpty())
+    {
+      setup.status = Status::NothingToShadow;
+      setup.message = "the scene is empty";
+      return setup;
+    }
+    const double inflate =
+      1e-6 * std::max(glm::length(sceneBounds->wsMax - sceneBounds->wsMin), camera.vsNear);
+    cwsBoxMin = sceneBounds->wsMin - camera.wsPosition - inflate;
+    cwsBoxMax = sceneBounds->wsMax - camera.wsPosition + inflate;
+    boxClip = boxPlanes(cwsBoxMin, cwsBoxMax);
+  }
+  auto receiverBody = [&](double d0, double d1) {
+    ConvexBody body = ConvexBody::hexahedron(partitionCorners(camera, frame, d0, d1));
+    if (clipToScene)
+    {
+      for (const Plane& plane : boxClip)
+      {
+        body.clip(plane, epsilon);
+      }
+    }
+    return body;
+  };
+
+  // Fit the depth range to what is visible of the scene.
+  double n = camera.vsNear;
+  double f = camera.vsFar;
+  if (clipToScene)
+  {
+    const ConvexBody visible = receiverBody(n, f);
+    if (visible.empty())
+    {
+      setup.status = Status::NothingToShadow;
+      setup.message = "the view sees none of the scene";
+      return setup;
+    }
+    double lo = kInf, hi = -kInf;
+    for (const glm::dvec3& p : visible.vertices(epsilon))
+    {
+      const double depth = glm::dot(p, frame.view);
+      lo = std::min(lo, depth);
+      hi = std::max(hi, depth);
+    }
+    n = std::clamp(lo, camera.vsNear, camera.vsFar);
+    f = std::clamp(hi, camera.vsNear, camera.vsFar);
+    if (!(f > n * (1.0 + 1e-6)))
+    {
+      const double middle = 0.5 * (n + f);
+      n = std::max(camera.vsNear, middle * (1.0 - 1e-6));
+      f = std::min(camera.vsFar, middle * (1.0 + 1e-6));
+    }
+  }
+  setup.vsNear = n;
+  setup.vsFar = f;
+  setup.splits = splitDepths(settings.split, n, f, gammaFolded);
+
+  // Half-height of the view volume per unit depth in the plane of light and view (a, b of 000
+  // §3.1): the support of the image rectangle in the direction of the light's image-plane part.
+  const glm::dvec3 lightAcross = perpendicularPart(ls.y, frame.view, frame.up);
+  const double heightPerDepth = std::abs(glm::dot(lightAcross, frame.right)) * frame.tanX +
+    std::abs(glm::dot(lightAcross, frame.up)) * frame.tanY;
+  auto shape = [&](double d0, double d1) {
+    return PartitionShape{ d0, d1, d0 * heightPerDepth, d1 * heightPerDepth };
+  };
+  setup.gammaLimDeg = gammaLim(shape(n, f)) / kDegree;
+
+  for (size_t i = 0; i + 1 < setup.splits.size(); ++i)
+  {
+    const double d0 = setup.splits[i];
+    const double d1 = setup.splits[i + 1];
+    const ConvexBody body = receiverBody(d0, d1);
+    if (body.empty())
+    {
+      continue; // nothing of the scene in this partition
+    }
+    Cascade cascade;
+    cascade.vsNear = d0;
+    cascade.vsFar = d1;
+    cascade.gammaLimDeg = gammaLim(shape(d0, d1)) / kDegree;
+
+    // Receivers, and (without depth clamping) the casters between them and the light.
+    const std::vector<glm::dvec3> cwsBody = body.vertices(epsilon);
+    std::vector<glm::dvec3> lsPoints;
+    lsPoints.reserve(2 * cwsBody.size() + 6);
+    auto toLight = [&](const glm::dvec3& p) {
+      return glm::dvec3(glm::dot(p, ls.x), glm::dot(p, ls.y), glm::dot(p, ls.z));
+    };
+    glm::dvec3 lsMin(kInf), lsMax(-kInf);
+    for (const glm::dvec3& p : cwsBody)
+    {
+      lsPoints.push_back(toLight(p));
+      lsMin = glm::min(lsMin, lsPoints.back());
+      lsMax = glm::max(lsMax, lsPoints.back());
+      cascade.wsBody.push_back(p + camera.wsPosition);
+    }
+    if (clipToScene && !settings.depthClamp)
+    {
+      for (const glm::dvec3& p : cwsBody)
+      {
+        lsPoints.push_back(toLight(p - ls.y * exitTowardLight(p, ls.y, cwsBoxMin, cwsBoxMax)));
+      }
+    }
+    // A flat or point body gets a minimum thickness on each light-space axis.
+    const glm::dvec3 lsSize = lsMax - lsMin;
+    const double minSize =
+      1e-6 * std::max({ lsSize.x, lsSize.y, lsSize.z, camera.vsNear });
+    const glm::dvec3 lsCentre = 0.5 * (lsMin + lsMax);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      if (lsSize[axis] < minSize)
+      {
+        glm::dvec3 offset(0.0);
+        offset[axis] = minSize;
+        lsPoints.push_back(lsCentre - offset);
+        lsPoints.push_back(lsCentre + offset);
+      }
+    }
+    double lsZMin = kInf, lsZMax = -kInf;
+    for (const glm::dvec3& p : lsPoints)
+    {
+      lsZMin = std::min(lsZMin, p.z);
+      lsZMax = std::max(lsZMax, p.z);
+    }
+
+    // The warp: a perspective along ls z with its centre n' before the body (000 Fig. 4, 6).
+    double warp = camera.parallel ? kInf : nPrime(settings.warp, gammaFolded, shape(d0, d1));
+    const double lsDepth = std::max(lsZMax - lsZMin, minSize);
+    if (!(warp <= kOrthoRatio * lsDepth))
+    {
+      warp = kInf;
+    }
+    warp = std::max(warp, 1e-9 * lsDepth);
+    cascade.nPrime = warp;
+    glm::dmat4 lsToWarped; // rows: s, t, depth, w
+    if (std::isinf(warp))
+    {
+      lsToWarped = fromRows({ 1, 0, 0, 0 }, { 0, 0, 1, 0 }, { 0, 1, 0, 0 }, { 0, 0, 0, 1 });
+    }
+    else
+    {
+      const double zCentre = lsZMin - warp;
+      lsToWarped =
+        fromRows({ 1, 0, 0, 0 }, { 0, 0, 0, -1 }, { 0, 1, 0, 0 }, { 0, 0, 1, -zCentre });
+    }
+
+    // The focus: scale the warped points' bounds to [-1, 1]^3.
+    glm::dvec3 lo(kInf), hi(-kInf);
+    for (const glm::dvec3& p : lsPoints)
+    {
+      const glm::dvec4 h = lsToWarped * glm::dvec4(p, 1.0);
+      const glm::dvec3 q = glm::dvec3(h) / h.w;
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+    const double depthMargin = 0.01 * (hi.z - lo.z); // 003 §6.4: room for the depth bias
+    lo.z -= depthMargin;
+    hi.z += depthMargin;
+    const glm::dvec3 scale = 2.0 / (hi - lo);
+    const glm::dmat4 focus = fromRows({ scale.x, 0, 0, -scale.x * 0.5 * (lo.x + hi.x) },
+      { 0, scale.y, 0, -scale.y * 0.5 * (lo.y + hi.y) },
+      { 0, 0, scale.z, -scale.z * 0.5 * (lo.z + hi.z) }, { 0, 0, 0, 1 });
+    const glm::dmat4 wsToLs = fromRows({ ls.x, -glm::dot(ls.x, camera.wsPosition) },
+      { ls.y, -glm::dot(ls.y, camera.wsPosition) }, { ls.z, -glm::dot(ls.z, camera.wsPosition) },
+      { 0, 0, 0, 1 });
+    cascade.wsToClip = focus * lsToWarped * wsToLs;
+
+    // 003 §4.4: maxima of the beam-width ratios over the body's vertices; Eq. 12 storage.
+    for (const glm::dvec3& p : cascade.wsBody)
+    {
+      const Aliasing m = aliasingAt(cascade.wsToClip, camera, ls.y, p);
+      cascade.Mx = std::max(cascade.Mx, m.mx);
+      cascade.Mz = std::max(cascade.Mz, m.mz);
+    }
+    cascade.storage = cascade.Mx * cascade.Mz / camera.aspect;
+    setup.storageTotal += cascade.storage;
+    setup.cascades.push_back(std::move(cascade));
+  }
+
+  setup.storageOptimal = camera.parallel
+    ? std::numeric_limits<double>::quiet_NaN()
+    : std::log(f / n) / (2.0 * frame.tanY); // 003 App. C
+  if (setup.cascades.empty())
+  {
+    setup.status = Status::NothingToShadow;
+    setup.message = "no partition of the view holds any of the scene";
+    return setup;
+  }
+  setup.status = Status::Ok;
+  return setup;
+}
+
+Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
+  const glm::dvec3& wsLightDirection, const glm::dvec3& wsPoint)
+{
+  const CameraFrame frame = cameraFrame(camera);
+  const LightBasis ls = lightBasis(frame, wsLightDirection);
+  // 003 Eq. 2 with res_i = 1: width of the image beam at the point.
+  const double depth = std::max(glm::dot(wsPoint - camera.wsPosition, frame.view), camera.vsNear);
+  const double wi = camera.parallel ? 2.0 * camera.parallelScale : 2.0 * frame.tanY * depth;
+
+  const glm::dvec4 h = wsToClip * glm::dvec4(wsPoint, 1.0);
+  const glm::dmat4 t = glm::transpose(wsToClip); // t[r] is row r
+  auto gradient = [&](int row) { // d(ndc_row)/d(ws point)
+    return (glm::dvec3(t[row]) * h.w - glm::dvec3(t[3]) * h[row]) / (h.w * h.w);
+  };
+  // 003 Eq. 3-4 with res = 1: s, t in [0, 1] are half the NDC.
+  const double dsdx = 0.5 * std::abs(glm::dot(gradient(0), ls.x));
+  const double dtdz = 0.5 * std::abs(glm::dot(gradient(1), ls.z));
+  Aliasing m;
+  m.mx = (dsdx > 0.0 ? 1.0 / dsdx : kInf) / wi;
+  m.mz = (dtdz > 0.0 ? 1.0 / dtdz : kInf) / wi;
+  return m;
+}
+
+bool boxOutsideClipVolume(const glm::dmat4& wsToClip, const Bounds& box, bool depthClamp)
+{
+  if (box.isEmpty())
+  {
+    return true;
+  }
+  // Count, for each clip plane, the corners outside it; all eight outside one plane: culled.
+  int outside[7] = { 0, 0, 0, 0, 0, 0, 0 };
+  for (int i = 0; i < 8; ++i)
+  {
+    const glm::dvec3 corner((i & 1) ? box.wsMax.x : box.wsMin.x,
+      (i & 2) ? box.wsMax.y : box.wsMin.y, (i & 4) ? box.wsMax.z : box.wsMin.z);
+    const glm::dvec4 h = wsToClip * glm::dvec4(corner, 1.0);
+    outside[0] += h.x < -h.w;
+    outside[1] += h.x > h.w;
+    outside[2] += h.y < -h.w;
+    outside[3] += h.y > h.w;
+    outside[4] += h.z > h.w;
+    outside[5] += !depthClamp && h.z < -h.w;
+    outside[6] += h.w <= 0.0;
+  }
+  return std::any_of(std::begin(outside), std::end(outside), [](int c) { return c == 8; });
+}
+
+const char* toString(Status status)
+{
+  switch (status)
+  {
+    case Status::Ok:
+      return "ok";
+    case Status::NothingToShadow:
+      return "nothing-to-shadow";
+    case Status::InvalidInput:
+      return "invalid-input";
+  }
+  return "?";
+}
+
+} // namespace csm

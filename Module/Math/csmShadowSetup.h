@@ -1,0 +1,115 @@
+// Per-frame shadow setup for one directional light: light space, body B, split depths, warp,
+// the light view-projection matrix of each cascade, and its perspective aliasing error.
+// Pure math (C++17, GLM, double precision): no VTK, no GL.
+//
+// Spaces (prefixes on names):
+//   ws  world space.
+//   cws camera-centred world space: world axes, origin at the eye (keeps numbers small far
+//       from the origin).
+//   vs  view space; vsDepth is the distance along the view direction.
+//   ls  light space (003 Fig. 3): origin at the eye, y along the light's direction of travel,
+//       z the view direction projected onto the plane perpendicular to y, x = y cross z.
+//   clip the light's clip space: after division by w, the cascade's body lies in [-1,1]^3;
+//       NDC x is the shadow-map s axis (ls x), NDC y the t axis (ls z), NDC z the light depth.
+#pragma once
+
+#include "csmSplits.h"
+#include "csmWarp.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include <string>
+#include <vector>
+
+namespace csm
+{
+
+struct Camera
+{
+  glm::dvec3 wsPosition{ 0.0, 0.0, 0.0 };
+  glm::dvec3 wsDirection{ 0.0, 0.0, -1.0 }; ///< view direction (need not be unit length)
+  glm::dvec3 wsViewUp{ 0.0, 1.0, 0.0 };     ///< need not be orthogonal to the direction
+  double vsNear = 0.1;                      ///< clipping range along the view direction
+  double vsFar = 1000.0;
+  double fovyDeg = 30.0;  ///< full vertical field of view (perspective)
+  double aspect = 1.0;    ///< image width / height
+  bool parallel = false;  ///< parallel projection
+  double parallelScale = 1.0; ///< half the image height in world units (parallel projection)
+};
+
+/// An axis-aligned box; min > max on any axis means "empty".
+struct Bounds
+{
+  glm::dvec3 wsMin{ 1.0, 1.0, 1.0 };
+  glm::dvec3 wsMax{ -1.0, -1.0, -1.0 };
+  bool isEmpty() const;
+  bool isFinite() const;
+};
+
+struct Settings
+{
+  WarpMode warp = WarpMode::Generalized;
+  SplitParameters split;       ///< defaults: adaptive, k = 2, alpha = 2 (000 §4)
+  bool depthClamp = true;      ///< 003 §6.4: fit the depth range to the receivers only
+};
+
+/// Perspective aliasing at one point (003 Eq. 1-4 with all resolutions set to 1).
+struct Aliasing
+{
+  double mx = 0.0; ///< w_lx / w_i
+  double mz = 0.0; ///< w_lz / w_i
+};
+
+struct Cascade
+{
+  double vsNear = 0.0;           ///< split depths of this cascade
+  double vsFar = 0.0;
+  double nPrime = 0.0;           ///< warp parameter; +infinity when orthographic
+  double gammaLimDeg = 0.0;      ///< 000 Eq. 15 for this partition
+  glm::dmat4 wsToClip{ 1.0 };    ///< world -> light clip space
+  std::vector<glm::dvec3> wsBody;///< vertices of the receiver body (view partition ∩ scene)
+  double Mx = 0.0;               ///< 003 Eq. 9-10 as in §4.4: maxima over wsBody
+  double Mz = 0.0;
+  double storage = 0.0;          ///< 003 Eq. 12: critical texels / image pixels = Mx Mz / aspect
+};
+
+enum class Status
+{
+  Ok,
+  NothingToShadow, ///< empty scene, or the view sees none of it: no cascades
+  InvalidInput     ///< message says what; no cascades
+};
+
+struct ShadowSetup
+{
+  Status status = Status::InvalidInput;
+  std::string message;
+  double gammaDeg = 0.0;     ///< angle between light and view direction, 0..180 (0: light from behind)
+  double gammaLimDeg = 0.0;  ///< 000 Eq. 15 for the whole fitted frustum
+  double vsNear = 0.0;       ///< depth range the cascades cover (clipping range fitted to the scene)
+  double vsFar = 0.0;
+  std::vector<double> splits;    ///< split depths, vsNear .. vsFar
+  std::vector<Cascade> cascades; ///< the non-empty cascades, near to far
+  double storageTotal = 0.0;     ///< sum of the cascades' storage factors
+  double storageOptimal = 0.0;   ///< 003 App. C: ln(f/n) / (2 tan theta); NaN for parallel projection
+};
+
+/// Everything a shadow pass needs for one directional light in one frame. wsLightDirection is the
+/// direction the light travels. sceneBounds may be null (no clipping, no caster extrusion: the
+/// bodies are the view-frustum partitions, as in the papers' analysis).
+ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDirection,
+  const Bounds* sceneBounds, const Settings& settings);
+
+/// 003 Eq. 2-4 at a world point for a light clip matrix: beam widths of one shadow-map texel
+/// (map resolution 1) along ls x and ls z over the width of one image pixel (image height 1).
+Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
+  const glm::dvec3& wsLightDirection, const glm::dvec3& wsPoint);
+
+/// True when no point of the box can land inside the light clip volume (conservative test in
+/// homogeneous clip space). With depthClamp, points nearer than the near plane count as inside.
+bool boxOutsideClipVolume(const glm::dmat4& wsToClip, const Bounds& box, bool depthClamp);
+
+const char* toString(Status status);
+
+} // namespace csm

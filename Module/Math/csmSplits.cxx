@@ -1,0 +1,102 @@
+#include "csmSplits.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace csm
+{
+namespace
+{
+constexpr double kHalfPi = 1.57079632679489661923;
+
+double logSplit(double n, double f, int i, int k)
+{
+  return n * std::pow(f / n, double(i) / double(k)); // 000 Eq. 5, 003 Eq. 15-16
+}
+}
+
+std::vector<double> splitDepths(const SplitParameters& params, double n, double f, double gamma)
+{
+  const int k = params.scheme == SplitScheme::Single ? 1 : std::max(1, params.k);
+  std::vector<double> s(k + 1);
+  s[0] = n;
+  s[k] = f;
+  switch (params.scheme)
+  {
+    case SplitScheme::Single:
+      break;
+    case SplitScheme::Uniform:
+      for (int i = 1; i < k; ++i)
+      {
+        s[i] = n + (f - n) * double(i) / double(k);
+      }
+      break;
+    case SplitScheme::Log:
+      for (int i = 1; i < k; ++i)
+      {
+        s[i] = logSplit(n, f, i, k);
+      }
+      break;
+    case SplitScheme::Practical:
+    {
+      const double lambda = std::clamp(params.lambda, 0.0, 1.0);
+      for (int i = 1; i < k; ++i) // 001: C_i = lambda C_log + (1 - lambda) C_uniform
+      {
+        s[i] = lambda * logSplit(n, f, i, k) + (1.0 - lambda) * (n + (f - n) * double(i) / double(k));
+      }
+      break;
+    }
+    case SplitScheme::Adaptive:
+    {
+      const double lambda = std::clamp(gamma / kHalfPi, 0.0, 1.0); // 000 Eq. 19: lambda = gamma/(pi/2)
+      // 000 Eq. 19, from the last partition backwards: n_i = f_{i-1} =
+      //   lambda n (f_i/n)^((i-1)/i) + (1 - lambda) f_i / alpha.
+      // Where alpha^(i-1) would not fit in [n, f_i], the self-similar split of [n, f_i] is the
+      // floor, so that splits stay strictly increasing (Eq. 19 itself equals it at lambda = 1).
+      for (int i = k; i >= 2; --i)
+      {
+        const double fi = s[i];
+        const double logI = n * std::pow(fi / n, double(i - 1) / double(i));
+        const double eq19 = lambda * logI + (1.0 - lambda) * fi / params.alpha;
+        s[i - 1] = std::max(eq19, logI);
+      }
+      break;
+    }
+  }
+  return s;
+}
+
+const char* toString(SplitScheme scheme)
+{
+  switch (scheme)
+  {
+    case SplitScheme::Single:
+      return "single";
+    case SplitScheme::Uniform:
+      return "uniform";
+    case SplitScheme::Log:
+      return "log";
+    case SplitScheme::Practical:
+      return "practical";
+    case SplitScheme::Adaptive:
+      return "adaptive";
+  }
+  return "?";
+}
+
+bool parseSplitScheme(const char* text, SplitScheme& scheme)
+{
+  for (SplitScheme m : { SplitScheme::Single, SplitScheme::Uniform, SplitScheme::Log,
+         SplitScheme::Practical, SplitScheme::Adaptive })
+  {
+    if (text && std::strcmp(text, toString(m)) == 0)
+    {
+      scheme = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+} // namespace csm

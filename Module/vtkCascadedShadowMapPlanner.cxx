@@ -1,0 +1,182 @@
+#include "vtkCascadedShadowMapPlanner.h"
+
+#include "csmShadowSetup.h"
+
+#include "vtkCamera.h"
+#include "vtkLight.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+
+#include <cmath>
+#include <string>
+
+vtkStandardNewMacro(vtkCascadedShadowMapPlanner);
+
+struct vtkCascadedShadowMapPlanner::Internals
+{
+  csm::ShadowSetup Setup;
+  std::string ReportedMessage; // the last error reported, so that a bad input is reported once
+};
+
+vtkCascadedShadowMapPlanner::vtkCascadedShadowMapPlanner()
+  : Internal(new Internals)
+{
+}
+
+vtkCascadedShadowMapPlanner::~vtkCascadedShadowMapPlanner() = default;
+
+int vtkCascadedShadowMapPlanner::Plan(
+  vtkCamera* camera, double aspect, const double lightDirection[3], const double bounds[6])
+{
+  csm::ShadowSetup& setup = this->Internal->Setup;
+  if (!camera || !lightDirection)
+  {
+    setup = csm::ShadowSetup();
+    setup.message = "no camera or no light direction";
+  }
+  else
+  {
+    csm::Camera cam;
+    double v[3];
+    camera->GetPosition(v);
+    cam.wsPosition = { v[0], v[1], v[2] };
+    camera->GetDirectionOfProjection(v);
+    cam.wsDirection = { v[0], v[1], v[2] };
+    camera->GetViewUp(v);
+    cam.wsViewUp = { v[0], v[1], v[2] };
+    camera->GetClippingRange(v);
+    cam.vsNear = v[0];
+    cam.vsFar = v[1];
+    cam.aspect = aspect;
+    cam.parallel = camera->GetParallelProjection() != 0;
+    cam.parallelScale = camera->GetParallelScale();
+    cam.fovyDeg = camera->GetViewAngle();
+    if (camera->GetUseHorizontalViewAngle() && aspect > 0.0)
+    {
+      const double halfX = vtkMath::RadiansFromDegrees(0.5 * camera->GetViewAngle());
+      cam.fovyDeg = vtkMath::DegreesFromRadians(2.0 * std::atan(std::tan(halfX) / aspect));
+    }
+    csm::Settings settings;
+    settings.warp = static_cast<csm::WarpMode>(this->WarpMode);
+    settings.split.scheme = static_cast<csm::SplitScheme>(this->SplitScheme);
+    settings.split.k = this->NumberOfCascades;
+    settings.split.lambda = this->Lambda;
+    settings.split.alpha = this->Alpha;
+    settings.depthClamp = this->DepthClamp;
+    csm::Bounds scene;
+    if (bounds)
+    {
+      scene.wsMin = { bounds[0], bounds[2], bounds[4] };
+      scene.wsMax = { bounds[1], bounds[3], bounds[5] };
+    }
+    const glm::dvec3 light(lightDirection[0], lightDirection[1], lightDirection[2]);
+    setup = csm::computeShadowSetup(cam, light, bounds ? &scene : nullptr, settings);
+  }
+
+  if (setup.status == csm::Status::InvalidInput)
+  {
+    if (setup.message != this->Internal->ReportedMessage)
+    {
+      vtkErrorMacro(<< "No shadows: " << setup.message);
+      this->Internal->ReportedMessage = setup.message;
+    }
+  }
+  else
+  {
+    this->Internal->ReportedMessage.clear();
+  }
+  return this->GetNumberOfPlannedCascades();
+}
+
+int vtkCascadedShadowMapPlanner::Plan(
+  vtkCamera* camera, double aspect, vtkLight* light, const double bounds[6])
+{
+  if (!light)
+  {
+    return this->Plan(camera, aspect, static_cast<const double*>(nullptr), bounds);
+  }
+  double position[3], focal[3];
+  light->GetTransformedPosition(position);
+  light->GetTransformedFocalPoint(focal);
+  const double direction[3] = { focal[0] - position[0], focal[1] - position[1],
+    focal[2] - position[2] };
+  return this->Plan(camera, aspect, direction, bounds);
+}
+
+int vtkCascadedShadowMapPlanner::GetNumberOfPlannedCascades() const
+{
+  return static_cast<int>(this->Internal->Setup.cascades.size());
+}
+
+void vtkCascadedShadowMapPlanner::GetCascadeMatrix(int i, vtkMatrix4x4* matrix) const
+{
+  if (!matrix)
+  {
+    return;
+  }
+  if (i < 0 || i >= this->GetNumberOfPlannedCascades())
+  {
+    matrix->Identity();
+    return;
+  }
+  const glm::dmat4& m = this->Internal->Setup.cascades[i].wsToClip;
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int column = 0; column < 4; ++column)
+    {
+      matrix->SetElement(row, column, m[column][row]); // glm is column-major
+    }
+  }
+}
+
+double vtkCascadedShadowMapPlanner::GetCascadeNear(int i) const
+{
+  const auto& c = this->Internal->Setup.cascades;
+  return i >= 0 && i < static_cast<int>(c.size()) ? c[i].vsNear : 0.0;
+}
+
+double vtkCascadedShadowMapPlanner::GetCascadeFar(int i) const
+{
+  const auto& c = this->Internal->Setup.cascades;
+  return i >= 0 && i < static_cast<int>(c.size()) ? c[i].vsFar : 0.0;
+}
+
+double vtkCascadedShadowMapPlanner::GetCascadeNPrime(int i) const
+{
+  const auto& c = this->Internal->Setup.cascades;
+  return i >= 0 && i < static_cast<int>(c.size()) ? c[i].nPrime : 0.0;
+}
+
+double vtkCascadedShadowMapPlanner::GetStorageTotal() const
+{
+  return this->Internal->Setup.storageTotal;
+}
+
+double vtkCascadedShadowMapPlanner::GetStorageOptimal() const
+{
+  return this->Internal->Setup.storageOptimal;
+}
+
+double vtkCascadedShadowMapPlanner::GetGammaDegrees() const
+{
+  return this->Internal->Setup.gammaDeg;
+}
+
+const char* vtkCascadedShadowMapPlanner::GetLastMessage() const
+{
+  return this->Internal->Setup.message.c_str();
+}
+
+void vtkCascadedShadowMapPlanner::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfCascades: " << this->NumberOfCascades << "\n";
+  os << indent << "WarpMode: " << csm::toString(static_cast<csm::WarpMode>(this->WarpMode)) << "\n";
+  os << indent << "SplitScheme: "
+     << csm::toString(static_cast<csm::SplitScheme>(this->SplitScheme)) << "\n";
+  os << indent << "Lambda: " << this->Lambda << "\n";
+  os << indent << "Alpha: " << this->Alpha << "\n";
+  os << indent << "DepthClamp: " << (this->DepthClamp ? "on" : "off") << "\n";
+  os << indent << "PlannedCascades: " << this->GetNumberOfPlannedCascades() << "\n";
+}

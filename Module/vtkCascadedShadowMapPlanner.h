@@ -1,0 +1,142 @@
+/**
+ * @class   vtkCascadedShadowMapPlanner
+ * @brief   Plans the cascades of a directional light's shadow maps for a VTK camera.
+ *
+ * The bridge between VTK objects and the shadow math (Module/Math, no VTK there): it reads a
+ * vtkCamera, a light direction and the bounds of the visible scene, and computes for each
+ * cascade the world -> light clip matrix of a z-partitioned shadow map warped with the selected
+ * perspective parameter (default: the generalized LiSPSM parameter of Barroso & Celes, with
+ * 2 adaptive partitions and alpha = 2, as in their §4), its split depths and its aliasing error
+ * (Lloyd et al. 2006). The render passes use it once per light and frame.
+ *
+ * Bad input (NaN light direction, degenerate camera) gives one error message and no cascades.
+ */
+#ifndef vtkCascadedShadowMapPlanner_h
+#define vtkCascadedShadowMapPlanner_h
+
+#include "vtkObject.h"
+#include "vtkRenderingCascadedShadowsModule.h" // for export macro
+
+#include <memory> // for std::unique_ptr
+
+class vtkCamera;
+class vtkLight;
+class vtkMatrix4x4;
+
+class VTKRENDERINGCASCADEDSHADOWS_EXPORT vtkCascadedShadowMapPlanner : public vtkObject
+{
+public:
+  static vtkCascadedShadowMapPlanner* New();
+  vtkTypeMacro(vtkCascadedShadowMapPlanner, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum WarpModes
+  {
+    WARP_NONE = 0,   ///< orthographic (standard shadow map)
+    WARP_PSM,        ///< n' = n
+    WARP_LISPSM,     ///< n' = (n + sqrt(f n)) / sin(gamma)
+    WARP_GENERALIZED ///< Barroso & Celes Eq. 16-18
+  };
+  enum SplitSchemes
+  {
+    SPLIT_SINGLE = 0,
+    SPLIT_UNIFORM,
+    SPLIT_LOG,
+    SPLIT_PRACTICAL,
+    SPLIT_ADAPTIVE
+  };
+
+  ///@{
+  /// Number of z-partitions (cascades), 1..8. Default 2.
+  vtkSetClampMacro(NumberOfCascades, int, 1, 8);
+  vtkGetMacro(NumberOfCascades, int);
+  ///@}
+
+  ///@{
+  /// Warp parameter. Default WARP_GENERALIZED.
+  vtkSetClampMacro(WarpMode, int, WARP_NONE, WARP_GENERALIZED);
+  vtkGetMacro(WarpMode, int);
+  ///@}
+
+  ///@{
+  /// Split scheme. Default SPLIT_ADAPTIVE.
+  vtkSetClampMacro(SplitScheme, int, SPLIT_SINGLE, SPLIT_ADAPTIVE);
+  vtkGetMacro(SplitScheme, int);
+  ///@}
+
+  ///@{
+  /// Weight of the log splits in the practical scheme, [0, 1]. Default 0.5.
+  vtkSetClampMacro(Lambda, double, 0.0, 1.0);
+  vtkGetMacro(Lambda, double);
+  ///@}
+
+  ///@{
+  /// Adaptive scheme: f_i/n_i of the far partitions when light and view are parallel (> 1).
+  /// Default 2 (Barroso & Celes recommend <= 2 with PCF).
+  vtkSetClampMacro(Alpha, double, 1.000001, 1.0e6);
+  vtkGetMacro(Alpha, double);
+  ///@}
+
+  ///@{
+  /// Fit the light depth range to the receivers only and let the GPU clamp casters in front of
+  /// it (Lloyd et al. §6.4). Default on.
+  vtkSetMacro(DepthClamp, bool);
+  vtkGetMacro(DepthClamp, bool);
+  vtkBooleanMacro(DepthClamp, bool);
+  ///@}
+
+  /**
+   * Plan the cascades for a camera seen in a viewport of the given aspect (width/height), a
+   * directional light travelling along lightDirection (world), and the world bounds of the
+   * scene (xmin, xmax, ymin, ymax, zmin, zmax; null: use the view frustum alone). Returns the
+   * number of cascades, 0 when there is nothing to shadow or the input is invalid (see
+   * GetLastMessage()).
+   */
+  int Plan(vtkCamera* camera, double aspect, const double lightDirection[3], const double bounds[6]);
+
+  /// The same for a vtkLight (its transformed focal point minus its transformed position).
+  int Plan(vtkCamera* camera, double aspect, vtkLight* light, const double bounds[6]);
+
+  /// Number of cascades of the last plan.
+  int GetNumberOfPlannedCascades() const;
+
+  /// World -> light clip matrix of cascade i (after the division by w, its body is in [-1,1]^3).
+  void GetCascadeMatrix(int i, vtkMatrix4x4* worldToLightClip) const;
+
+  /// Split depths of cascade i along the view direction.
+  double GetCascadeNear(int i) const;
+  double GetCascadeFar(int i) const;
+
+  /// Warp parameter n' of cascade i; +infinity when orthographic.
+  double GetCascadeNPrime(int i) const;
+
+  /// Storage factor of the plan (Lloyd Eq. 12 summed over the cascades) and its optimum.
+  double GetStorageTotal() const;
+  double GetStorageOptimal() const;
+
+  /// Angle between light and view direction of the last plan, degrees (0: light from behind).
+  double GetGammaDegrees() const;
+
+  /// Why the last plan has no cascades (empty when it has some).
+  const char* GetLastMessage() const;
+
+protected:
+  vtkCascadedShadowMapPlanner();
+  ~vtkCascadedShadowMapPlanner() override;
+
+  int NumberOfCascades = 2;
+  int WarpMode = WARP_GENERALIZED;
+  int SplitScheme = SPLIT_ADAPTIVE;
+  double Lambda = 0.5;
+  double Alpha = 2.0;
+  bool DepthClamp = true;
+
+private:
+  vtkCascadedShadowMapPlanner(const vtkCascadedShadowMapPlanner&) = delete;
+  void operator=(const vtkCascadedShadowMapPlanner&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

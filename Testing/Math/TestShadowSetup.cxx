@@ -1,0 +1,456 @@
+// Light space, body B, per-cascade matrices and the aliasing error of 003.
+#include "csmShadowSetup.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace
+{
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDeg = kPi / 180.0;
+
+// Eye at the origin looking down -z, up +y. gammaDeg: 0 light from behind, 90 overhead, 180 facing.
+csm::Camera camera(double n, double f, double fovyDeg, double aspect = 1.0)
+{
+  csm::Camera c;
+  c.vsNear = n;
+  c.vsFar = f;
+  c.fovyDeg = fovyDeg;
+  c.aspect = aspect;
+  return c;
+}
+
+glm::dvec3 lightAt(const csm::Camera& c, double gammaDeg)
+{
+  const glm::dvec3 v = glm::normalize(c.wsDirection);
+  const glm::dvec3 up = glm::normalize(c.wsViewUp);
+  return std::cos(gammaDeg * kDeg) * v - std::sin(gammaDeg * kDeg) * up;
+}
+
+csm::Settings settings(csm::WarpMode warp, csm::SplitScheme scheme, int k)
+{
+  csm::Settings s;
+  s.warp = warp;
+  s.split.scheme = scheme;
+  s.split.k = k;
+  return s;
+}
+
+bool finite(const glm::dmat4& m)
+{
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r]))
+        return false;
+  return true;
+}
+
+glm::dvec3 toNdc(const glm::dmat4& m, const glm::dvec3& p)
+{
+  const glm::dvec4 h = m * glm::dvec4(p, 1.0);
+  return glm::dvec3(h) / h.w;
+}
+
+void expectBodyInUnitCube(const csm::ShadowSetup& setup, double tolerance = 1e-9)
+{
+  for (const csm::Cascade& c : setup.cascades)
+  {
+    ASSERT_FALSE(c.wsBody.empty());
+    for (const glm::dvec3& p : c.wsBody)
+    {
+      const glm::dvec4 h = c.wsToClip * glm::dvec4(p, 1.0);
+      ASSERT_GT(h.w, 0.0);
+      const glm::dvec3 q = glm::dvec3(h) / h.w;
+      for (int i = 0; i < 3; ++i)
+      {
+        EXPECT_LE(std::abs(q[i]), 1.0 + tolerance) << "axis " << i;
+      }
+    }
+  }
+}
+
+void expectAllFinite(const csm::ShadowSetup& setup)
+{
+  EXPECT_TRUE(std::isfinite(setup.gammaDeg));
+  EXPECT_TRUE(std::isfinite(setup.gammaLimDeg));
+  for (double s : setup.splits)
+    EXPECT_TRUE(std::isfinite(s));
+  for (const csm::Cascade& c : setup.cascades)
+  {
+    EXPECT_TRUE(finite(c.wsToClip));
+    EXPECT_TRUE(std::isfinite(c.Mx) && std::isfinite(c.Mz) && std::isfinite(c.storage));
+    EXPECT_TRUE(std::isfinite(c.vsNear) && std::isfinite(c.vsFar));
+    EXPECT_FALSE(std::isnan(c.nPrime));
+  }
+  EXPECT_TRUE(std::isfinite(setup.storageTotal));
+  EXPECT_TRUE(std::isfinite(setup.storageOptimal));
+}
+} // namespace
+
+// 003 Eq. 12, 17, 18 for an overhead light and self-similar (log) partitions.
+TEST(StorageFactor, OverheadMatchesClosedForms)
+{
+  const double tanTheta = std::tan(30.0 * kDeg);
+  for (auto warp : { csm::WarpMode::None, csm::WarpMode::LiSPSM, csm::WarpMode::Generalized })
+  {
+    for (int k = 1; k <= 4; ++k)
+    {
+      for (double ratio : { 10.0, 100.0, 1e3, 1e4 })
+      {
+        const csm::Camera cam = camera(1.0, ratio, 60.0);
+        const csm::ShadowSetup setup = csm::computeShadowSetup(
+          cam, lightAt(cam, 90.0), nullptr, settings(warp, csm::SplitScheme::Log, k));
+        ASSERT_EQ(setup.status, csm::Status::Ok) << setup.message;
+        ASSERT_EQ(setup.cascades.size(), size_t(k));
+        const double r = std::pow(ratio, 1.0 / k);
+        const double expected = warp == csm::WarpMode::None
+          ? k * r * (r - 1.0) / (2.0 * tanTheta) // 003 Eq. 17
+          : k * (r - 1.0) / (2.0 * tanTheta);    // 003 Eq. 18
+        EXPECT_NEAR(setup.storageTotal, expected, 1e-6 * expected)
+          << csm::toString(warp) << " k " << k << " f/n " << ratio;
+        EXPECT_NEAR(setup.storageOptimal, std::log(ratio) / (2.0 * tanTheta), 1e-12);
+        EXPECT_GE(setup.storageTotal, setup.storageOptimal * (1.0 - 1e-12));
+      }
+    }
+  }
+}
+
+// 003 Eq. 7-10 with n = 1 (the form the paper prints): maxima of m_x, m_z for one LiSPSM map.
+TEST(StorageFactor, OverheadMaximaMatchEq9And10)
+{
+  const double n = 1.0, f = 100.0, tanTheta = std::tan(30.0 * kDeg);
+  const csm::Camera cam = camera(n, f, 60.0);
+  for (auto warp : { csm::WarpMode::PSM, csm::WarpMode::LiSPSM })
+  {
+    const csm::ShadowSetup setup = csm::computeShadowSetup(
+      cam, lightAt(cam, 90.0), nullptr, settings(warp, csm::SplitScheme::Single, 1));
+    ASSERT_EQ(setup.cascades.size(), 1u);
+    const double np = setup.cascades[0].nPrime;
+    EXPECT_NEAR(np, warp == csm::WarpMode::PSM ? n : n + std::sqrt(f * n), 1e-12);
+    const double fp = np + f - n;
+    EXPECT_NEAR(setup.cascades[0].Mx, f * np / fp, 1e-9);                           // Eq. 9
+    EXPECT_NEAR(setup.cascades[0].Mz, n * (f - n) / (2 * tanTheta) * fp / (np * f), 1e-9); // Eq. 10
+  }
+}
+
+TEST(StorageFactor, NonSquareImageKeepsOverheadStorage)
+{
+  const double tanTheta = std::tan(20.0 * kDeg);
+  const csm::Camera cam = camera(1.0, 1000.0, 40.0, 800.0 / 300.0);
+  const csm::ShadowSetup setup = csm::computeShadowSetup(cam, lightAt(cam, 90.0), nullptr,
+    settings(csm::WarpMode::LiSPSM, csm::SplitScheme::Log, 3));
+  const double r = 10.0;
+  EXPECT_NEAR(setup.storageTotal, 3 * (r - 1) / (2 * tanTheta), 1e-6 * setup.storageTotal);
+}
+
+TEST(StorageFactor, LightBehindAndInFrontAgree)
+{
+  const csm::Camera cam = camera(1.0, 500.0, 50.0);
+  for (double g : { 0.0, 10.0, 40.0, 70.0 })
+  {
+    const auto s = settings(csm::WarpMode::Generalized, csm::SplitScheme::Adaptive, 3);
+    const auto behind = csm::computeShadowSetup(cam, lightAt(cam, g), nullptr, s);
+    const auto front = csm::computeShadowSetup(cam, lightAt(cam, 180.0 - g), nullptr, s);
+    EXPECT_NEAR(behind.gammaDeg, g, 1e-9);
+    EXPECT_NEAR(front.gammaDeg, 180.0 - g, 1e-9);
+    EXPECT_NEAR(behind.storageTotal, front.storageTotal, 1e-9 * behind.storageTotal) << g;
+  }
+}
+
+// Beyond gamma_lim the generalized warp beats the orthographic map by a wide margin; below it,
+// where it fades to orthographic (000 Eq. 16-18), its worst error stays within 10% of it.
+TEST(StorageFactor, GeneralizedAgainstUniform)
+{
+  const csm::Camera cam = camera(1.0, 1000.0, 60.0);
+  for (double g = 0.0; g <= 180.0; g += 5.0)
+  {
+    const auto none = csm::computeShadowSetup(cam, lightAt(cam, g), nullptr,
+      settings(csm::WarpMode::None, csm::SplitScheme::Log, 2));
+    const auto gen = csm::computeShadowSetup(cam, lightAt(cam, g), nullptr,
+      settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 2));
+    const double folded = std::min(g, 180.0 - g);
+    if (folded >= 35.0)
+    {
+      EXPECT_LT(gen.storageTotal, 0.8 * none.storageTotal) << "gamma " << g;
+    }
+    EXPECT_LE(gen.storageTotal, 1.1 * none.storageTotal) << "gamma " << g;
+  }
+  const auto overheadNone = csm::computeShadowSetup(cam, lightAt(cam, 90.0), nullptr,
+    settings(csm::WarpMode::None, csm::SplitScheme::Log, 2));
+  const auto overheadGen = csm::computeShadowSetup(cam, lightAt(cam, 90.0), nullptr,
+    settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 2));
+  // 003 Eq. 17 over Eq. 18: the warp saves the factor (f/n)^(1/k).
+  EXPECT_NEAR(overheadNone.storageTotal / overheadGen.storageTotal, std::sqrt(1000.0), 1e-6);
+}
+
+TEST(Body, EveryVertexMapsIntoUnitCube)
+{
+  csm::Bounds scene;
+  scene.wsMin = { -50, -2, -400 };
+  scene.wsMax = { 60, 30, 5 };
+  for (auto warp : { csm::WarpMode::None, csm::WarpMode::PSM, csm::WarpMode::LiSPSM,
+         csm::WarpMode::Generalized })
+  {
+    for (auto scheme : { csm::SplitScheme::Single, csm::SplitScheme::Log,
+           csm::SplitScheme::Practical, csm::SplitScheme::Adaptive })
+    {
+      for (double g = 0.0; g <= 180.0; g += 15.0)
+      {
+        for (bool clamp : { true, false })
+        {
+          csm::Camera cam = camera(0.5, 2000.0, 45.0, 1.5);
+          cam.wsPosition = { 3, 8, 20 };
+          auto s = settings(warp, scheme, 4);
+          s.depthClamp = clamp;
+          // Tilt the light sideways too, so the light is in general position.
+          const glm::dvec3 light = lightAt(cam, g) + glm::dvec3(0.3, 0.0, 0.0);
+          const auto without = csm::computeShadowSetup(cam, light, nullptr, s);
+          ASSERT_EQ(without.status, csm::Status::Ok);
+          expectBodyInUnitCube(without);
+          const auto with = csm::computeShadowSetup(cam, light, &scene, s);
+          ASSERT_EQ(with.status, csm::Status::Ok) << with.message;
+          expectBodyInUnitCube(with);
+          expectAllFinite(with);
+        }
+      }
+    }
+  }
+}
+
+TEST(Body, CastersTowardTheLightAreInsideOrClamped)
+{
+  // A tall box; the camera looks at its lower part; the light comes from above.
+  csm::Bounds scene;
+  scene.wsMin = { -10, 0, -60 };
+  scene.wsMax = { 10, 100, -10 };
+  csm::Camera cam = camera(1.0, 100.0, 30.0);
+  cam.wsPosition = { 0, 1, 0 };
+  cam.wsDirection = { 0, -0.05, -1 };
+  const glm::dvec3 light(0.2, -1.0, -0.1);
+  const glm::dvec3 caster(-9.0, 40.0, -30.0); // high above the visible part; lands at (-1, 0, -34)
+  auto s = settings(csm::WarpMode::Generalized, csm::SplitScheme::Adaptive, 2);
+  s.depthClamp = false;
+  const auto full = csm::computeShadowSetup(cam, light, &scene, s);
+  ASSERT_EQ(full.status, csm::Status::Ok);
+  s.depthClamp = true;
+  const auto clamped = csm::computeShadowSetup(cam, light, &scene, s);
+  ASSERT_EQ(clamped.status, csm::Status::Ok);
+  // The caster's shadow falls where its light ray meets the body: find a cascade that holds it.
+  bool tested = false;
+  for (size_t i = 0; i < full.cascades.size(); ++i)
+  {
+    const glm::dvec3 a = toNdc(full.cascades[i].wsToClip, caster);
+    const glm::dvec3 b = toNdc(clamped.cascades[i].wsToClip, caster);
+    if (std::abs(a.x) <= 1 && std::abs(a.y) <= 1)
+    {
+      tested = true;
+      EXPECT_GE(a.z, -1.0); // inside the depth range without clamping
+      EXPECT_LT(b.z, -1.0); // in front of the near plane: the GPU clamps it to the near depth
+    }
+  }
+  EXPECT_TRUE(tested);
+}
+
+TEST(Body, DepthRangeFitsTheVisibleScene)
+{
+  csm::Bounds scene;
+  scene.wsMin = { -1, -1, -80 };
+  scene.wsMax = { 1, 1, -20 };
+  const csm::Camera cam = camera(0.1, 10000.0, 60.0);
+  const auto setup = csm::computeShadowSetup(cam, lightAt(cam, 90.0), &scene,
+    settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 3));
+  ASSERT_EQ(setup.status, csm::Status::Ok);
+  EXPECT_NEAR(setup.vsNear, 20.0, 1e-3);
+  EXPECT_NEAR(setup.vsFar, 80.0, 1e-3);
+  EXPECT_NEAR(setup.splits[1], 20.0 * std::pow(4.0, 1.0 / 3.0), 1e-3);
+}
+
+TEST(Body, BoxCulling)
+{
+  const csm::Camera cam = camera(1.0, 100.0, 60.0);
+  const auto setup = csm::computeShadowSetup(cam, lightAt(cam, 90.0), nullptr,
+    settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 2));
+  ASSERT_EQ(setup.cascades.size(), 2u);
+  const glm::dmat4& nearMap = setup.cascades[0].wsToClip;
+  csm::Bounds inside{ { -0.5, -0.5, -5.5 }, { 0.5, 0.5, -4.5 } };
+  csm::Bounds far{ { -0.5, -0.5, -90 }, { 0.5, 0.5, -80 } };
+  csm::Bounds above{ { -0.5, 50, -5.5 }, { 0.5, 60, -4.5 } }; // toward the light: a caster
+  csm::Bounds below{ { -0.5, -60, -5.5 }, { 0.5, -50, -4.5 } };
+  EXPECT_FALSE(csm::boxOutsideClipVolume(nearMap, inside, true));
+  EXPECT_TRUE(csm::boxOutsideClipVolume(nearMap, far, true));
+  EXPECT_FALSE(csm::boxOutsideClipVolume(nearMap, above, true));
+  EXPECT_TRUE(csm::boxOutsideClipVolume(nearMap, above, false));
+  EXPECT_TRUE(csm::boxOutsideClipVolume(nearMap, below, true));
+  EXPECT_TRUE(csm::boxOutsideClipVolume(nearMap, csm::Bounds{}, true));
+}
+
+// Hard cases: no NaN or Inf anywhere, and an empty body reported as such.
+TEST(Stability, AnglesRangesAndFields)
+{
+  const csm::Camera base = camera(1.0, 100.0, 60.0);
+  const csm::PartitionShape whole{ 1.0, 100.0, std::tan(30 * kDeg), 100 * std::tan(30 * kDeg) };
+  const double limitDeg = csm::gammaLim(whole) / kDeg;
+  const std::vector<double> gammas = { 0.0, 1e-12, 1e-6, limitDeg - 1e-9, limitDeg + 1e-9, 90.0,
+    180.0, 180.0 - 1e-12 };
+  for (double ratio : { 1.0 + 1e-6, 10.0, 1e4, 1e7 })
+  {
+    for (double fovy : { 1.0, 60.0, 170.0 })
+    {
+      for (double g : gammas)
+      {
+        for (auto warp : { csm::WarpMode::None, csm::WarpMode::PSM, csm::WarpMode::LiSPSM,
+               csm::WarpMode::Generalized })
+        {
+          csm::Camera cam = camera(0.01, 0.01 * ratio, fovy);
+          const auto setup = csm::computeShadowSetup(
+            cam, lightAt(cam, g), nullptr, settings(warp, csm::SplitScheme::Adaptive, 4));
+          ASSERT_EQ(setup.status, csm::Status::Ok) << setup.message;
+          expectAllFinite(setup);
+          expectBodyInUnitCube(setup, 1e-6);
+        }
+      }
+    }
+  }
+  (void)base;
+}
+
+TEST(Stability, DegenerateScenes)
+{
+  const auto s = settings(csm::WarpMode::Generalized, csm::SplitScheme::Adaptive, 3);
+  const csm::Camera cam = camera(0.1, 1000.0, 45.0);
+  for (double g : { 0.0, 1e-6, 45.0, 90.0, 180.0 })
+  {
+    const glm::dvec3 light = lightAt(cam, g);
+    // A point.
+    csm::Bounds point{ { 0, 0, -10 }, { 0, 0, -10 } };
+    auto setup = csm::computeShadowSetup(cam, light, &point, s);
+    EXPECT_NE(setup.status, csm::Status::InvalidInput);
+    expectAllFinite(setup);
+    expectBodyInUnitCube(setup, 1e-6);
+    // A flat ground plane, and a wall facing the camera.
+    csm::Bounds ground{ { -100, -1, -500 }, { 100, -1, 0 } };
+    setup = csm::computeShadowSetup(cam, light, &ground, s);
+    EXPECT_EQ(setup.status, csm::Status::Ok) << setup.message;
+    expectAllFinite(setup);
+    expectBodyInUnitCube(setup, 1e-6);
+    csm::Bounds wall{ { -100, -100, -50 }, { 100, 100, -50 } };
+    setup = csm::computeShadowSetup(cam, light, &wall, s);
+    EXPECT_EQ(setup.status, csm::Status::Ok) << setup.message;
+    expectAllFinite(setup);
+    expectBodyInUnitCube(setup, 1e-6);
+    // Empty bounds (VTK's uninitialized bounds).
+    csm::Bounds empty;
+    setup = csm::computeShadowSetup(cam, light, &empty, s);
+    EXPECT_EQ(setup.status, csm::Status::NothingToShadow);
+    EXPECT_TRUE(setup.cascades.empty());
+    // The camera looks away from the scene.
+    csm::Bounds behind{ { -10, -10, 10 }, { 10, 10, 30 } };
+    setup = csm::computeShadowSetup(cam, light, &behind, s);
+    EXPECT_EQ(setup.status, csm::Status::NothingToShadow);
+    EXPECT_TRUE(setup.cascades.empty());
+    EXPECT_FALSE(setup.message.empty());
+    // The camera inside the scene box.
+    csm::Bounds around{ { -200, -200, -200 }, { 200, 200, 200 } };
+    setup = csm::computeShadowSetup(cam, light, &around, s);
+    EXPECT_EQ(setup.status, csm::Status::Ok);
+    EXPECT_NEAR(setup.vsNear, 0.1, 1e-9);
+    expectAllFinite(setup);
+    expectBodyInUnitCube(setup, 1e-6);
+  }
+}
+
+TEST(Stability, FarFromTheOrigin)
+{
+  const glm::dvec3 offset(1e7, -1e7, 1e7);
+  csm::Bounds scene{ offset + glm::dvec3(-50, 0, -200), offset + glm::dvec3(50, 40, 0) };
+  csm::Camera cam = camera(0.5, 5000.0, 45.0);
+  cam.wsPosition = offset + glm::dvec3(0, 10, 30);
+  csm::Camera local = cam;
+  local.wsPosition -= offset;
+  csm::Bounds localScene{ scene.wsMin - offset, scene.wsMax - offset };
+  for (double g : { 0.0, 2.0, 60.0, 90.0, 178.0 })
+  {
+    const auto s = settings(csm::WarpMode::Generalized, csm::SplitScheme::Adaptive, 3);
+    const auto far = csm::computeShadowSetup(cam, lightAt(cam, g), &scene, s);
+    const auto near = csm::computeShadowSetup(local, lightAt(local, g), &localScene, s);
+    ASSERT_EQ(far.status, csm::Status::Ok);
+    expectAllFinite(far);
+    expectBodyInUnitCube(far, 1e-6);
+    ASSERT_EQ(far.cascades.size(), near.cascades.size());
+    EXPECT_NEAR(far.storageTotal, near.storageTotal, 1e-6 * near.storageTotal);
+    // The same point maps to the same shadow-map coordinates.
+    for (size_t i = 0; i < far.cascades.size(); ++i)
+    {
+      const glm::dvec3 a = toNdc(far.cascades[i].wsToClip, offset + glm::dvec3(3, 1, -20));
+      const glm::dvec3 b = toNdc(near.cascades[i].wsToClip, glm::dvec3(3, 1, -20));
+      EXPECT_NEAR(glm::length(a - b), 0.0, 1e-7);
+    }
+  }
+}
+
+TEST(Stability, ParallelProjection)
+{
+  csm::Camera cam = camera(1.0, 200.0, 30.0);
+  cam.parallel = true;
+  cam.parallelScale = 20.0;
+  csm::Bounds scene{ { -30, -5, -150 }, { 30, 20, -10 } };
+  for (double g : { 0.0, 45.0, 90.0, 180.0 })
+  {
+    const auto setup = csm::computeShadowSetup(cam, lightAt(cam, g), &scene,
+      settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 2));
+    ASSERT_EQ(setup.status, csm::Status::Ok);
+    for (const auto& c : setup.cascades)
+    {
+      EXPECT_TRUE(std::isinf(c.nPrime)); // warping cannot help a parallel projection
+      EXPECT_TRUE(finite(c.wsToClip));
+    }
+    expectBodyInUnitCube(setup);
+    EXPECT_TRUE(std::isnan(setup.storageOptimal));
+  }
+}
+
+TEST(Stability, BadInputIsReported)
+{
+  const auto s = settings(csm::WarpMode::Generalized, csm::SplitScheme::Adaptive, 2);
+  const double nan = std::nan("");
+  csm::Camera cam = camera(1.0, 100.0, 60.0);
+  auto expectInvalid = [&](const csm::Camera& c, glm::dvec3 light, const csm::Settings& st) {
+    const auto setup = csm::computeShadowSetup(c, light, nullptr, st);
+    EXPECT_EQ(setup.status, csm::Status::InvalidInput);
+    EXPECT_FALSE(setup.message.empty());
+    EXPECT_TRUE(setup.cascades.empty());
+  };
+  expectInvalid(cam, { nan, -1, 0 }, s);
+  expectInvalid(cam, { 0, 0, 0 }, s);
+  csm::Camera bad = cam;
+  bad.vsNear = 0.0;
+  expectInvalid(bad, { 0, -1, 0 }, s);
+  bad = cam;
+  bad.vsFar = 0.5;
+  expectInvalid(bad, { 0, -1, 0 }, s);
+  bad = cam;
+  bad.fovyDeg = 180.0;
+  expectInvalid(bad, { 0, -1, 0 }, s);
+  bad = cam;
+  bad.wsPosition.x = nan;
+  expectInvalid(bad, { 0, -1, 0 }, s);
+  auto st = s;
+  st.split.k = 0;
+  expectInvalid(cam, { 0, -1, 0 }, st);
+  st = s;
+  st.split.alpha = 1.0;
+  expectInvalid(cam, { 0, -1, 0 }, st);
+  st = s;
+  st.split.lambda = nan;
+  expectInvalid(cam, { 0, -1, 0 }, st);
+  csm::Bounds infinite{ { 0, 0, 0 }, { INFINITY, 1, 1 } };
+  EXPECT_EQ(csm::computeShadowSetup(cam, { 0, -1, 0 }, &infinite, s).status,
+    csm::Status::InvalidInput);
+  // View-up parallel to the view direction still gives a valid frame.
+  bad = cam;
+  bad.wsViewUp = bad.wsDirection;
+  EXPECT_EQ(csm::computeShadowSetup(bad, { 0, -1, 0 }, nullptr, s).status, csm::Status::Ok);
+}

@@ -1,0 +1,122 @@
+// vtkCascadedShadowMapPlanner: VTK camera and light in, the math's cascades out.
+#include "vtkCascadedShadowMapPlanner.h"
+
+#include "vtkCamera.h"
+#include "vtkLight.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace
+{
+void project(vtkMatrix4x4* m, const double p[3], double ndc[3])
+{
+  const double h[4] = { p[0], p[1], p[2], 1.0 };
+  double out[4];
+  m->MultiplyPoint(h, out);
+  for (int i = 0; i < 3; ++i)
+    ndc[i] = out[i] / out[3];
+}
+}
+
+TEST(Planner, DefaultsArePapersRecommendation)
+{
+  vtkNew<vtkCascadedShadowMapPlanner> planner;
+  EXPECT_EQ(planner->GetNumberOfCascades(), 2);
+  EXPECT_EQ(planner->GetWarpMode(), vtkCascadedShadowMapPlanner::WARP_GENERALIZED);
+  EXPECT_EQ(planner->GetSplitScheme(), vtkCascadedShadowMapPlanner::SPLIT_ADAPTIVE);
+  EXPECT_DOUBLE_EQ(planner->GetAlpha(), 2.0);
+  planner->SetNumberOfCascades(20);
+  EXPECT_EQ(planner->GetNumberOfCascades(), 8);
+  std::ostringstream os;
+  planner->Print(os);
+  EXPECT_NE(os.str().find("WarpMode: generalized"), std::string::npos);
+}
+
+TEST(Planner, PlansForAVtkCameraAndLight)
+{
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0, 5, 40);
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetViewUp(0, 1, 0);
+  camera->SetClippingRange(0.5, 500);
+  camera->SetViewAngle(40);
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetPosition(10, 100, 0);
+  light->SetFocalPoint(0, 0, 0);
+  const double bounds[6] = { -20, 20, -1, 15, -20, 20 };
+
+  vtkNew<vtkCascadedShadowMapPlanner> planner;
+  planner->SetNumberOfCascades(3);
+  ASSERT_EQ(planner->Plan(camera, 16.0 / 9.0, light, bounds), 3);
+  EXPECT_STREQ(planner->GetLastMessage(), "");
+  EXPECT_GT(planner->GetGammaDegrees(), 80.0);
+  EXPECT_LT(planner->GetGammaDegrees(), 100.0);
+  // Splits cover the part of the view that holds the scene, near to far.
+  EXPECT_GT(planner->GetCascadeNear(0), 0.5);
+  EXPECT_LT(planner->GetCascadeFar(2), 500.0);
+  for (int i = 0; i < 2; ++i)
+    EXPECT_DOUBLE_EQ(planner->GetCascadeFar(i), planner->GetCascadeNear(i + 1));
+  // The focal point (inside the scene, in view) lands in the map of the cascade holding it.
+  vtkNew<vtkMatrix4x4> m;
+  const double focal[3] = { 0, 0, 0 };
+  const double depth = std::sqrt(25.0 + 1600.0);
+  for (int i = 0; i < 3; ++i)
+  {
+    if (depth >= planner->GetCascadeNear(i) && depth <= planner->GetCascadeFar(i))
+    {
+      planner->GetCascadeMatrix(i, m);
+      double ndc[3];
+      project(m, focal, ndc);
+      for (double c : ndc)
+        EXPECT_LE(std::abs(c), 1.0);
+    }
+  }
+  EXPECT_GT(planner->GetStorageTotal(), planner->GetStorageOptimal());
+}
+
+TEST(Planner, HorizontalViewAngleIsConverted)
+{
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0, 0, 10);
+  camera->SetClippingRange(1, 100);
+  camera->SetViewAngle(60);
+  const double down[3] = { 0, -1, 0 };
+  vtkNew<vtkCascadedShadowMapPlanner> planner;
+  planner->SetSplitScheme(vtkCascadedShadowMapPlanner::SPLIT_SINGLE);
+  planner->SetWarpMode(vtkCascadedShadowMapPlanner::WARP_LISPSM);
+  planner->Plan(camera, 2.0, down, nullptr);
+  const double vertical = planner->GetStorageTotal();
+  camera->UseHorizontalViewAngleOn();
+  camera->SetViewAngle(2.0 * std::atan(2.0 * std::tan(M_PI / 6.0)) * 180.0 / M_PI);
+  planner->Plan(camera, 2.0, down, nullptr);
+  EXPECT_NEAR(planner->GetStorageTotal(), vertical, 1e-9 * vertical);
+  // Overhead light, one LiSPSM map: 003 Eq. 12 with f/n = 100, theta = 30 deg.
+  EXPECT_NEAR(vertical, 99.0 / (2.0 * std::tan(M_PI / 6.0)), 1e-6 * vertical);
+}
+
+TEST(Planner, BadInputGivesNoCascadesAndAMessage)
+{
+  vtkObject::GlobalWarningDisplayOff();
+  vtkNew<vtkCamera> camera;
+  vtkNew<vtkCascadedShadowMapPlanner> planner;
+  const double nanLight[3] = { NAN, -1, 0 };
+  EXPECT_EQ(planner->Plan(camera, 1.0, nanLight, nullptr), 0);
+  EXPECT_NE(std::string(planner->GetLastMessage()).find("light direction"), std::string::npos);
+  EXPECT_EQ(planner->Plan(camera, 1.0, static_cast<vtkLight*>(nullptr), nullptr), 0);
+  const double down[3] = { 0, -1, 0 };
+  const double empty[6] = { 1, -1, 1, -1, 1, -1 }; // VTK's bounds of nothing
+  EXPECT_EQ(planner->Plan(camera, 1.0, down, empty), 0);
+  EXPECT_EQ(planner->Plan(camera, 0.0, down, nullptr), 0); // zero-size viewport
+  vtkNew<vtkMatrix4x4> m;
+  m->Zero();
+  planner->GetCascadeMatrix(0, m); // out of range: identity, not garbage
+  EXPECT_TRUE(m->IsIdentity());
+  vtkObject::GlobalWarningDisplayOn();
+}

@@ -1,0 +1,5 @@
+#!/usr/bin/env bash
+# Benchmark of the per-frame shadow math (Google Benchmark, medians of 5 repetitions).
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+"$BUILD/Testing/csmMathBenchmark" "$@"
