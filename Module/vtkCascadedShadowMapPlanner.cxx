@@ -10,12 +10,14 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkCascadedShadowMapPlanner);
 
 struct vtkCascadedShadowMapPlanner::Internals
 {
   csm::ShadowSetup Setup;
+  std::vector<csm::Bounds> Receivers;
   std::string ReportedMessage; // the last error reported, so that a bad input is reported once
 };
 
@@ -26,67 +28,72 @@ vtkCascadedShadowMapPlanner::vtkCascadedShadowMapPlanner()
 
 vtkCascadedShadowMapPlanner::~vtkCascadedShadowMapPlanner() = default;
 
+namespace
+{
+bool toCamera(vtkCamera* camera, double aspect, csm::Camera& cam)
+{
+  if (!camera)
+  {
+    return false;
+  }
+  double v[3];
+  camera->GetPosition(v);
+  cam.wsPosition = { v[0], v[1], v[2] };
+  camera->GetDirectionOfProjection(v);
+  cam.wsDirection = { v[0], v[1], v[2] };
+  camera->GetViewUp(v);
+  cam.wsViewUp = { v[0], v[1], v[2] };
+  camera->GetClippingRange(v);
+  cam.vsNear = v[0];
+  cam.vsFar = v[1];
+  cam.aspect = aspect;
+  cam.parallel = camera->GetParallelProjection() != 0;
+  cam.parallelScale = camera->GetParallelScale();
+  cam.fovyDeg = camera->GetViewAngle();
+  if (camera->GetUseHorizontalViewAngle() && aspect > 0.0)
+  {
+    const double halfX = vtkMath::RadiansFromDegrees(0.5 * camera->GetViewAngle());
+    cam.fovyDeg = vtkMath::DegreesFromRadians(2.0 * std::atan(std::tan(halfX) / aspect));
+  }
+  return true;
+}
+
+csm::Bounds toBounds(const double bounds[6])
+{
+  csm::Bounds scene;
+  if (bounds)
+  {
+    scene.wsMin = { bounds[0], bounds[2], bounds[4] };
+    scene.wsMax = { bounds[1], bounds[3], bounds[5] };
+  }
+  return scene;
+}
+}
+
 int vtkCascadedShadowMapPlanner::Plan(
   vtkCamera* camera, double aspect, const double lightDirection[3], const double bounds[6])
 {
-  csm::ShadowSetup& setup = this->Internal->Setup;
-  if (!camera || !lightDirection)
+  csm::Camera cam;
+  if (!toCamera(camera, aspect, cam) || !lightDirection)
   {
-    setup = csm::ShadowSetup();
-    setup.message = "no camera or no light direction";
+    this->Internal->Setup = csm::ShadowSetup();
+    this->Internal->Setup.message = "no camera or no light direction";
+    return this->Report();
   }
-  else
-  {
-    csm::Camera cam;
-    double v[3];
-    camera->GetPosition(v);
-    cam.wsPosition = { v[0], v[1], v[2] };
-    camera->GetDirectionOfProjection(v);
-    cam.wsDirection = { v[0], v[1], v[2] };
-    camera->GetViewUp(v);
-    cam.wsViewUp = { v[0], v[1], v[2] };
-    camera->GetClippingRange(v);
-    cam.vsNear = v[0];
-    cam.vsFar = v[1];
-    cam.aspect = aspect;
-    cam.parallel = camera->GetParallelProjection() != 0;
-    cam.parallelScale = camera->GetParallelScale();
-    cam.fovyDeg = camera->GetViewAngle();
-    if (camera->GetUseHorizontalViewAngle() && aspect > 0.0)
-    {
-      const double halfX = vtkMath::RadiansFromDegrees(0.5 * camera->GetViewAngle());
-      cam.fovyDeg = vtkMath::DegreesFromRadians(2.0 * std::atan(std::tan(halfX) / aspect));
-    }
-    csm::Settings settings;
-    settings.warp = static_cast<csm::WarpMode>(this->WarpMode);
-    settings.split.scheme = static_cast<csm::SplitScheme>(this->SplitScheme);
-    settings.split.k = this->NumberOfCascades;
-    settings.split.lambda = this->Lambda;
-    settings.split.alpha = this->Alpha;
-    settings.depthClamp = this->DepthClamp;
-    csm::Bounds scene;
-    if (bounds)
-    {
-      scene.wsMin = { bounds[0], bounds[2], bounds[4] };
-      scene.wsMax = { bounds[1], bounds[3], bounds[5] };
-    }
-    const glm::dvec3 light(lightDirection[0], lightDirection[1], lightDirection[2]);
-    setup = csm::computeShadowSetup(cam, light, bounds ? &scene : nullptr, settings);
-  }
-
-  if (setup.status == csm::Status::InvalidInput)
-  {
-    if (setup.message != this->Internal->ReportedMessage)
-    {
-      vtkErrorMacro(<< "No shadows: " << setup.message);
-      this->Internal->ReportedMessage = setup.message;
-    }
-  }
-  else
-  {
-    this->Internal->ReportedMessage.clear();
-  }
-  return this->GetNumberOfPlannedCascades();
+  csm::Settings settings;
+  settings.warp = static_cast<csm::WarpMode>(this->WarpMode);
+  settings.split.scheme = static_cast<csm::SplitScheme>(this->SplitScheme);
+  settings.split.k = this->NumberOfCascades;
+  settings.split.lambda = this->Lambda;
+  settings.split.alpha = this->Alpha;
+  settings.depthClamp = this->DepthClamp;
+  const csm::Bounds scene = toBounds(bounds);
+  const glm::dvec3 light(lightDirection[0], lightDirection[1], lightDirection[2]);
+  const std::vector<csm::Bounds>* parts =
+    this->Internal->Receivers.empty() ? nullptr : &this->Internal->Receivers;
+  this->Internal->Setup =
+    csm::computeShadowSetup(cam, light, bounds ? &scene : nullptr, settings, parts);
+  return this->Report();
 }
 
 int vtkCascadedShadowMapPlanner::Plan(
@@ -101,7 +108,58 @@ int vtkCascadedShadowMapPlanner::Plan(
   light->GetTransformedFocalPoint(focal);
   const double direction[3] = { focal[0] - position[0], focal[1] - position[1],
     focal[2] - position[2] };
-  return this->Plan(camera, aspect, direction, bounds);
+  if (!light->GetPositional())
+  {
+    return this->Plan(camera, aspect, direction, bounds);
+  }
+  // A spot light: one perspective map fitted to the lit part of the visible scene.
+  csm::Camera cam;
+  toCamera(camera, aspect, cam);
+  const csm::Bounds scene = toBounds(bounds);
+  if (!camera)
+  {
+    this->Internal->Setup = csm::ShadowSetup();
+    this->Internal->Setup.message = "no camera";
+  }
+  else
+  {
+    this->Internal->Setup = csm::computeSpotSetup(cam,
+      glm::dvec3(position[0], position[1], position[2]),
+      glm::dvec3(direction[0], direction[1], direction[2]), light->GetConeAngle(),
+      bounds ? &scene : nullptr, this->DepthClamp);
+  }
+  return this->Report();
+}
+
+void vtkCascadedShadowMapPlanner::ClearReceiverBounds()
+{
+  this->Internal->Receivers.clear();
+}
+
+void vtkCascadedShadowMapPlanner::AddReceiverBounds(const double bounds[6])
+{
+  if (bounds)
+  {
+    this->Internal->Receivers.push_back(toBounds(bounds));
+  }
+}
+
+int vtkCascadedShadowMapPlanner::Report()
+{
+  const csm::ShadowSetup& setup = this->Internal->Setup;
+  if (setup.status == csm::Status::InvalidInput)
+  {
+    if (setup.message != this->Internal->ReportedMessage)
+    {
+      vtkErrorMacro(<< "No shadows: " << setup.message);
+      this->Internal->ReportedMessage = setup.message;
+    }
+  }
+  else
+  {
+    this->Internal->ReportedMessage.clear();
+  }
+  return this->GetNumberOfPlannedCascades();
 }
 
 int vtkCascadedShadowMapPlanner::GetNumberOfPlannedCascades() const

@@ -94,8 +94,20 @@ public:
    */
   int Plan(vtkCamera* camera, double aspect, const double lightDirection[3], const double bounds[6]);
 
-  /// The same for a vtkLight (its transformed focal point minus its transformed position).
+  /// The same for a vtkLight: a directional light travels from its transformed position to its
+  /// transformed focal point; a positional (spot) light gets one perspective map fitted to the
+  /// part of the visible scene inside its cone (cone angle < 90 degrees).
   int Plan(vtkCamera* camera, double aspect, vtkLight* light, const double bounds[6]);
+
+  ///@{
+  /**
+   * Bounds of the individual receivers (props) inside the scene bounds. When given, the cascades
+   * are fitted to the view clipped by each box rather than by the one box around all of them,
+   * which is much tighter for a wide flat ground under a tall structure. Kept until cleared.
+   */
+  void ClearReceiverBounds();
+  void AddReceiverBounds(const double bounds[6]);
+  ///@}
 
   /// Number of cascades of the last plan.
   int GetNumberOfPlannedCascades() const;
@@ -134,6 +146,8 @@ protected:
 private:
   vtkCascadedShadowMapPlanner(const vtkCascadedShadowMapPlanner&) = delete;
   void operator=(const vtkCascadedShadowMapPlanner&) = delete;
+
+  int Report();
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

@@ -136,8 +136,7 @@ glm::dmat4 fromRows(const glm::dvec4& r0, const glm::dvec4& r1, const glm::dvec4
   return m;
 }
 
-std::string validate(const Camera& camera, const glm::dvec3& light, const Bounds* bounds,
-  const Settings& settings)
+std::string validateCamera(const Camera& camera, const Bounds* bounds)
 {
   if (!finite(camera.wsPosition) || !finite(camera.wsDirection) || !finite(camera.wsViewUp))
   {
@@ -167,13 +166,24 @@ std::string validate(const Camera& camera, const glm::dvec3& light, const Bounds
   {
     return "parallel scale must be finite and > 0";
   }
-  if (!finite(light) || !(glm::length(light) > 0.0))
-  {
-    return "light direction must be finite and non-zero";
-  }
   if (bounds && !bounds->isFinite())
   {
     return "scene bounds must be finite";
+  }
+  return {};
+}
+
+std::string validate(const Camera& camera, const glm::dvec3& light, const Bounds* bounds,
+  const Settings& settings)
+{
+  const std::string cameraError = validateCamera(camera, bounds);
+  if (!cameraError.empty())
+  {
+    return cameraError;
+  }
+  if (!finite(light) || !(glm::length(light) > 0.0))
+  {
+    return "light direction must be finite and non-zero";
   }
   const SplitParameters& split = settings.split;
   if (split.k < 1 || split.k > kMaxCascades)
@@ -205,10 +215,20 @@ bool Bounds::isFinite() const
 }
 
 ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDirection,
-  const Bounds* sceneBounds, const Settings& settings)
+  const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts)
 {
   ShadowSetup setup;
   setup.message = validate(camera, wsLightDirection, sceneBounds, settings);
+  if (setup.message.empty() && receiverParts)
+  {
+    for (const Bounds& part : *receiverParts)
+    {
+      if (!part.isFinite())
+      {
+        setup.message = "receiver bounds must be finite";
+      }
+    }
+  }
   if (!setup.message.empty())
   {
     setup.status = Status::InvalidInput;
@@ -245,16 +265,43 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
     cwsBoxMax = sceneBounds->wsMax - camera.wsPosition + inflate;
     boxClip = boxPlanes(cwsBoxMin, cwsBoxMax);
   }
-  auto receiverBody = [&](double d0, double d1) {
-    ConvexBody body = ConvexBody::hexahedron(partitionCorners(camera, frame, d0, d1));
-    if (clipToScene)
+  // Receivers of a partition: the partition clipped by each receiver box (or the scene box).
+  std::vector<std::array<Plane, 6>> receiverClips;
+  if (receiverParts && !receiverParts->empty())
+  {
+    for (const Bounds& part : *receiverParts)
     {
-      for (const Plane& plane : boxClip)
+      if (!part.isEmpty())
+      {
+        const double inflate =
+          1e-6 * std::max(glm::length(part.wsMax - part.wsMin), camera.vsNear);
+        receiverClips.push_back(boxPlanes(part.wsMin - camera.wsPosition - inflate,
+          part.wsMax - camera.wsPosition + inflate));
+      }
+    }
+  }
+  else if (clipToScene)
+  {
+    receiverClips.push_back(boxClip);
+  }
+  auto receiverBody = [&](double d0, double d1) {
+    const ConvexBody partition = ConvexBody::hexahedron(partitionCorners(camera, frame, d0, d1));
+    if (!clipToScene)
+    {
+      return partition.vertices(epsilon);
+    }
+    std::vector<glm::dvec3> vertices;
+    for (const auto& planes : receiverClips)
+    {
+      ConvexBody body = partition;
+      for (const Plane& plane : planes)
       {
         body.clip(plane, epsilon);
       }
+      const std::vector<glm::dvec3> part = body.vertices(epsilon);
+      vertices.insert(vertices.end(), part.begin(), part.end());
     }
-    return body;
+    return vertices;
   };
 
   // Fit the depth range to what is visible of the scene.
@@ -262,7 +309,7 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
   double f = camera.vsFar;
   if (clipToScene)
   {
-    const ConvexBody visible = receiverBody(n, f);
+    const std::vector<glm::dvec3> visible = receiverBody(n, f);
     if (visible.empty())
     {
       setup.status = Status::NothingToShadow;
@@ -270,7 +317,7 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
       return setup;
     }
     double lo = kInf, hi = -kInf;
-    for (const glm::dvec3& p : visible.vertices(epsilon))
+    for (const glm::dvec3& p : visible)
     {
       const double depth = glm::dot(p, frame.view);
       lo = std::min(lo, depth);
@@ -303,8 +350,8 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
   {
     const double d0 = setup.splits[i];
     const double d1 = setup.splits[i + 1];
-    const ConvexBody body = receiverBody(d0, d1);
-    if (body.empty())
+    const std::vector<glm::dvec3> cwsBody = receiverBody(d0, d1);
+    if (cwsBody.empty())
     {
       continue; // nothing of the scene in this partition
     }
@@ -314,7 +361,6 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
     cascade.gammaLimDeg = gammaLim(shape(d0, d1)) / kDegree;
 
     // Receivers, and (without depth clamping) the casters between them and the light.
-    const std::vector<glm::dvec3> cwsBody = body.vertices(epsilon);
     std::vector<glm::dvec3> lsPoints;
     lsPoints.reserve(2 * cwsBody.size() + 6);
     auto toLight = [&](const glm::dvec3& p) {
@@ -420,6 +466,145 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
     setup.message = "no partition of the view holds any of the scene";
     return setup;
   }
+  setup.status = Status::Ok;
+  return setup;
+}
+
+ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosition,
+  const glm::dvec3& wsLightAxis, double coneAngleDeg, const Bounds* sceneBounds, bool depthClamp)
+{
+  ShadowSetup setup;
+  setup.message = validateCamera(camera, sceneBounds);
+  if (setup.message.empty() &&
+    (!finite(wsLightPosition) || !finite(wsLightAxis) || !(glm::length(wsLightAxis) > 0.0)))
+  {
+    setup.message = "spot light position and direction must be finite and non-zero";
+  }
+  if (setup.message.empty() && !(coneAngleDeg > 0.0 && coneAngleDeg < 90.0))
+  {
+    setup.message = "spot light cone angle must be in (0, 90) degrees";
+  }
+  if (!setup.message.empty())
+  {
+    setup.status = Status::InvalidInput;
+    return setup;
+  }
+  if (sceneBounds && sceneBounds->isEmpty())
+  {
+    setup.status = Status::NothingToShadow;
+    setup.message = "the scene is empty";
+    return setup;
+  }
+  const CameraFrame frame = cameraFrame(camera);
+  const glm::dvec2 farHalf = halfSize(camera, frame, camera.vsFar);
+  const double epsilon = 1e-12 * (camera.vsFar + farHalf.x + farHalf.y);
+
+  // What the view needs: the visible scene inside the cone's bounding pyramid.
+  ConvexBody body =
+    ConvexBody::hexahedron(partitionCorners(camera, frame, camera.vsNear, camera.vsFar));
+  if (sceneBounds)
+  {
+    const double inflate =
+      1e-6 * std::max(glm::length(sceneBounds->wsMax - sceneBounds->wsMin), camera.vsNear);
+    for (const Plane& plane : boxPlanes(sceneBounds->wsMin - camera.wsPosition - inflate,
+           sceneBounds->wsMax - camera.wsPosition + inflate))
+    {
+      body.clip(plane, epsilon);
+    }
+  }
+  const glm::dvec3 w = glm::normalize(wsLightAxis);
+  const glm::dvec3 u = perpendicular(w);
+  const glm::dvec3 v = glm::cross(w, u);
+  const glm::dvec3 cwsApex = wsLightPosition - camera.wsPosition;
+  const double tanCone = std::tan(coneAngleDeg * kDegree);
+  const glm::dvec3 sideNormals[4] = { tanCone * w - u, tanCone * w + u, tanCone * w - v,
+    tanCone * w + v };
+  for (const glm::dvec3& normal : sideNormals)
+  {
+    body.clip({ normal, -glm::dot(normal, cwsApex) }, epsilon);
+  }
+  if (body.empty())
+  {
+    setup.status = Status::NothingToShadow;
+    setup.message = "the spot light reaches none of the visible scene";
+    return setup;
+  }
+
+  // Light frame: x along u, y along v, z the distance along the axis.
+  double zMin = kInf, zMax = -kInf, vsMin = kInf, vsMax = -kInf;
+  glm::dvec2 lo(kInf), hi(-kInf);
+  const std::vector<glm::dvec3> vertices = body.vertices(epsilon);
+  Cascade cascade;
+  for (const glm::dvec3& p : vertices)
+  {
+    const glm::dvec3 q = p - cwsApex;
+    const double z = glm::dot(q, w);
+    zMin = std::min(zMin, z);
+    zMax = std::max(zMax, z);
+    const double depth = glm::dot(p, frame.view);
+    vsMin = std::min(vsMin, depth);
+    vsMax = std::max(vsMax, depth);
+    cascade.wsBody.push_back(p + camera.wsPosition);
+  }
+  const double zFar = std::max(zMax, 1e-9 * (camera.vsFar + glm::length(cwsApex))) * 1.01;
+  double zNear = 1e-3 * zFar;
+  if (depthClamp)
+  {
+    zNear = std::max(zNear, 0.99 * zMin);
+  }
+  else if (sceneBounds)
+  {
+    double boxMin = kInf; // nearest corner of the scene box along the axis
+    for (int i = 0; i < 8; ++i)
+    {
+      const glm::dvec3 corner((i & 1) ? sceneBounds->wsMax.x : sceneBounds->wsMin.x,
+        (i & 2) ? sceneBounds->wsMax.y : sceneBounds->wsMin.y,
+        (i & 4) ? sceneBounds->wsMax.z : sceneBounds->wsMin.z);
+      boxMin = std::min(boxMin, glm::dot(corner - wsLightPosition, w));
+    }
+    zNear = std::max(zNear, 0.99 * boxMin);
+  }
+  for (const glm::dvec3& p : vertices)
+  {
+    const glm::dvec3 q = p - cwsApex;
+    const double z = std::max(glm::dot(q, w), zNear);
+    const glm::dvec2 xy(glm::dot(q, u) / z, glm::dot(q, v) / z);
+    lo = glm::min(lo, xy);
+    hi = glm::max(hi, xy);
+  }
+  lo = glm::max(lo, glm::dvec2(-tanCone));
+  hi = glm::min(hi, glm::dvec2(tanCone));
+  for (int axis = 0; axis < 2; ++axis)
+  {
+    const double minWidth = 1e-6 * tanCone;
+    if (!(hi[axis] - lo[axis] > minWidth))
+    {
+      const double middle = 0.5 * (lo[axis] + hi[axis]);
+      lo[axis] = middle - minWidth;
+      hi[axis] = middle + minWidth;
+    }
+  }
+  // Off-centre perspective (glFrustum at unit distance) looking along the axis.
+  const double a = (zFar + zNear) / (zFar - zNear);
+  const double b = -2.0 * zFar * zNear / (zFar - zNear);
+  const glm::dmat4 projection = fromRows({ 2.0 / (hi.x - lo.x), 0, -(hi.x + lo.x) / (hi.x - lo.x), 0 },
+    { 0, 2.0 / (hi.y - lo.y), -(hi.y + lo.y) / (hi.y - lo.y), 0 }, { 0, 0, a, b }, { 0, 0, 1, 0 });
+  const glm::dmat4 view = fromRows({ u, -glm::dot(u, wsLightPosition) },
+    { v, -glm::dot(v, wsLightPosition) }, { w, -glm::dot(w, wsLightPosition) }, { 0, 0, 0, 1 });
+  cascade.wsToClip = projection * view;
+  cascade.vsNear = std::clamp(vsMin, camera.vsNear, camera.vsFar);
+  cascade.vsFar = std::clamp(vsMax, camera.vsNear, camera.vsFar);
+  if (!(cascade.vsFar > cascade.vsNear))
+  {
+    cascade.vsFar = std::min(camera.vsFar, cascade.vsNear * (1.0 + 1e-6));
+  }
+  cascade.nPrime = kInf;
+  setup.vsNear = cascade.vsNear;
+  setup.vsFar = cascade.vsFar;
+  setup.splits = { cascade.vsNear, cascade.vsFar };
+  setup.gammaDeg = std::atan2(glm::length(glm::cross(frame.view, w)), glm::dot(frame.view, w)) / kDegree;
+  setup.storageOptimal = 0.0;
+  setup.cascades.push_back(std::move(cascade));
   setup.status = Status::Ok;
   return setup;
 }

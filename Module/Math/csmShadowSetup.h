@@ -97,9 +97,21 @@ struct ShadowSetup
 
 /// Everything a shadow pass needs for one directional light in one frame. wsLightDirection is the
 /// direction the light travels. sceneBounds may be null (no clipping, no caster extrusion: the
-/// bodies are the view-frustum partitions, as in the papers' analysis).
+/// bodies are the view-frustum partitions, as in the papers' analysis). receiverParts (optional,
+/// with sceneBounds) are the boxes of the individual props: the receivers are then the
+/// partitions clipped by each box, which fits the depth range and the maps tighter than the one
+/// box around everything (a large flat ground and a tall structure, say).
 ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDirection,
-  const Bounds* sceneBounds, const Settings& settings);
+  const Bounds* sceneBounds, const Settings& settings,
+  const std::vector<Bounds>* receiverParts = nullptr);
+
+/// One perspective map for a spot light at wsLightPosition shining along wsLightAxis with the
+/// given cone half-angle (< 90 degrees), fitted to what the view needs: the part of the visible
+/// scene (view frustum clipped by the scene bounds, may be null) inside the cone's bounding
+/// pyramid. One cascade covering the fitted depth range; its Mx, Mz and storage are 0 (Lloyd's
+/// metric is defined for directional lights).
+ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosition,
+  const glm::dvec3& wsLightAxis, double coneAngleDeg, const Bounds* sceneBounds, bool depthClamp);
 
 /// 003 Eq. 2-4 at a world point for a light clip matrix: beam widths of one shadow-map texel
 /// (map resolution 1) along ls x and ls z over the width of one image pixel (image height 1).

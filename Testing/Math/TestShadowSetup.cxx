@@ -453,3 +453,61 @@ TEST(Stability, BadInputIsReported)
   bad.wsViewUp = bad.wsDirection;
   EXPECT_EQ(csm::computeShadowSetup(bad, { 0, -1, 0 }, nullptr, s).status, csm::Status::Ok);
 }
+
+TEST(Spot, FitsTheLitVisibleScene)
+{
+  csm::Bounds scene{ { -20, 0, -60 }, { 20, 10, 0 } };
+  csm::Camera cam = camera(0.5, 1000.0, 45.0, 4.0 / 3.0);
+  cam.wsPosition = { 0, 8, 20 };
+  const glm::dvec3 lightPos(5, 40, -20);
+  for (bool clamp : { true, false })
+  {
+    const auto setup = csm::computeSpotSetup(cam, lightPos, { 0, -1, 0 }, 30.0, &scene, clamp);
+    ASSERT_EQ(setup.status, csm::Status::Ok) << setup.message;
+    ASSERT_EQ(setup.cascades.size(), 1u);
+    expectBodyInUnitCube(setup, 1e-9);
+    EXPECT_TRUE(finite(setup.cascades[0].wsToClip));
+    // A point on the floor under the light maps inside the map, behind a caster above it.
+    const glm::dvec3 floor = toNdc(setup.cascades[0].wsToClip, { 5, 0, -20 });
+    const glm::dvec3 caster = toNdc(setup.cascades[0].wsToClip, { 5, 9, -20 });
+    EXPECT_NEAR(floor.x, caster.x, 1e-9);
+    EXPECT_NEAR(floor.y, caster.y, 1e-9);
+    EXPECT_LT(caster.z, floor.z);
+    EXPECT_LE(std::abs(floor.x), 1.0);
+    // The map covers only what the cone lights: the window is narrower than the cone.
+    const glm::dvec3 edge = toNdc(setup.cascades[0].wsToClip, { 5 + 40 * std::tan(30 * kDeg), 0, -20 });
+    EXPECT_GT(std::max(std::abs(edge.x), std::abs(edge.y)), 1.0 - 1e-9);
+  }
+  // Bad cone, NaN position, a cone that misses the view.
+  EXPECT_EQ(csm::computeSpotSetup(cam, lightPos, { 0, -1, 0 }, 95.0, &scene, true).status,
+    csm::Status::InvalidInput);
+  EXPECT_EQ(csm::computeSpotSetup(cam, { NAN, 0, 0 }, { 0, -1, 0 }, 30.0, &scene, true).status,
+    csm::Status::InvalidInput);
+  EXPECT_EQ(csm::computeSpotSetup(cam, lightPos, { 0, 1, 0 }, 30.0, &scene, true).status,
+    csm::Status::NothingToShadow);
+}
+
+TEST(Body, PartsFitTighterThanTheirUnion)
+{
+  // A wide thin ground and a small tower: their union box fills the air in front of the camera.
+  const csm::Bounds ground{ { -150, -0.5, -150 }, { 150, 0, 150 } };
+  const csm::Bounds tower{ { -10, 0, -10 }, { 10, 80, 10 } };
+  const csm::Bounds all{ { -150, -0.5, -150 }, { 150, 80, 150 } };
+  const std::vector<csm::Bounds> parts = { ground, tower };
+  csm::Camera cam = camera(0.3, 400.0, 30.0);
+  cam.wsPosition = { 75, 60, 95 };
+  cam.wsDirection = glm::dvec3(0, 30, 0) - cam.wsPosition;
+  const auto s = settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 2);
+  const glm::dvec3 light(-0.45, -1.0, -0.35);
+  const auto loose = csm::computeShadowSetup(cam, light, &all, s);
+  const auto tight = csm::computeShadowSetup(cam, light, &all, s, &parts);
+  ASSERT_EQ(loose.status, csm::Status::Ok);
+  ASSERT_EQ(tight.status, csm::Status::Ok);
+  EXPECT_NEAR(loose.vsNear, 0.3, 1e-9); // the camera is inside the union box
+  EXPECT_GT(tight.vsNear, 50.0);        // the first receiver is far in front
+  EXPECT_LT(tight.storageTotal, loose.storageTotal);
+  expectBodyInUnitCube(tight);
+  // Every corner of the tower that the view sees stays inside the maps.
+  for (const auto& c : tight.cascades)
+    EXPECT_TRUE(std::isfinite(c.storage));
+}

@@ -1,0 +1,471 @@
+#include "csmScenes.h"
+
+#include "vtkActor.h"
+#include "vtkAppendPolyData.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkCompositeDataGeometryFilter.h"
+#include "vtkDataSetSurfaceFilter.h"
+#include "vtkGLTFReader.h"
+#include "vtkGenericDataObjectReader.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkOBJReader.h"
+#include "vtkPLYReader.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkPolyDataNormals.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkSTLReader.h"
+#include "vtkTriangleFilter.h"
+#include "vtkXMLPolyDataReader.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+
+namespace csmScenes
+{
+namespace
+{
+using Vec = std::array<double, 3>;
+
+Vec operator+(const Vec& a, const Vec& b) { return { a[0] + b[0], a[1] + b[1], a[2] + b[2] }; }
+Vec operator-(const Vec& a, const Vec& b) { return { a[0] - b[0], a[1] - b[1], a[2] - b[2] }; }
+Vec operator*(double s, const Vec& a) { return { s * a[0], s * a[1], s * a[2] }; }
+
+struct Bar
+{
+  Vec a, b;
+  double radius;
+};
+
+/// Bars (open cylinders with `sides` facets) and boxes, written straight into a polydata.
+class Builder
+{
+public:
+  void AddBar(const Bar& bar, int sides)
+  {
+    Vec axis = bar.b - bar.a;
+    double length = vtkMath::Norm(axis.data());
+    if (length <= 0.0)
+      return;
+    Vec u, v;
+    vtkMath::Perpendiculars(axis.data(), u.data(), v.data(), 0.0);
+    const vtkIdType base = this->Points->GetNumberOfPoints();
+    for (int i = 0; i < sides; ++i)
+    {
+      const double angle = 2.0 * vtkMath::Pi() * i / sides;
+      const Vec offset = (bar.radius * std::cos(angle)) * u + (bar.radius * std::sin(angle)) * v;
+      this->Points->InsertNextPoint((bar.a + offset).data());
+      this->Points->InsertNextPoint((bar.b + offset).data());
+    }
+    for (int i = 0; i < sides; ++i)
+    {
+      const vtkIdType j = (i + 1) % sides;
+      const vtkIdType a0 = base + 2 * i, a1 = base + 2 * i + 1, b0 = base + 2 * j, b1 = base + 2 * j + 1;
+      const vtkIdType t1[3] = { a0, b0, b1 };
+      const vtkIdType t2[3] = { a0, b1, a1 };
+      this->Polys->InsertNextCell(3, t1);
+      this->Polys->InsertNextCell(3, t2);
+    }
+  }
+
+  void AddBox(const Vec& lo, const Vec& hi)
+  {
+    static const int faces[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 },
+      { 2, 6, 7, 3 }, { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
+    const vtkIdType base = this->Points->GetNumberOfPoints();
+    for (int i = 0; i < 8; ++i)
+    {
+      this->Points->InsertNextPoint(
+        (i & 1) ? hi[0] : lo[0], (i & 2) ? hi[1] : lo[1], (i & 4) ? hi[2] : lo[2]);
+    }
+    // Each face gets its own points so that normals stay flat.
+    vtkIdType corners[8];
+    for (int i = 0; i < 8; ++i)
+      corners[i] = base + i;
+    for (const auto& f : faces)
+    {
+      const vtkIdType t1[3] = { corners[f[0]], corners[f[1]], corners[f[2]] };
+      const vtkIdType t2[3] = { corners[f[0]], corners[f[2]], corners[f[3]] };
+      this->Polys->InsertNextCell(3, t1);
+      this->Polys->InsertNextCell(3, t2);
+    }
+  }
+
+  vtkSmartPointer<vtkPolyData> Finish(bool splitNormals)
+  {
+    vtkNew<vtkPolyData> data;
+    data->SetPoints(this->Points);
+    data->SetPolys(this->Polys);
+    vtkNew<vtkPolyDataNormals> normals;
+    normals->SetInputData(data);
+    normals->SetSplitting(splitNormals);
+    normals->SetFeatureAngle(60.0);
+    normals->ConsistencyOff();
+    normals->AutoOrientNormalsOff();
+    normals->Update();
+    return normals->GetOutput();
+  }
+
+private:
+  vtkNew<vtkPoints> Points;
+  vtkNew<vtkCellArray> Polys;
+};
+
+void Lattice(std::vector<Bar>& bars, const Vec& a, const Vec& b, const Vec& c, const Vec& d,
+  int panels, double radius)
+{
+  // A flat lattice panel a-b (bottom) to d-c (top), X-braced in `panels` bays.
+  for (int i = 0; i <= panels; ++i)
+  {
+    const double t = double(i) / panels;
+    const Vec p = a + t * (d - a), q = b + t * (c - b);
+    bars.push_back({ p, q, radius });
+    if (i < panels)
+    {
+      const double t2 = double(i + 1) / panels;
+      const Vec p2 = a + t2 * (d - a), q2 = b + t2 * (c - b);
+      bars.push_back({ p, q2, radius });
+      bars.push_back({ q, p2, radius });
+    }
+  }
+  bars.push_back({ a, d, radius * 1.5 });
+  bars.push_back({ b, c, radius * 1.5 });
+}
+
+void Tower(std::vector<Bar>& bars, const Vec& base, double width, double top, double height,
+  int panels, double radius)
+{
+  const double hw = 0.5 * width, ht = 0.5 * top;
+  const Vec b[4] = { base + Vec{ -hw, 0, -hw }, base + Vec{ hw, 0, -hw }, base + Vec{ hw, 0, hw },
+    base + Vec{ -hw, 0, hw } };
+  const Vec t[4] = { base + Vec{ -ht, height, -ht }, base + Vec{ ht, height, -ht },
+    base + Vec{ ht, height, ht }, base + Vec{ -ht, height, ht } };
+  for (int i = 0; i < 4; ++i)
+  {
+    const int j = (i + 1) % 4;
+    Lattice(bars, b[i], b[j], t[j], t[i], panels, radius);
+  }
+}
+
+vtkSmartPointer<vtkActor> MakeActor(vtkPolyData* data, double r, double g, double b,
+  double specular = 0.3)
+{
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(data);
+  mapper->ScalarVisibilityOff();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(r, g, b);
+  actor->GetProperty()->SetSpecular(specular);
+  actor->GetProperty()->SetSpecularPower(30.0);
+  return actor;
+}
+
+vtkSmartPointer<vtkPolyData> Ground(double x0, double x1, double z0, double z1, double y)
+{
+  Builder builder;
+  builder.AddBox({ x0, y - 0.5, z0 }, { x1, y, z1 });
+  return builder.Finish(true);
+}
+
+void Finish(Scene& scene)
+{
+  double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  scene.Triangles = 0;
+  for (const auto& actor : scene.Actors)
+  {
+    const double* a = actor->GetBounds();
+    for (int i = 0; i < 3; ++i)
+    {
+      b[2 * i] = std::min(b[2 * i], a[2 * i]);
+      b[2 * i + 1] = std::max(b[2 * i + 1], a[2 * i + 1]);
+    }
+    scene.Triangles +=
+      CountTriangles(vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0)));
+  }
+  std::copy(b, b + 6, scene.Bounds);
+}
+} // namespace
+
+long long CountTriangles(vtkPolyData* data)
+{
+  if (!data)
+    return 0;
+  long long count = 0;
+  vtkCellArray* polys = data->GetPolys();
+  vtkIdType n;
+  const vtkIdType* ids;
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
+    count += std::max<vtkIdType>(0, n - 2);
+  vtkCellArray* strips = data->GetStrips();
+  for (strips->InitTraversal(); strips->GetNextCell(n, ids);)
+    count += std::max<vtkIdType>(0, n - 2);
+  return count;
+}
+
+Scene Platform(long long targetTriangles)
+{
+  std::vector<Bar> heavy; // legs, main braces, deck columns
+  std::vector<Bar> thin;  // handrails, lattices, gratings
+  // Jacket: four battered legs from the sea bed to the lower deck.
+  const double legBase = 14.0, legTop = 10.0, deck1 = 28.0, deck2 = 38.0;
+  Vec legB[4], legT[4];
+  for (int i = 0; i < 4; ++i)
+  {
+    const double sx = (i == 0 || i == 3) ? -1 : 1, sz = (i < 2) ? -1 : 1;
+    legB[i] = { sx * legBase, -2.0, sz * legBase };
+    legT[i] = { sx * legTop, deck1, sz * legTop };
+    heavy.push_back({ legB[i], legT[i], 0.9 });
+  }
+  const int levels = 4;
+  for (int i = 0; i < 4; ++i)
+  {
+    const int j = (i + 1) % 4;
+    for (int l = 0; l < levels; ++l)
+    {
+      const double t0 = double(l) / levels, t1 = double(l + 1) / levels;
+      const Vec a0 = legB[i] + t0 * (legT[i] - legB[i]), b0 = legB[j] + t0 * (legT[j] - legB[j]);
+      const Vec a1 = legB[i] + t1 * (legT[i] - legB[i]), b1 = legB[j] + t1 * (legT[j] - legB[j]);
+      heavy.push_back({ a0, b0, 0.4 });
+      heavy.push_back({ a0, b1, 0.3 });
+      heavy.push_back({ b0, a1, 0.3 });
+    }
+  }
+  // Deck columns between the two decks.
+  for (double x = -15.0; x <= 15.0; x += 7.5)
+    for (double z = -15.0; z <= 15.0; z += 7.5)
+      heavy.push_back({ { x, deck1 + 1.5, z }, { x, deck2, z }, 0.35 });
+  // Handrails around both decks: posts every 1.5 m, top and knee rails.
+  auto handrail = [&](double half, double y) {
+    for (int side = 0; side < 4; ++side)
+    {
+      for (double s = -half; s < half; s += 1.5)
+      {
+        const double s2 = std::min(half, s + 1.5);
+        auto at = [&](double t, double h) -> Vec {
+          switch (side)
+          {
+            case 0: return { t, y + h, -half };
+            case 1: return { half, y + h, t };
+            case 2: return { -t, y + h, half };
+            default: return { -half, y + h, -t };
+          }
+        };
+        thin.push_back({ at(s, 0.0), at(s, 1.1), 0.03 });
+        thin.push_back({ at(s, 1.1), at(s2, 1.1), 0.03 });
+        thin.push_back({ at(s, 0.55), at(s2, 0.55), 0.02 });
+      }
+    }
+  };
+  handrail(20.0, deck1 + 1.5);
+  handrail(18.0, deck2 + 1.0);
+  // Gratings: a walkway grid on a cantilevered deck extension (open lattice floor).
+  for (double x = -20.0; x <= -10.0; x += 0.4)
+    thin.push_back({ { x, deck1 + 1.5, 20.0 }, { x, deck1 + 1.5, 32.0 }, 0.025 });
+  for (double z = 20.0; z <= 32.0; z += 0.4)
+    thin.push_back({ { -20.0, deck1 + 1.45, z }, { -10.0, deck1 + 1.45, z }, 0.025 });
+  // Lattice derrick on the upper deck.
+  Tower(thin, { 6.0, deck2 + 1.0, 4.0 }, 9.0, 2.5, 42.0, 14, 0.12);
+  // Crane: pedestal and a lattice boom reaching out over the sea.
+  heavy.push_back({ { -14.0, deck2 + 1.0, -14.0 }, { -14.0, deck2 + 9.0, -14.0 }, 1.0 });
+  {
+    const Vec root{ -14.0, deck2 + 9.0, -14.0 }, tip{ -48.0, deck2 + 30.0, -30.0 };
+    const Vec side{ 0.0, 0.0, 1.2 }, up{ 0.0, 1.2, 0.0 };
+    Lattice(thin, root - side, root + side, tip + side, tip - side, 16, 0.08);
+    Lattice(thin, root - side + up, root + side + up, tip + side + up, tip - side + up, 16, 0.08);
+    Lattice(thin, root - side, root - side + up, tip - side + up, tip - side, 16, 0.06);
+  }
+  // Flare boom: a long triangular lattice at 30 degrees.
+  {
+    const Vec root{ 20.0, deck1 + 2.0, -6.0 }, tip{ 62.0, deck1 + 26.0, -6.0 };
+    const Vec side{ 0.0, 0.0, 1.0 }, up{ 0.0, 1.5, 0.0 };
+    Lattice(thin, root - side, root + side, tip + side, tip - side, 20, 0.07);
+    Lattice(thin, root - side, root + up, tip + up, tip - side, 20, 0.07);
+    Lattice(thin, root + side, root + up, tip + up, tip + side, 20, 0.07);
+  }
+  // Pipe racks on the lower deck: rows of lattice frames.
+  for (int r = 0; r < 4; ++r)
+  {
+    const double z = -12.0 + 7.0 * r;
+    Lattice(thin, { -16.0, deck1 + 1.5, z }, { 14.0, deck1 + 1.5, z }, { 14.0, deck1 + 5.5, z },
+      { -16.0, deck1 + 5.5, z }, 12, 0.1);
+    for (double y = deck1 + 2.5; y <= deck1 + 5.0; y += 1.2)
+      thin.push_back({ { -16.0, y, z - 0.6 }, { 14.0, y, z - 0.6 }, 0.25 });
+  }
+
+  // Tessellation from the triangle budget: 2 * sides triangles per bar.
+  const long long bars = static_cast<long long>(heavy.size() + thin.size());
+  const int sides =
+    static_cast<int>(std::max<long long>(4, std::min<long long>(256, targetTriangles / (2 * bars))));
+  Builder steel, light, decks;
+  for (const Bar& bar : heavy)
+    steel.AddBar(bar, sides);
+  for (const Bar& bar : thin)
+    light.AddBar(bar, std::max(4, sides / 2 * 2));
+  decks.AddBox({ -20.0, deck1, -20.0 }, { 20.0, deck1 + 1.5, 20.0 });
+  decks.AddBox({ -18.0, deck2, -18.0 }, { 18.0, deck2 + 1.0, 18.0 });
+  decks.AddBox({ -8.0, deck2 + 1.0, -12.0 }, { 0.0, deck2 + 6.0, -4.0 }); // a module
+  decks.AddBox({ 10.0, deck1 + 1.5, 8.0 }, { 18.0, deck1 + 8.0, 18.0 });  // a module
+
+  Scene scene;
+  scene.Name = "platform";
+  scene.Actors.push_back(MakeActor(Ground(-150, 150, -150, 150, 0.0), 0.35, 0.45, 0.55, 0.1));
+  scene.Actors.push_back(MakeActor(steel.Finish(false), 0.85, 0.75, 0.35));
+  scene.Actors.push_back(MakeActor(light.Finish(false), 0.9, 0.5, 0.2));
+  scene.Actors.push_back(MakeActor(decks.Finish(true), 0.7, 0.7, 0.72));
+  Finish(scene);
+  const double eye[3] = { 75.0, 60.0, 95.0 }, focal[3] = { 0.0, 30.0, 0.0 };
+  std::copy(eye, eye + 3, scene.CameraPosition);
+  std::copy(focal, focal + 3, scene.FocalPoint);
+  return scene;
+}
+
+Scene Towers(int count)
+{
+  std::vector<Bar> bars;
+  for (int i = 0; i < count; ++i)
+    Tower(bars, { 0.0, 0.0, -40.0 * i }, 4.0, 1.2, 30.0, 8, 0.08);
+  Builder builder;
+  for (const Bar& bar : bars)
+    builder.AddBar(bar, 6);
+  Scene scene;
+  scene.Name = "towers";
+  const double length = 40.0 * count;
+  scene.Actors.push_back(MakeActor(Ground(-60, 60, -length - 40, 40, 0.0), 0.45, 0.55, 0.4, 0.05));
+  scene.Actors.push_back(MakeActor(builder.Finish(false), 0.75, 0.75, 0.8));
+  Finish(scene);
+  const double eye[3] = { 5.0, 2.0, 6.0 }, focal[3] = { -1.0, 8.0, -60.0 };
+  std::copy(eye, eye + 3, scene.CameraPosition);
+  std::copy(focal, focal + 3, scene.FocalPoint);
+  scene.ClippingRange[0] = 0.25;
+  scene.ClippingRange[1] = 6000.0;
+  scene.ViewAngle = 50.0;
+  return scene;
+}
+
+bool FromFile(const std::string& path, Scene& scene, std::string& error)
+{
+  if (!vtksys::SystemTools::FileExists(path, true))
+  {
+    error = "cannot read '" + path + "': no such file";
+    return false;
+  }
+  const std::string ext = vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));
+  vtkSmartPointer<vtkPolyData> surface;
+  vtkObject::GlobalWarningDisplayOff(); // readers report through the error below
+  if (ext == ".glb" || ext == ".gltf")
+  {
+    vtkNew<vtkGLTFReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    vtkNew<vtkCompositeDataGeometryFilter> merge;
+    merge->SetInputConnection(reader->GetOutputPort());
+    merge->Update();
+    surface = merge->GetOutput();
+  }
+  else
+  {
+    vtkSmartPointer<vtkAlgorithm> reader;
+    if (ext == ".vtp")
+    {
+      auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    }
+    else if (ext == ".vtk")
+    {
+      auto r = vtkSmartPointer<vtkGenericDataObjectReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    }
+    else if (ext == ".stl")
+    {
+      auto r = vtkSmartPointer<vtkSTLReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    }
+    else if (ext == ".ply")
+    {
+      auto r = vtkSmartPointer<vtkPLYReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    }
+    else if (ext == ".obj")
+    {
+      auto r = vtkSmartPointer<vtkOBJReader>::New();
+      r->SetFileName(path.c_str());
+      reader = r;
+    }
+    else
+    {
+      vtkObject::GlobalWarningDisplayOn();
+      error = "cannot read '" + path + "': unknown format (use .vtp .vtk .stl .ply .obj .glb .gltf)";
+      return false;
+    }
+    vtkNew<vtkDataSetSurfaceFilter> surfaceFilter;
+    surfaceFilter->SetInputConnection(reader->GetOutputPort());
+    surfaceFilter->Update();
+    surface = surfaceFilter->GetOutput();
+  }
+  vtkObject::GlobalWarningDisplayOn();
+  if (!surface || surface->GetNumberOfPolys() + surface->GetNumberOfStrips() == 0)
+  {
+    error = "cannot read '" + path + "': no surface in the file";
+    return false;
+  }
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputData(surface);
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputConnection(triangles->GetOutputPort());
+  normals->SetFeatureAngle(45.0);
+  normals->Update();
+  vtkSmartPointer<vtkPolyData> model = normals->GetOutput();
+  double b[6];
+  model->GetBounds(b);
+  const double size = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
+  if (!(size > 0.0) || !std::isfinite(size))
+  {
+    error = "cannot read '" + path + "': the surface has no extent";
+    return false;
+  }
+  scene = Scene();
+  scene.Name = vtksys::SystemTools::GetFilenameWithoutLastExtension(path);
+  const double cx = 0.5 * (b[0] + b[1]), cz = 0.5 * (b[4] + b[5]);
+  scene.Actors.push_back(MakeActor(
+    Ground(cx - 2 * size, cx + 2 * size, cz - 2 * size, cz + 2 * size, b[2] - 0.02 * size), 0.6,
+    0.6, 0.62, 0.1));
+  scene.Actors.push_back(MakeActor(model, 0.8, 0.8, 0.82, 0.4));
+  Finish(scene);
+  const double cy = 0.5 * (b[2] + b[3]);
+  const double eye[3] = { cx + 1.2 * size, cy + 0.8 * size, cz + 1.6 * size };
+  const double focal[3] = { cx, cy, cz };
+  std::copy(eye, eye + 3, scene.CameraPosition);
+  std::copy(focal, focal + 3, scene.FocalPoint);
+  return true;
+}
+
+void Install(const Scene& scene, vtkRenderer* renderer, double)
+{
+  for (const auto& actor : scene.Actors)
+    renderer->AddActor(actor);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(scene.CameraPosition);
+  camera->SetFocalPoint(scene.FocalPoint);
+  camera->SetViewUp(scene.ViewUp);
+  camera->SetViewAngle(scene.ViewAngle);
+  camera->OrthogonalizeViewUp();
+  if (scene.ClippingRange[1] > scene.ClippingRange[0] && scene.ClippingRange[0] > 0)
+    camera->SetClippingRange(scene.ClippingRange);
+  else
+    renderer->ResetCameraClippingRange();
+}
+
+} // namespace csmScenes

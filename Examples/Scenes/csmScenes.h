@@ -1,0 +1,49 @@
+// Scene generators and loaders for the demo, the image tests and the benchmarks.
+#pragma once
+
+#include "vtkSmartPointer.h"
+
+#include <string>
+#include <vector>
+
+class vtkActor;
+class vtkRenderer;
+class vtkPolyData;
+
+namespace csmScenes
+{
+
+struct Scene
+{
+  std::string Name;
+  std::vector<vtkSmartPointer<vtkActor>> Actors;
+  double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  long long Triangles = 0;
+  // A default view: camera position, focal point, view-up, and a clipping range (0: automatic).
+  double CameraPosition[3] = { 0, 0, 1 };
+  double FocalPoint[3] = { 0, 0, 0 };
+  double ViewUp[3] = { 0, 1, 0 };
+  double ClippingRange[2] = { 0, 0 };
+  double ViewAngle = 30.0;
+};
+
+/// A procedural offshore platform (sea plane, jacket legs and X-braces, two decks, handrails,
+/// a lattice derrick, a crane boom, a flare boom, gratings): thin bars and lattices. About
+/// targetTriangles triangles (the bar tessellation scales with it), at least ~40k.
+Scene Platform(long long targetTriangles = 250000);
+
+/// A row of lattice towers along -z every 40 m to the horizon, over a long ground strip; the
+/// default view starts next to the first tower with near 0.25 and far 6000 (f/n > 10^4).
+Scene Towers(int count = 125);
+
+/// A model read from .vtp .vtk .stl .ply .obj .glb .gltf, standing on a ground plane. Returns
+/// false with a message when the file cannot be read or holds no surface.
+bool FromFile(const std::string& path, Scene& scene, std::string& error);
+
+/// Adds the scene's actors to the renderer and sets the default camera (and clipping range).
+void Install(const Scene& scene, vtkRenderer* renderer, double aspect);
+
+/// Number of triangles of a polydata (polys and strips, after triangulation).
+long long CountTriangles(vtkPolyData* data);
+
+} // namespace csmScenes

@@ -1,0 +1,459 @@
+// csm-demo: renders a scene with cascaded generalized-LiSPSM shadows (or VTK's own shadow pass,
+// or none), interactively or offscreen to a PNG, and times orbiting frames.
+#include "csmScenes.h"
+#include "csmTechnique.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkCascadedShadowMapPass.h"
+#include "vtkCascadedShadowMapPlanner.h"
+#include "vtkInteractorStyleTrackballCamera.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPNGWriter.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderWindowInteractor.h"
+#include "vtkRenderer.h"
+#include "vtkTextActor.h"
+#include "vtkTextProperty.h"
+#include "vtkTimerLog.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+const char* const kWarps[] = { "none", "psm", "lispsm", "generalized" };
+const char* const kPartitions[] = { "single", "uniform", "log", "practical", "adaptive" };
+const char* const kDebug[] = { "off", "cascades", "error", "factor" };
+const char* const kKernels[] = { "grid", "jittered" };
+
+struct Options
+{
+  csmScenes::ShadowOptions Shadow;
+  std::string Scene = "platform";
+  long long Triangles = 250000;
+  int Width = 800, Height = 600;
+  bool Offscreen = false;
+  std::string Out;
+  int Frames = 0;
+  bool HaveLight = false;
+  double Light[3] = { -0.45, -1.0, -0.35 };
+  bool HaveGamma = false;
+  double Gamma = 90.0;
+};
+
+[[noreturn]] void fail(const std::string& message)
+{
+  std::fprintf(stderr, "csm-demo: error: %s (see --help)\n", message.c_str());
+  std::exit(2);
+}
+
+void usage()
+{
+  std::printf(
+    "usage: csm-demo [options]\n"
+    "  --scene S          platform (default) | towers | FILE (.vtp .vtk .stl .ply .obj .glb .gltf)\n"
+    "  --triangles N      platform size in triangles [250000]\n"
+    "  --technique T      csm (ours) | vtk (vtkShadowMapPass) | none [csm]\n"
+    "  --warp W           none | psm | lispsm | generalized [generalized]\n"
+    "  --partition P      single | uniform | log | practical | adaptive [adaptive]\n"
+    "  --cascades K       1..8 [2]      --lambda L  practical weight [0.5]\n"
+    "  --alpha A          adaptive ratio > 1 [2]\n"
+    "  --resolution R     texels per cascade side, 64..8192 [2048]\n"
+    "  --pcf N            1 | 3 | 5 | 7 [5]   --kernel grid | jittered [grid]\n"
+    "  --bias B           constant depth bias [0.002]   --slope-bias S [1.5]\n"
+    "  --blend F          cascade blend band, 0..0.5 [0.05]\n"
+    "  --depth-clamp on|off [on]      --darkness D  0..1 [1]\n"
+    "  --debug D          off | cascades | error | factor [off]\n"
+    "  --light X,Y,Z      direction the light travels (world)\n"
+    "  --gamma DEG        light at this angle to the view (0 behind, 90 overhead, 180 facing)\n"
+    "  --size WxH         window size [800x600]\n"
+    "  --offscreen        no window; with --out writes the image\n"
+    "  --out FILE.png     write the rendered image\n"
+    "  --frames N         render N frames orbiting the scene, print median_frame_ms\n"
+    "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
+    "  t technique, l light angle +15 deg\n");
+}
+
+double number(const std::string& flag, const char* text)
+{
+  if (!text)
+    fail(flag + " needs a value");
+  char* end = nullptr;
+  const double value = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !std::isfinite(value))
+    fail(flag + " needs a finite number, got '" + text + "'");
+  return value;
+}
+
+int choice(const std::string& flag, const char* text, const char* const* names, int count)
+{
+  for (int i = 0; text && i < count; ++i)
+    if (std::strcmp(text, names[i]) == 0)
+      return i;
+  std::string all;
+  for (int i = 0; i < count; ++i)
+    all += std::string(i ? ", " : "") + names[i];
+  fail(flag + " must be one of " + all);
+}
+
+Options parse(int argc, char** argv)
+{
+  Options o;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string f = argv[i];
+    const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
+    auto next = [&]() { ++i; };
+    if (f == "--help" || f == "-h")
+    {
+      usage();
+      std::exit(0);
+    }
+    else if (f == "--offscreen")
+      o.Offscreen = true;
+    else if (f == "--scene")
+    {
+      if (!v)
+        fail("--scene needs a value");
+      o.Scene = v;
+      next();
+    }
+    else if (f == "--out")
+    {
+      if (!v)
+        fail("--out needs a file name");
+      o.Out = v;
+      next();
+    }
+    else if (f == "--technique")
+    {
+      const char* const names[] = { "csm", "vtk", "none" };
+      o.Shadow.Technique = names[choice(f, v, names, 3)];
+      next();
+    }
+    else if (f == "--warp")
+    {
+      o.Shadow.Warp = choice(f, v, kWarps, 4);
+      next();
+    }
+    else if (f == "--partition")
+    {
+      o.Shadow.Partition = choice(f, v, kPartitions, 5);
+      next();
+    }
+    else if (f == "--kernel")
+    {
+      o.Shadow.Kernel = choice(f, v, kKernels, 2);
+      next();
+    }
+    else if (f == "--debug")
+    {
+      o.Shadow.Debug = choice(f, v, kDebug, 4);
+      next();
+    }
+    else if (f == "--depth-clamp")
+    {
+      const char* const names[] = { "off", "on" };
+      o.Shadow.DepthClamp = choice(f, v, names, 2) == 1;
+      next();
+    }
+    else if (f == "--size")
+    {
+      int w = 0, h = 0;
+      char extra = 0;
+      if (!v || std::sscanf(v, "%dx%d%c", &w, &h, &extra) != 2 || w < 16 || h < 16 || w > 8192 ||
+        h > 8192)
+        fail("--size needs WxH with 16..8192 pixels each, e.g. 800x600");
+      o.Width = w;
+      o.Height = h;
+      next();
+    }
+    else if (f == "--light")
+    {
+      char extra = 0;
+      if (!v || std::sscanf(v, "%lf,%lf,%lf%c", &o.Light[0], &o.Light[1], &o.Light[2], &extra) != 3)
+        fail("--light needs X,Y,Z");
+      if (!std::isfinite(o.Light[0] + o.Light[1] + o.Light[2]) ||
+        o.Light[0] * o.Light[0] + o.Light[1] * o.Light[1] + o.Light[2] * o.Light[2] == 0.0)
+        fail("--light needs a finite, non-zero direction");
+      o.HaveLight = true;
+      next();
+    }
+    else
+    {
+      const double value = number(f, v);
+      next();
+      auto whole = [&](double lo, double hi) {
+        if (value != std::floor(value) || value < lo || value > hi)
+          fail(f + " needs a whole number in [" + std::to_string(int(lo)) + ", " +
+            std::to_string(int(hi)) + "]");
+        return static_cast<int>(value);
+      };
+      auto range = [&](double lo, double hi) {
+        if (value < lo || value > hi)
+          fail(f + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        return value;
+      };
+      if (f == "--triangles")
+      {
+        if (value < 1000 || value > 5e7)
+          fail("--triangles must be in [1000, 50000000]");
+        o.Triangles = static_cast<long long>(value);
+      }
+      else if (f == "--cascades")
+        o.Shadow.Cascades = whole(1, 8);
+      else if (f == "--resolution")
+        o.Shadow.Resolution = whole(64, 8192);
+      else if (f == "--pcf")
+      {
+        o.Shadow.PCF = whole(1, 7);
+        if (o.Shadow.PCF % 2 == 0)
+          fail("--pcf must be 1, 3, 5 or 7");
+      }
+      else if (f == "--lambda")
+        o.Shadow.Lambda = range(0, 1);
+      else if (f == "--alpha")
+      {
+        if (!(value > 1.0))
+          fail("--alpha must be > 1");
+        o.Shadow.Alpha = value;
+      }
+      else if (f == "--bias")
+        o.Shadow.ConstantBias = range(0, 1);
+      else if (f == "--slope-bias")
+        o.Shadow.SlopeBias = range(0, 100);
+      else if (f == "--blend")
+        o.Shadow.Blend = range(0, 0.5);
+      else if (f == "--darkness")
+        o.Shadow.Darkness = range(0, 1);
+      else if (f == "--gamma")
+      {
+        o.Gamma = range(0, 180);
+        o.HaveGamma = true;
+      }
+      else if (f == "--frames")
+        o.Frames = whole(1, 100000);
+      else
+        fail("unknown option '" + f + "'");
+    }
+  }
+  if (o.Offscreen && o.Out.empty() && o.Frames == 0)
+    fail("--offscreen needs --out FILE.png or --frames N");
+  return o;
+}
+
+struct App
+{
+  Options Opt;
+  vtkRenderer* Renderer = nullptr;
+  vtkRenderWindow* Window = nullptr;
+  vtkLight* Key = nullptr;
+  vtkTextActor* Text = nullptr;
+  csmScenes::Installed Passes;
+  double LastFrameMs = 0.0;
+
+  void PlaceLight()
+  {
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    double d[3];
+    if (this->Opt.HaveGamma)
+    {
+      double v[3], up[3];
+      camera->GetDirectionOfProjection(v);
+      camera->GetViewUp(up);
+      const double g = vtkMath::RadiansFromDegrees(this->Opt.Gamma);
+      for (int i = 0; i < 3; ++i)
+        d[i] = std::cos(g) * v[i] - std::sin(g) * up[i];
+    }
+    else
+      std::copy(this->Opt.Light, this->Opt.Light + 3, d);
+    double focal[3];
+    camera->GetFocalPoint(focal);
+    this->Key->SetFocalPoint(focal);
+    this->Key->SetPosition(focal[0] - d[0], focal[1] - d[1], focal[2] - d[2]);
+  }
+
+  void Apply()
+  {
+    this->Passes = csmScenes::InstallTechnique(this->Renderer, this->Opt.Shadow);
+  }
+
+  void UpdateText()
+  {
+    if (!this->Text)
+      return;
+    const auto& s = this->Opt.Shadow;
+    std::ostringstream t;
+    t << "technique " << s.Technique;
+    if (s.Technique == "csm")
+      t << " | warp " << kWarps[s.Warp] << " | partition " << kPartitions[s.Partition]
+        << " | cascades " << s.Cascades << " | pcf " << s.PCF << " " << kKernels[s.Kernel]
+        << " | debug " << kDebug[s.Debug];
+    t << " | " << s.Resolution << "^2 | frame " << static_cast<int>(this->LastFrameMs) << " ms";
+    this->Text->SetInput(t.str().c_str());
+  }
+
+  static void OnKey(vtkObject* caller, unsigned long, void* data, void*)
+  {
+    App* app = static_cast<App*>(data);
+    auto* interactor = static_cast<vtkRenderWindowInteractor*>(caller);
+    const std::string key = interactor->GetKeySym() ? interactor->GetKeySym() : "";
+    auto& s = app->Opt.Shadow;
+    if (key == "w")
+      s.Warp = (s.Warp + 1) % 4;
+    else if (key == "p")
+      s.Partition = (s.Partition + 1) % 5;
+    else if (key == "c")
+      s.Cascades = s.Cascades % 4 + 1;
+    else if (key == "f")
+      s.PCF = s.PCF >= 7 ? 1 : s.PCF + 2;
+    else if (key == "k")
+      s.Kernel = 1 - s.Kernel;
+    else if (key == "d")
+      s.Debug = (s.Debug + 1) % 4;
+    else if (key == "t")
+      s.Technique = s.Technique == "csm" ? "vtk" : s.Technique == "vtk" ? "none" : "csm";
+    else if (key == "l")
+    {
+      app->Opt.HaveGamma = true;
+      app->Opt.Gamma = std::fmod(app->Opt.Gamma + 15.0, 195.0);
+      app->PlaceLight();
+    }
+    else
+      return;
+    if (app->Passes.Cascaded && key != "t")
+      csmScenes::Configure(app->Passes.Cascaded, s);
+    else
+      app->Apply();
+    app->UpdateText();
+    app->Window->Render();
+  }
+
+  static void OnEndRender(vtkObject*, unsigned long, void* data, void*)
+  {
+    App* app = static_cast<App*>(data);
+    app->LastFrameMs = 1000.0 * app->Renderer->GetLastRenderTimeInSeconds();
+  }
+};
+} // namespace
+
+int main(int argc, char** argv)
+{
+  App app;
+  app.Opt = parse(argc, argv);
+
+  csmScenes::Scene scene;
+  if (app.Opt.Scene == "platform")
+    scene = csmScenes::Platform(app.Opt.Triangles);
+  else if (app.Opt.Scene == "towers")
+    scene = csmScenes::Towers();
+  else
+  {
+    std::string error;
+    if (!csmScenes::FromFile(app.Opt.Scene, scene, error))
+      fail(error);
+  }
+
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkRenderWindow> window;
+  window->SetSize(app.Opt.Width, app.Opt.Height);
+  window->SetMultiSamples(0);
+  window->SetOffScreenRendering(app.Opt.Offscreen ? 1 : 0);
+  window->AddRenderer(renderer);
+  window->SetWindowName("csm-demo");
+  renderer->SetBackground(0.75, 0.82, 0.9);
+  renderer->AutomaticLightCreationOff();
+  app.Renderer = renderer;
+  app.Window = window;
+
+  csmScenes::Install(scene, renderer, double(app.Opt.Width) / app.Opt.Height);
+  vtkNew<vtkLight> key;
+  key->SetLightTypeToSceneLight();
+  key->SetPositional(false);
+  key->SetIntensity(0.85);
+  renderer->AddLight(key);
+  vtkNew<vtkLight> fill; // a dim headlight: no shadows, keeps shadowed parts readable
+  fill->SetLightTypeToHeadlight();
+  fill->SetIntensity(0.25);
+  renderer->AddLight(fill);
+  app.Key = key;
+  app.PlaceLight();
+  app.Apply();
+
+  std::printf("scene %s: %lld triangles, %zu actors\n", scene.Name.c_str(), scene.Triangles,
+    scene.Actors.size());
+
+  if (app.Opt.Frames > 0)
+  {
+    std::vector<double> times;
+    vtkNew<vtkTimerLog> timer;
+    window->Render(); // warm-up: shader compilation, first maps
+    for (int i = 0; i < app.Opt.Frames; ++i)
+    {
+      renderer->GetActiveCamera()->Azimuth(360.0 / app.Opt.Frames);
+      if (scene.ClippingRange[1] <= 0.0)
+        renderer->ResetCameraClippingRange();
+      timer->StartTimer();
+      window->Render();
+      window->WaitForCompletion(); // glFinish: the frame is done on the GPU
+      timer->StopTimer();
+      times.push_back(1000.0 * timer->GetElapsedTime());
+    }
+    std::sort(times.begin(), times.end());
+    std::printf("median_frame_ms: %.3f\n", times[times.size() / 2]);
+  }
+
+  if (!app.Opt.Out.empty() || app.Opt.Offscreen)
+  {
+    window->Render();
+    if (!app.Opt.Out.empty())
+    {
+      vtkNew<vtkWindowToImageFilter> grab;
+      grab->SetInput(window);
+      grab->ReadFrontBufferOff();
+      grab->Update();
+      vtkNew<vtkPNGWriter> writer;
+      writer->SetFileName(app.Opt.Out.c_str());
+      writer->SetInputConnection(grab->GetOutputPort());
+      writer->Write();
+      if (writer->GetErrorCode() != 0)
+        fail("cannot write '" + app.Opt.Out + "'");
+      std::printf("wrote %s\n", app.Opt.Out.c_str());
+    }
+    if (app.Opt.Offscreen)
+      return 0;
+  }
+
+  vtkNew<vtkTextActor> text;
+  text->GetTextProperty()->SetFontSize(14);
+  text->GetTextProperty()->SetColor(0.05, 0.05, 0.1);
+  text->SetDisplayPosition(8, 8);
+  renderer->AddActor2D(text);
+  app.Text = text;
+  app.UpdateText();
+  vtkNew<vtkRenderWindowInteractor> interactor;
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
+  interactor->SetInteractorStyle(style);
+  interactor->SetRenderWindow(window);
+  vtkNew<vtkCallbackCommand> onKey;
+  onKey->SetCallback(App::OnKey);
+  onKey->SetClientData(&app);
+  interactor->AddObserver(vtkCommand::KeyPressEvent, onKey);
+  vtkNew<vtkCallbackCommand> onEnd;
+  onEnd->SetCallback(App::OnEndRender);
+  onEnd->SetClientData(&app);
+  renderer->AddObserver(vtkCommand::EndEvent, onEnd);
+  window->Render();
+  interactor->Start();
+  return 0;
+}

@@ -1,0 +1,162 @@
+// Cascaded shadow-map lookup, injected into VTK's polydata fragment shaders by
+// vtkCascadedShadowMapPass. Cascade selection by view depth (Lloyd et al. 2006, §6.3);
+// texel-space PCF whose taps are virtual samples on the receiver's tangent plane
+// (Barroso & Celes 2007, §2.2); the per-pixel aliasing error m (Lloyd et al., Eq. 1).
+
+#define CSM_MAX_CASCADES 8
+
+uniform float csmTileTexel;    // one texel of a cascade, in the cascade's [0,1] coordinates
+uniform int csmPCFSize;        // kernel width in texels: 1, 3, 5 or 7
+uniform int csmKernel;         // 0: regular grid, 1: jittered circular
+uniform float csmConstantBias; // in the map's [0,1] depth
+uniform float csmSlopeBias;    // times the receiver-plane depth change over one texel
+uniform float csmBlendBand;    // share of a cascade's depth range blended into the next
+uniform int csmDebug;          // 0 off, 1 cascades, 2 aliasing error, 3 shadow factor
+
+// Map coordinates ([0,1]^3 inside the cascade) of a view-space point.
+vec3 csmProject(mat4 vcToMap, vec4 vc)
+{
+  vec4 h = vcToMap * vc;
+  return h.xyz / h.w;
+}
+
+// Screen derivatives of the map coordinates, from those of the view-space position (exact for
+// the projective map, and the same on both sides of a cascade boundary).
+void csmDerivatives(mat4 vcToMap, vec4 vc, vec4 dvcdx, vec4 dvcdy, out vec3 dx, out vec3 dy)
+{
+  vec4 h = vcToMap * vc;
+  vec3 p = h.xyz / h.w;
+  vec4 hx = vcToMap * dvcdx;
+  vec4 hy = vcToMap * dvcdy;
+  dx = (hx.xyz - p * hx.w) / h.w;
+  dy = (hy.xyz - p * hy.w) / h.w;
+}
+
+float csmHash(vec2 p)
+{
+  return fract(sin(dot(p, vec2(12.9898, 78.233))) * 43758.5453);
+}
+
+float csmTap(sampler2DShadow map, vec4 tile, vec2 uv, float z)
+{
+  vec2 inside = clamp(uv, vec2(0.5 * csmTileTexel), vec2(1.0 - 0.5 * csmTileTexel));
+  return textureLod(map, vec3(tile.xy + inside * tile.zw, z), 0.0);
+}
+
+// Visibility (1 lit, 0 shadowed) of one cascade, and the aliasing error m there.
+float csmVisibility(sampler2DShadow map, mat4 vcToMap, vec4 tile, vec4 vc, vec4 dvcdx,
+  vec4 dvcdy, out float m)
+{
+  vec3 p = csmProject(vcToMap, vc);
+  vec3 dx, dy;
+  csmDerivatives(vcToMap, vc, dvcdx, dvcdy, dx, dy);
+  // Lloyd Eq. 1: a texel's footprint in pixels, 1 / smallest singular value of d(texel)/d(pixel).
+  mat2 j = mat2(dx.xy, dy.xy) / csmTileTexel;
+  float e = dot(j[0], j[0]) + dot(j[1], j[1]);
+  float d = abs(determinant(j));
+  float smin2 = 0.5 * (e - sqrt(max(e * e - 4.0 * d * d, 0.0)));
+  m = 1.0 / sqrt(max(smin2, 1e-12));
+  if (any(lessThan(p.xy, vec2(0.0))) || any(greaterThan(p.xy, vec2(1.0))) || p.z > 1.0)
+  {
+    return 1.0; // outside this cascade's map: nothing casts here
+  }
+  // Receiver plane: depth change per unit of map u and v (Barroso & Celes §2.2 virtual samples).
+  float det = dx.x * dy.y - dx.y * dy.x;
+  vec2 dz = abs(det) > 1e-24
+    ? vec2(dy.y * dx.z - dx.y * dy.z, dx.x * dy.z - dy.x * dx.z) / det
+    : vec2(0.0);
+  float zSlopePerTexel = min((abs(dz.x) + abs(dz.y)) * csmTileTexel, 0.05);
+  float zRef = p.z - csmConstantBias - csmSlopeBias * zSlopePerTexel;
+  int r = csmPCFSize / 2;
+  float maxStep = 0.05; // keep grazing receivers from throwing the taps far off their plane
+  float sum = 0.0;
+  float count = 0.0;
+  if (csmKernel == 0 || r == 0)
+  {
+    for (int i = -r; i <= r; ++i)
+    {
+      for (int k = -r; k <= r; ++k)
+      {
+        vec2 o = vec2(float(i), float(k)) * csmTileTexel;
+        sum += csmTap(map, tile, p.xy + o, zRef + clamp(dot(dz, o), -maxStep, maxStep));
+        count += 1.0;
+      }
+    }
+  }
+  else
+  {
+    // Jittered circular kernel: as many taps as the square kernel, on a spiral of radius
+    // r + 0.5 texels rotated per pixel; taps stay unaligned (Barroso & Celes §2.2).
+    int n = (2 * r + 1) * (2 * r + 1);
+    float turn = 6.2831853 * csmHash(gl_FragCoord.xy);
+    for (int i = 0; i < n; ++i)
+    {
+      float radius = sqrt((float(i) + 0.5) / float(n)) * (float(r) + 0.5);
+      float angle = float(i) * 2.3999632 + turn;
+      vec2 o = radius * vec2(cos(angle), sin(angle)) * csmTileTexel;
+      sum += csmTap(map, tile, p.xy + o, zRef + clamp(dot(dz, o), -maxStep, maxStep));
+      count += 1.0;
+    }
+  }
+  return sum / count;
+}
+
+// Shadow of one light: x = light factor (1 lit .. 1 - attenuation), y = cascade index (-1:
+// none), z = aliasing error m, w = visibility.
+vec4 csmShadow(sampler2DShadow map, mat4 vcToMap[CSM_MAX_CASCADES],
+  vec4 tiles[CSM_MAX_CASCADES], float splitFar[CSM_MAX_CASCADES], float splitNear, int count,
+  float attenuation, vec4 vc, vec4 dvcdx, vec4 dvcdy)
+{
+  float depth = -vc.z;
+  if (count <= 0 || depth < splitNear || depth > splitFar[count - 1])
+  {
+    return vec4(1.0, -1.0, 0.0, 1.0); // outside every cascade: lit as without shadows
+  }
+  int c = 0;
+  while (c < count - 1 && depth > splitFar[c])
+  {
+    ++c;
+  }
+  float m;
+  float visibility = csmVisibility(map, vcToMap[c], tiles[c], vc, dvcdx, dvcdy, m);
+  float cascadeNear = c == 0 ? splitNear : splitFar[c - 1];
+  float band = csmBlendBand * (splitFar[c] - cascadeNear);
+  if (c + 1 < count && band > 0.0 && depth > splitFar[c] - band)
+  {
+    float mNext;
+    float next = csmVisibility(map, vcToMap[c + 1], tiles[c + 1], vc, dvcdx, dvcdy, mNext);
+    visibility = mix(visibility, next, (depth - (splitFar[c] - band)) / band);
+  }
+  return vec4(1.0 - attenuation * (1.0 - visibility), float(c), m, visibility);
+}
+
+vec3 csmCascadeColor(float c)
+{
+  if (c < -0.5) return vec3(0.5);
+  int i = int(c + 0.5);
+  if (i == 0) return vec3(1.0, 0.25, 0.25);
+  if (i == 1) return vec3(0.25, 1.0, 0.25);
+  if (i == 2) return vec3(0.3, 0.45, 1.0);
+  if (i == 3) return vec3(1.0, 1.0, 0.25);
+  if (i == 4) return vec3(1.0, 0.25, 1.0);
+  if (i == 5) return vec3(0.25, 1.0, 1.0);
+  if (i == 6) return vec3(1.0, 0.6, 0.2);
+  return vec3(0.7, 0.5, 1.0);
+}
+
+// Heat map of log2(m): blue oversampled (m <= 1/4), green m = 1, red undersampled (m >= 4).
+vec3 csmErrorColor(float m)
+{
+  float t = clamp(log2(max(m, 1e-6)) / 4.0 + 0.5, 0.0, 1.0);
+  return t < 0.5 ? mix(vec3(0.1, 0.2, 1.0), vec3(0.1, 0.9, 0.2), 2.0 * t)
+                 : mix(vec3(0.1, 0.9, 0.2), vec3(1.0, 0.1, 0.1), 2.0 * t - 1.0);
+}
+
+// Debug output for a shadow result r (first shadowed light) over the shaded colour.
+vec4 csmDebugColor(vec4 shaded, vec4 r)
+{
+  if (csmDebug == 1) return vec4(csmCascadeColor(r.y) * (0.35 + 0.65 * r.x), shaded.a);
+  if (csmDebug == 2) return vec4(r.y < -0.5 ? vec3(0.0) : csmErrorColor(r.z) * (0.4 + 0.6 * r.x), shaded.a);
+  if (csmDebug == 3) return vec4(vec3(r.w), shaded.a);
+  return shaded;
+}

@@ -1,0 +1,414 @@
+#include "vtkCascadedShadowMapBakerPass.h"
+
+#include "vtkCamera.h"
+#include "vtkCascadedShadowMapPlanner.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkOpenGLState.h"
+#include "vtkProp.h"
+#include "vtkPropCollection.h"
+#include "vtkRenderState.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+vtkStandardNewMacro(vtkCascadedShadowMapBakerPass);
+
+namespace
+{
+constexpr int kMaxCascades = 8;
+constexpr size_t kMaxReceiverBoxes = 64;
+
+/// Bounds of a prop that draws 3D geometry, or false (2D actors, invisible, no bounds).
+bool propBounds(vtkProp* prop, double bounds[6])
+{
+  if (!prop || !prop->GetVisibility() || !prop->GetUseBounds())
+  {
+    return false;
+  }
+  const double* b = prop->GetBounds();
+  if (!b || !(b[0] <= b[1] && b[2] <= b[3] && b[4] <= b[5]))
+  {
+    return false;
+  }
+  std::copy(b, b + 6, bounds);
+  return true;
+}
+
+/// True when no corner of the box lands in the light's clip volume (homogeneous test).
+bool outsideLightVolume(const double m[16], const double b[6], bool depthClamp)
+{
+  int outside[7] = { 0, 0, 0, 0, 0, 0, 0 };
+  for (int i = 0; i < 8; ++i)
+  {
+    const double p[4] = { b[(i & 1) ? 1 : 0], b[(i & 2) ? 3 : 2], b[(i & 4) ? 5 : 4], 1.0 };
+    double h[4];
+    vtkMatrix4x4::MultiplyPoint(m, p, h);
+    outside[0] += h[0] < -h[3];
+    outside[1] += h[0] > h[3];
+    outside[2] += h[1] < -h[3];
+    outside[3] += h[1] > h[3];
+    outside[4] += h[2] > h[3];
+    outside[5] += !depthClamp && h[2] < -h[3];
+    outside[6] += h[3] <= 0.0;
+  }
+  return std::any_of(std::begin(outside), std::end(outside), [](int c) { return c == 8; });
+}
+}
+
+vtkCascadedShadowMapBakerPass::vtkCascadedShadowMapBakerPass()
+{
+  this->Planner = vtkSmartPointer<vtkCascadedShadowMapPlanner>::New();
+  this->FrameBuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+  this->LightCamera = vtkSmartPointer<vtkCamera>::New();
+  this->Projection = vtkSmartPointer<vtkMatrix4x4>::New();
+  // Identity view: the cascade matrix (world -> light clip) is the whole projection.
+  this->LightCamera->SetPosition(0.0, 0.0, 0.0);
+  this->LightCamera->SetFocalPoint(0.0, 0.0, -1.0);
+  this->LightCamera->SetViewUp(0.0, 1.0, 0.0);
+  this->LightCamera->SetParallelProjection(1);
+  this->LightCamera->SetExplicitProjectionTransformMatrix(this->Projection);
+  this->LightCamera->UseExplicitProjectionTransformMatrixOn();
+}
+
+vtkCascadedShadowMapBakerPass::~vtkCascadedShadowMapBakerPass() = default;
+
+bool vtkCascadedShadowMapBakerPass::LightCastsShadows(vtkLight* light)
+{
+  return light && light->GetSwitch() && !light->LightTypeIsHeadlight() &&
+    (!light->GetPositional() || light->GetConeAngle() < 90.0);
+}
+
+bool vtkCascadedShadowMapBakerPass::NeedsBake(vtkRenderer* renderer)
+{
+  vtkMTimeType input = std::max(this->GetMTime(), renderer->GetActiveCamera()->GetMTime());
+  vtkLightCollection* lights = renderer->GetLights();
+  input = std::max(input, lights->GetMTime());
+  vtkCollectionSimpleIterator lit;
+  lights->InitTraversal(lit);
+  while (vtkLight* light = lights->GetNextLight(lit))
+  {
+    input = std::max(input, light->GetMTime());
+  }
+  vtkPropCollection* props = renderer->GetViewProps();
+  input = std::max(input, props->GetMTime());
+  vtkCollectionSimpleIterator pit;
+  props->InitTraversal(pit);
+  while (vtkProp* prop = props->GetNextProp(pit))
+  {
+    input = std::max(input, prop->GetRedrawMTime());
+  }
+  int* size = renderer->GetSize();
+  const bool changed = input > this->LastInputTime || size[0] != this->LastSize[0] ||
+    size[1] != this->LastSize[1];
+  this->LastInputTime = input;
+  this->LastSize[0] = size[0];
+  this->LastSize[1] = size[1];
+  return changed;
+}
+
+bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
+  vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles)
+{
+  const int columns = std::min(tiles, 4);
+  const int rows = (tiles + columns - 1) / columns;
+  GLint maxSize = 4096;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  int resolution = this->Resolution;
+  if (resolution * columns > maxSize)
+  {
+    resolution = maxSize / columns;
+    vtkWarningMacro(<< "Shadow map resolution " << this->Resolution << " x " << columns
+                    << " cascades exceeds the GL limit " << maxSize << "; using " << resolution);
+  }
+  vtkTextureObject* atlas = maps.Atlas;
+  const unsigned int width = static_cast<unsigned int>(columns * resolution);
+  const unsigned int height = static_cast<unsigned int>(rows * resolution);
+  if (atlas->GetContext() != window || atlas->GetWidth() != width || atlas->GetHeight() != height)
+  {
+    atlas->ReleaseGraphicsResources(window);
+    atlas->SetContext(window);
+    atlas->SetWrapS(vtkTextureObject::ClampToEdge);
+    atlas->SetWrapT(vtkTextureObject::ClampToEdge);
+    atlas->SetMinificationFilter(vtkTextureObject::Linear); // 2x2 hardware PCF per tap
+    atlas->SetMagnificationFilter(vtkTextureObject::Linear);
+    atlas->SetDepthTextureCompare(true);
+    atlas->SetDepthTextureCompareFunction(vtkTextureObject::Lequal);
+    if (!atlas->AllocateDepth(width, height, vtkTextureObject::Float32))
+    {
+      vtkErrorMacro(<< "Cannot allocate a " << width << " x " << height << " shadow map atlas");
+      return false;
+    }
+  }
+  for (int i = 0; i < tiles; ++i)
+  {
+    maps.Tile[i][0] = double(i % columns) / columns;
+    maps.Tile[i][1] = double(i / columns) / rows;
+    maps.Tile[i][2] = 1.0 / columns;
+    maps.Tile[i][3] = 1.0 / rows;
+  }
+  return true;
+}
+
+void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
+{
+  vtkOpenGLClearErrorMacro();
+  this->NumberOfRenderedProps = 0;
+  vtkOpenGLRenderer* renderer = vtkOpenGLRenderer::SafeDownCast(s->GetRenderer());
+  if (!renderer || renderer->GetSelector())
+  {
+    return; // hardware selection renders no shadows; keep the last maps
+  }
+  vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  vtkCamera* camera = renderer->GetActiveCamera();
+  if (!window || !camera)
+  {
+    return;
+  }
+  if (!this->NeedsBake(renderer) && !this->Maps.empty())
+  {
+    return;
+  }
+  ++this->BakeCount;
+  this->LastCascadeRenders = 0;
+  this->LastPropsDrawn = 0;
+
+  // Plan every shadowed light first: nothing may move while the light camera is active.
+  this->Planner->SetNumberOfCascades(this->NumberOfCascades);
+  this->Planner->SetWarpMode(this->WarpMode);
+  this->Planner->SetSplitScheme(this->SplitScheme);
+  this->Planner->SetLambda(this->Lambda);
+  this->Planner->SetAlpha(this->Alpha);
+  this->Planner->SetDepthClamp(this->DepthClamp);
+  double sceneBounds[6];
+  renderer->ComputeVisiblePropBounds(sceneBounds);
+  const double aspect = renderer->GetTiledAspectRatio();
+
+  // Casters: visible opaque props. Receivers: every visible prop; their boxes fit the cascades
+  // (up to kMaxReceiverBoxes; beyond, the box around all of them).
+  std::vector<vtkProp*> casters;
+  std::vector<std::array<double, 6>> casterBounds;
+  this->Planner->ClearReceiverBounds();
+  std::vector<std::array<double, 6>> receivers;
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator pit;
+  props->InitTraversal(pit);
+  while (vtkProp* prop = props->GetNextProp(pit))
+  {
+    std::array<double, 6> b;
+    if (propBounds(prop, b.data()))
+    {
+      receivers.push_back(b);
+      if (prop->HasOpaqueGeometry())
+      {
+        casters.push_back(prop);
+        casterBounds.push_back(b);
+      }
+    }
+  }
+  if (receivers.size() <= kMaxReceiverBoxes)
+  {
+    for (const auto& b : receivers)
+    {
+      this->Planner->AddReceiverBounds(b.data());
+    }
+  }
+
+  this->Maps.clear();
+  int lightIndex = 0;
+  vtkLightCollection* lights = renderer->GetLights();
+  vtkCollectionSimpleIterator lit;
+  lights->InitTraversal(lit);
+  while (vtkLight* light = lights->GetNextLight(lit))
+  {
+    if (!light->GetSwitch())
+    {
+      continue; // the mapper numbers switched-on lights only
+    }
+    const int index = lightIndex++;
+    if (!vtkCascadedShadowMapBakerPass::LightCastsShadows(light))
+    {
+      continue;
+    }
+    LightMaps maps;
+    maps.Light = light;
+    maps.LightIndex = index;
+    const int planned = this->Planner->Plan(camera, aspect, light, sceneBounds);
+    maps.NumberOfCascades = std::min(planned, kMaxCascades);
+    if (maps.NumberOfCascades > 0)
+    {
+      vtkNew<vtkMatrix4x4> m;
+      for (int c = 0; c < maps.NumberOfCascades; ++c)
+      {
+        this->Planner->GetCascadeMatrix(c, m);
+        std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
+        maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
+      }
+      maps.SplitNear = this->Planner->GetCascadeNear(0);
+    }
+    const size_t slot = this->Maps.size();
+    if (this->AtlasPool.size() <= slot)
+    {
+      this->AtlasPool.push_back(vtkSmartPointer<vtkTextureObject>::New());
+    }
+    maps.Atlas = this->AtlasPool[slot];
+    this->Maps.push_back(maps);
+  }
+  if (this->Maps.empty())
+  {
+    return;
+  }
+
+  vtkOpenGLState* ostate = window->GetState();
+  vtkOpenGLState::ScopedglViewport savedViewport(ostate);
+  vtkOpenGLState::ScopedglScissor savedScissor(ostate);
+  vtkOpenGLState::ScopedglEnableDisable savedScissorTest(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglDepthMask savedDepthMask(ostate);
+  vtkOpenGLState::ScopedglColorMask savedColorMask(ostate);
+  vtkOpenGLState::ScopedglDepthFunc savedDepthFunc(ostate);
+  vtkOpenGLState::ScopedglEnableDisable savedDepthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable savedDepthClamp(ostate, GL_DEPTH_CLAMP);
+  vtkOpenGLState::ScopedglEnableDisable savedOffset(ostate, GL_POLYGON_OFFSET_FILL);
+  ostate->PushFramebufferBindings();
+
+  vtkSmartPointer<vtkCamera> realCamera = camera;
+  const bool automaticLights = renderer->GetAutomaticLightCreation() != 0;
+  renderer->SetAutomaticLightCreation(false);
+  this->FrameBuffer->SetContext(window);
+
+  for (LightMaps& maps : this->Maps)
+  {
+    if (!this->PrepareAtlas(window, maps, this->NumberOfCascades))
+    {
+      maps.NumberOfCascades = 0;
+      continue;
+    }
+    this->FrameBuffer->Bind();
+    this->FrameBuffer->AddDepthAttachment(maps.Atlas);
+    this->FrameBuffer->DeactivateDrawBuffers();
+    this->FrameBuffer->DeactivateReadBuffer();
+    if (this->FrameBuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER) == 0)
+    {
+      vtkErrorMacro(<< "The shadow map framebuffer is incomplete; no shadows");
+      maps.NumberOfCascades = 0;
+      continue;
+    }
+    const int width = static_cast<int>(maps.Atlas->GetWidth());
+    const int height = static_cast<int>(maps.Atlas->GetHeight());
+    // Clear the whole atlas to far depth: unused tiles and skipped cascades read as lit.
+    ostate->vtkglDisable(GL_SCISSOR_TEST);
+    ostate->vtkglViewport(0, 0, width, height);
+    ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    ostate->vtkglDepthMask(GL_TRUE);
+    ostate->vtkglClearDepth(1.0);
+    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+    ostate->vtkglEnable(GL_DEPTH_TEST);
+    ostate->vtkglDepthFunc(GL_LEQUAL);
+    if (this->DepthClamp)
+    {
+      ostate->vtkglEnable(GL_DEPTH_CLAMP);
+    }
+    else
+    {
+      ostate->vtkglDisable(GL_DEPTH_CLAMP);
+    }
+    ostate->vtkglEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(static_cast<GLfloat>(this->PolygonOffsetFactor),
+      static_cast<GLfloat>(this->PolygonOffsetUnits));
+    ostate->vtkglEnable(GL_SCISSOR_TEST);
+
+    for (int c = 0; c < maps.NumberOfCascades; ++c)
+    {
+      const int x = static_cast<int>(std::lround(maps.Tile[c][0] * width));
+      const int y = static_cast<int>(std::lround(maps.Tile[c][1] * height));
+      const int w = static_cast<int>(std::lround(maps.Tile[c][2] * width));
+      const int h = static_cast<int>(std::lround(maps.Tile[c][3] * height));
+      ostate->vtkglViewport(x, y, w, h);
+      ostate->vtkglScissor(x, y, w, h);
+
+      // Only the casters whose bounds reach this cascade's light volume.
+      std::vector<vtkProp*> drawn;
+      for (size_t i = 0; i < casters.size(); ++i)
+      {
+        if (!outsideLightVolume(maps.WorldToMap[c], casterBounds[i].data(), this->DepthClamp))
+        {
+          drawn.push_back(casters[i]);
+        }
+      }
+      ++this->LastCascadeRenders;
+      this->LastPropsDrawn += static_cast<int>(drawn.size());
+      if (drawn.empty())
+      {
+        continue;
+      }
+      this->Projection->DeepCopy(maps.WorldToMap[c]);
+      this->LightCamera->Modified();
+      renderer->SetActiveCamera(this->LightCamera);
+      vtkRenderState casterState(renderer);
+      casterState.SetPropArrayAndCount(drawn.data(), static_cast<int>(drawn.size()));
+      casterState.SetFrameBuffer(this->FrameBuffer);
+      this->PreRender(&casterState);
+      for (vtkProp* prop : drawn)
+      {
+        this->NumberOfRenderedProps += prop->RenderOpaqueGeometry(renderer);
+      }
+      this->PostRender(&casterState);
+      renderer->SetActiveCamera(realCamera);
+    }
+    this->FrameBuffer->RemoveDepthAttachment();
+  }
+  ostate->PopFramebufferBindings();
+  renderer->SetAutomaticLightCreation(automaticLights);
+  vtkOpenGLCheckErrorMacro("failed after rendering the cascaded shadow maps");
+}
+
+bool vtkCascadedShadowMapBakerPass::PreReplaceShaderValues(std::string&, std::string&,
+  std::string& fragmentShader, vtkAbstractMapper*, vtkProp*)
+{
+  // Keeps the depth program apart from the main pass's: the shader cache is keyed by source,
+  // and the lighting uniforms of a shared program would keep the light camera's values.
+  vtkShaderProgram::Substitute(fragmentShader, "//VTK::Light::Impl",
+    "//VTK::Light::Impl\n  // cascaded shadow map: depth pass\n", false);
+  return true;
+}
+
+void vtkCascadedShadowMapBakerPass::ReleaseGraphicsResources(vtkWindow* w)
+{
+  for (auto& atlas : this->AtlasPool)
+  {
+    atlas->ReleaseGraphicsResources(w);
+  }
+  this->AtlasPool.clear();
+  this->Maps.clear();
+  if (this->FrameBuffer)
+  {
+    this->FrameBuffer->ReleaseGraphicsResources(w);
+  }
+  this->LastInputTime = 0;
+}
+
+void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfCascades: " << this->NumberOfCascades << "\n";
+  os << indent << "Resolution: " << this->Resolution << "\n";
+  os << indent << "WarpMode: " << this->WarpMode << "\n";
+  os << indent << "SplitScheme: " << this->SplitScheme << "\n";
+  os << indent << "Lambda: " << this->Lambda << "\n";
+  os << indent << "Alpha: " << this->Alpha << "\n";
+  os << indent << "DepthClamp: " << this->DepthClamp << "\n";
+  os << indent << "PolygonOffsetFactor: " << this->PolygonOffsetFactor << "\n";
+  os << indent << "PolygonOffsetUnits: " << this->PolygonOffsetUnits << "\n";
+  os << indent << "ShadowedLights: " << this->Maps.size() << "\n";
+}

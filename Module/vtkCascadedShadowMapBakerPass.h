@@ -1,0 +1,158 @@
+/**
+ * @class   vtkCascadedShadowMapBakerPass
+ * @brief   Renders the depth of the shadow casters into cascaded shadow maps.
+ *
+ * For every light VTK would shadow (scene or camera lights, switched on; directional lights and
+ * spot lights with cone angle < 90 degrees), this pass plans the cascades with
+ * vtkCascadedShadowMapPlanner (z-partitioned, warped with the generalized LiSPSM parameter of
+ * Barroso & Celes; a spot light gets one perspective map) and renders the depth of the props
+ * whose bounds reach each cascade's light volume into one tile of a depth-texture atlas per
+ * light, cleared to far depth and sampled with hardware depth compare.
+ *
+ * Maps are re-rendered only when the camera, a light, a prop, the window size or an option
+ * changed. Used with vtkCascadedShadowMapPass, which reads the maps:
+ * @code
+ * camera pass -> sequence{ shadowPass->GetShadowMapBakerPass(), shadowPass }
+ * @endcode
+ * or in one call with vtkCascadedShadowMapPass::UseShadowsOn(renderer).
+ */
+#ifndef vtkCascadedShadowMapBakerPass_h
+#define vtkCascadedShadowMapBakerPass_h
+
+#include "vtkOpenGLRenderPass.h"
+#include "vtkRenderingCascadedShadowsModule.h" // for export macro
+#include "vtkSmartPointer.h"                   // for members
+
+#include <vector> // for members
+
+class vtkCamera;
+class vtkCascadedShadowMapPlanner;
+class vtkLight;
+class vtkMatrix4x4;
+class vtkOpenGLFramebufferObject;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+
+class VTKRENDERINGCASCADEDSHADOWS_EXPORT vtkCascadedShadowMapBakerPass : public vtkOpenGLRenderPass
+{
+public:
+  static vtkCascadedShadowMapBakerPass* New();
+  vtkTypeMacro(vtkCascadedShadowMapBakerPass, vtkOpenGLRenderPass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  void Render(const vtkRenderState* s) override;
+  void ReleaseGraphicsResources(vtkWindow* w) override;
+
+  ///@{
+  /// Cascades per directional light, 1..8. Default 2 (Barroso & Celes §4).
+  vtkSetClampMacro(NumberOfCascades, int, 1, 8);
+  vtkGetMacro(NumberOfCascades, int);
+  ///@}
+
+  ///@{
+  /// Width and height of each cascade's map in texels, 64..8192. Default 2048.
+  vtkSetClampMacro(Resolution, int, 64, 8192);
+  vtkGetMacro(Resolution, int);
+  ///@}
+
+  ///@{
+  /// Warp mode and split scheme: vtkCascadedShadowMapPlanner::WarpModes / SplitSchemes.
+  /// Defaults: generalized LiSPSM, adaptive splits.
+  vtkSetClampMacro(WarpMode, int, 0, 3);
+  vtkGetMacro(WarpMode, int);
+  vtkSetClampMacro(SplitScheme, int, 0, 4);
+  vtkGetMacro(SplitScheme, int);
+  ///@}
+
+  ///@{
+  /// Practical split weight lambda (default 0.5) and adaptive split ratio alpha (default 2).
+  vtkSetClampMacro(Lambda, double, 0.0, 1.0);
+  vtkGetMacro(Lambda, double);
+  vtkSetClampMacro(Alpha, double, 1.000001, 1.0e6);
+  vtkGetMacro(Alpha, double);
+  ///@}
+
+  ///@{
+  /// Clamp casters in front of a cascade to its near depth (Lloyd et al. §6.4). Default on.
+  vtkSetMacro(DepthClamp, bool);
+  vtkGetMacro(DepthClamp, bool);
+  vtkBooleanMacro(DepthClamp, bool);
+  ///@}
+
+  ///@{
+  /// Slope-scaled depth offset applied while rendering the maps (glPolygonOffset factor and
+  /// units). Defaults 1.1 and 2.
+  vtkSetMacro(PolygonOffsetFactor, double);
+  vtkGetMacro(PolygonOffsetFactor, double);
+  vtkSetMacro(PolygonOffsetUnits, double);
+  vtkGetMacro(PolygonOffsetUnits, double);
+  ///@}
+
+  /// Does VTK shadow this light? Scene and camera lights that are on: directional, or spot with
+  /// cone angle < 90 degrees (the same rule as vtkShadowMapBakerPass).
+  static bool LightCastsShadows(vtkLight* light);
+
+  /// The maps of one shadowed light, as the shadow pass reads them.
+  struct LightMaps
+  {
+    vtkLight* Light = nullptr;
+    int LightIndex = -1;          ///< index among the renderer's switched-on lights
+    int NumberOfCascades = 0;     ///< 0: nothing to shadow for this light this frame
+    double WorldToMap[8][16];     ///< world -> light clip, row-major, per cascade
+    double SplitNear = 0.0;       ///< view depth where the first cascade begins
+    double SplitFar[8];           ///< view depth where each cascade ends
+    double Tile[8][4];            ///< atlas tile: offset x, y and scale x, y in [0, 1]
+    vtkSmartPointer<vtkTextureObject> Atlas;
+  };
+
+  /// The shadowed lights of the last Render(), in the renderer's light order.
+  const std::vector<LightMaps>& GetLightMaps() const { return this->Maps; }
+
+  /// True when the last Render() produced at least one shadowed light.
+  bool GetHasShadows() const { return !this->Maps.empty(); }
+
+  /// Number of times the maps were rendered (not skipped as up to date); for tests.
+  vtkGetMacro(BakeCount, int);
+
+  /// Number of cascade renders and of props drawn into them in the last bake; for tests.
+  vtkGetMacro(LastCascadeRenders, int);
+  vtkGetMacro(LastPropsDrawn, int);
+
+protected:
+  vtkCascadedShadowMapBakerPass();
+  ~vtkCascadedShadowMapBakerPass() override;
+
+  bool PreReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
+    std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
+
+  bool NeedsBake(vtkRenderer* renderer);
+  bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles);
+
+  int NumberOfCascades = 2;
+  int Resolution = 2048;
+  int WarpMode = 3;
+  int SplitScheme = 4;
+  double Lambda = 0.5;
+  double Alpha = 2.0;
+  bool DepthClamp = true;
+  double PolygonOffsetFactor = 1.1;
+  double PolygonOffsetUnits = 2.0;
+
+  std::vector<LightMaps> Maps;
+  std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPool; // one per light slot, reused
+  vtkSmartPointer<vtkCascadedShadowMapPlanner> Planner;
+  vtkSmartPointer<vtkOpenGLFramebufferObject> FrameBuffer;
+  vtkSmartPointer<vtkCamera> LightCamera;
+  vtkSmartPointer<vtkMatrix4x4> Projection;
+  vtkMTimeType LastInputTime = 0;
+  int LastSize[2] = { 0, 0 };
+  int BakeCount = 0;
+  int LastCascadeRenders = 0;
+  int LastPropsDrawn = 0;
+
+private:
+  vtkCascadedShadowMapBakerPass(const vtkCascadedShadowMapBakerPass&) = delete;
+  void operator=(const vtkCascadedShadowMapBakerPass&) = delete;
+};
+
+#endif

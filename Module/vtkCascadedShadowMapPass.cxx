@@ -1,0 +1,258 @@
+#include "vtkCascadedShadowMapPass.h"
+
+#include "vtkCamera.h"
+#include "vtkCameraPass.h"
+#include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkLight.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkRenderPassCollection.h"
+#include "vtkRenderState.h"
+#include "vtkSequencePass.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+
+#include "csmShadowFS.h" // the GLSL of Module/glsl/csmShadowFS.glsl
+
+#include <sstream>
+
+vtkStandardNewMacro(vtkCascadedShadowMapPass);
+vtkCxxSetObjectMacro(vtkCascadedShadowMapPass, ShadowMapBakerPass, vtkCascadedShadowMapBakerPass);
+
+namespace
+{
+const char* const kVertexVC = "vec4 vertexVC = vertexVCVSOutput;";
+
+std::string indexed(const char* name, size_t j)
+{
+  return std::string(name) + std::to_string(j);
+}
+}
+
+vtkCascadedShadowMapPass::vtkCascadedShadowMapPass()
+{
+  this->ShadowMapBakerPass = vtkCascadedShadowMapBakerPass::New();
+}
+
+vtkCascadedShadowMapPass::~vtkCascadedShadowMapPass()
+{
+  this->SetShadowMapBakerPass(nullptr);
+}
+
+void vtkCascadedShadowMapPass::SetPCFSize(int size)
+{
+  const int odd = std::max(1, std::min(7, size | 1));
+  if (odd != this->PCFSize)
+  {
+    this->PCFSize = odd;
+    this->Modified();
+  }
+}
+
+vtkMTimeType vtkCascadedShadowMapPass::GetShaderStageMTime()
+{
+  return this->ShaderTime.GetMTime();
+}
+
+void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
+{
+  this->NumberOfRenderedProps = 0;
+  vtkRenderer* renderer = s->GetRenderer();
+  this->ClearLights(renderer);
+  this->UpdateLightGeometry(renderer);
+  this->UpdateLights(renderer);
+  vtkCascadedShadowMapBakerPass* baker = this->ShadowMapBakerPass;
+  if (renderer->GetSelector() || !baker || !baker->GetHasShadows())
+  {
+    // Picking, or nothing shadowed: exactly the renderer's own geometry pass.
+    this->UpdateGeometry(renderer, s->GetFrameBuffer());
+    return;
+  }
+
+  // View space -> map coordinates in [0,1]^3, composed in double, uploaded as float.
+  vtkMatrix4x4* worldToView = renderer->GetActiveCamera()->GetModelViewTransformMatrix();
+  vtkNew<vtkMatrix4x4> viewToWorld;
+  vtkMatrix4x4::Invert(worldToView, viewToWorld);
+  const double toUnit[16] = { 0.5, 0, 0, 0.5, 0, 0.5, 0, 0.5, 0, 0, 0.5, 0.5, 0, 0, 0, 1 };
+  std::string signature;
+  this->Uniforms.clear();
+  for (const auto& maps : baker->GetLightMaps())
+  {
+    LightUniforms u;
+    u.LightIndex = maps.LightIndex;
+    u.Count = maps.NumberOfCascades;
+    u.SplitNear = static_cast<float>(maps.SplitNear);
+    u.Attenuation = static_cast<float>(this->ShadowDarkness * maps.Light->GetShadowAttenuation());
+    for (int c = 0; c < 8; ++c)
+    {
+      double clipFromView[16], mapFromView[16];
+      if (c < u.Count)
+      {
+        vtkMatrix4x4::Multiply4x4(maps.WorldToMap[c], viewToWorld->GetData(), clipFromView);
+        vtkMatrix4x4::Multiply4x4(toUnit, clipFromView, mapFromView);
+      }
+      else
+      {
+        vtkMatrix4x4::Identity(mapFromView);
+      }
+      for (int row = 0; row < 4; ++row)
+      {
+        for (int column = 0; column < 4; ++column)
+        {
+          u.VCToMap[c][4 * column + row] = static_cast<float>(mapFromView[4 * row + column]);
+        }
+      }
+      for (int k = 0; k < 4; ++k)
+      {
+        u.Tile[c][k] = static_cast<float>(maps.Tile[c][k]);
+      }
+      u.SplitFar[c] = c < u.Count ? static_cast<float>(maps.SplitFar[c]) : 0.0f;
+    }
+    maps.Atlas->Activate();
+    u.TextureUnit = maps.Atlas->GetTextureUnit();
+    this->Uniforms.push_back(u);
+    signature += std::to_string(u.LightIndex) + ";";
+  }
+  if (signature != this->ShaderSignature)
+  {
+    this->ShaderSignature = signature;
+    this->ShaderTime.Modified();
+  }
+
+  this->PreRender(s);
+  this->UpdateGeometry(renderer, s->GetFrameBuffer());
+  this->PostRender(s);
+  for (const auto& maps : baker->GetLightMaps())
+  {
+    maps.Atlas->Deactivate();
+  }
+}
+
+bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
+  std::string&, std::string&, std::string& fragmentShader, vtkAbstractMapper*, vtkProp*)
+{
+  const size_t vcLine = fragmentShader.find(kVertexVC);
+  const size_t mainLine = fragmentShader.find("void main()");
+  if (this->Uniforms.empty() || vcLine == std::string::npos || mainLine == std::string::npos)
+  {
+    return true; // unlit: no view-space position, no lights to shadow
+  }
+  std::ostringstream decl;
+  decl << csmShadowFS << "\n";
+  std::ostringstream impl;
+  impl << kVertexVC << "\n  vec4 csmDVCdx = dFdx(vertexVC);\n  vec4 csmDVCdy = dFdy(vertexVC);\n";
+  for (size_t j = 0; j < this->Uniforms.size(); ++j)
+  {
+    decl << "uniform sampler2DShadow csmMap" << j << ";\n"
+         << "uniform mat4 csmToMap" << j << "[CSM_MAX_CASCADES];\n"
+         << "uniform vec4 csmTile" << j << "[CSM_MAX_CASCADES];\n"
+         << "uniform float csmSplitFar" << j << "[CSM_MAX_CASCADES];\n"
+         << "uniform float csmSplitNear" << j << ";\n"
+         << "uniform int csmCount" << j << ";\n"
+         << "uniform float csmAttenuation" << j << ";\n";
+    impl << "  vec4 csmResult" << j << " = csmShadow(csmMap" << j << ", csmToMap" << j
+         << ", csmTile" << j << ", csmSplitFar" << j << ", csmSplitNear" << j << ", csmCount" << j
+         << ", csmAttenuation" << j << ", vertexVC, csmDVCdx, csmDVCdy);\n";
+  }
+  fragmentShader.insert(mainLine, decl.str());
+  vtkShaderProgram::Substitute(fragmentShader, kVertexVC, impl.str(), false);
+  for (size_t j = 0; j < this->Uniforms.size(); ++j)
+  {
+    const std::string k = std::to_string(this->Uniforms[j].LightIndex);
+    const std::string factor = "csmResult" + std::to_string(j) + ".x * ";
+    vtkShaderProgram::Substitute(fragmentShader, "diffuse += (df * lightColor" + k + ");",
+      "diffuse += (df * " + factor + "lightColor" + k + ");", false);
+    vtkShaderProgram::Substitute(fragmentShader, "specular += (sf * lightColor" + k + ");",
+      "specular += (sf * " + factor + "lightColor" + k + ");", false);
+    vtkShaderProgram::Substitute(fragmentShader, "radiance = lightColor" + k + ";",
+      "radiance = " + factor + "lightColor" + k + ";", false);
+    vtkShaderProgram::Substitute(fragmentShader, "radiance = lightColor" + k + " * attenuation;",
+      "radiance = " + factor + "lightColor" + k + " * attenuation;", false);
+  }
+  vtkShaderProgram::Substitute(fragmentShader, "//VTK::Light::Impl",
+    "//VTK::Light::Impl\n  if (csmDebug != 0) { gl_FragData[0] = csmDebugColor(gl_FragData[0], "
+    "csmResult0); }\n",
+    false);
+  return true;
+}
+
+bool vtkCascadedShadowMapPass::SetShaderParameters(
+  vtkShaderProgram* program, vtkAbstractMapper*, vtkProp*, vtkOpenGLVertexArrayObject*)
+{
+  if (this->Uniforms.empty() || !program->IsUniformUsed("csmPCFSize"))
+  {
+    return true;
+  }
+  const int resolution = this->ShadowMapBakerPass ? this->ShadowMapBakerPass->GetResolution() : 1;
+  program->SetUniformf("csmTileTexel", 1.0f / static_cast<float>(resolution));
+  program->SetUniformi("csmPCFSize", this->PCFSize);
+  program->SetUniformi("csmKernel", this->PCFKernel);
+  program->SetUniformf("csmConstantBias", static_cast<float>(this->ConstantBias));
+  program->SetUniformf("csmSlopeBias", static_cast<float>(this->SlopeBias));
+  program->SetUniformf("csmBlendBand", static_cast<float>(this->BlendBand));
+  program->SetUniformi("csmDebug", this->DebugMode);
+  for (size_t j = 0; j < this->Uniforms.size(); ++j)
+  {
+    LightUniforms& u = this->Uniforms[j];
+    program->SetUniformi(indexed("csmMap", j).c_str(), u.TextureUnit);
+    program->SetUniformMatrix4x4v(indexed("csmToMap", j).c_str(), 8, &u.VCToMap[0][0]);
+    program->SetUniform4fv(indexed("csmTile", j).c_str(), 8, u.Tile);
+    program->SetUniform1fv(indexed("csmSplitFar", j).c_str(), 8, u.SplitFar);
+    program->SetUniformf(indexed("csmSplitNear", j).c_str(), u.SplitNear);
+    program->SetUniformi(indexed("csmCount", j).c_str(), u.Count);
+    program->SetUniformf(indexed("csmAttenuation", j).c_str(), u.Attenuation);
+  }
+  return true;
+}
+
+vtkCascadedShadowMapPass* vtkCascadedShadowMapPass::UseShadowsOn(vtkRenderer* renderer)
+{
+  if (!renderer)
+  {
+    return nullptr;
+  }
+  vtkNew<vtkCascadedShadowMapPass> shadows;
+  vtkNew<vtkRenderPassCollection> passes;
+  passes->AddItem(shadows->GetShadowMapBakerPass());
+  passes->AddItem(shadows);
+  vtkNew<vtkSequencePass> sequence;
+  sequence->SetPasses(passes);
+  vtkNew<vtkCameraPass> cameraPass;
+  cameraPass->SetDelegatePass(sequence);
+  renderer->SetPass(cameraPass);
+  return shadows; // kept alive by the renderer's pass chain
+}
+
+void vtkCascadedShadowMapPass::UseShadowsOff(vtkRenderer* renderer)
+{
+  if (renderer)
+  {
+    renderer->SetPass(nullptr);
+  }
+}
+
+void vtkCascadedShadowMapPass::ReleaseGraphicsResources(vtkWindow* w)
+{
+  if (this->ShadowMapBakerPass)
+  {
+    this->ShadowMapBakerPass->ReleaseGraphicsResources(w);
+  }
+}
+
+void vtkCascadedShadowMapPass::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "PCFSize: " << this->PCFSize << "\n";
+  os << indent << "PCFKernel: " << (this->PCFKernel == KERNEL_GRID ? "grid" : "jittered") << "\n";
+  os << indent << "ConstantBias: " << this->ConstantBias << "\n";
+  os << indent << "SlopeBias: " << this->SlopeBias << "\n";
+  os << indent << "BlendBand: " << this->BlendBand << "\n";
+  os << indent << "ShadowDarkness: " << this->ShadowDarkness << "\n";
+  os << indent << "DebugMode: " << this->DebugMode << "\n";
+  os << indent << "ShadowMapBakerPass: " << this->ShadowMapBakerPass << "\n";
+  if (this->ShadowMapBakerPass)
+  {
+    this->ShadowMapBakerPass->PrintSelf(os, indent.GetNextIndent());
+  }
+}

@@ -1,0 +1,160 @@
+/**
+ * @class   vtkCascadedShadowMapPass
+ * @brief   Renders the scene with cascaded shadow maps: a drop-in for vtkShadowMapPass.
+ *
+ * Reads the maps of its vtkCascadedShadowMapBakerPass and injects the lookup into every
+ * polydata mapper's fragment shader: the cascade is picked by view depth (Lloyd et al. §6.3),
+ * the map is sampled with texel-space PCF whose taps are virtual samples on the receiver plane
+ * (Barroso & Celes §2.2) with constant and slope-scaled bias, and cascades are blended over a
+ * narrow band. Each shadowed light's factor multiplies that light's diffuse and specular terms
+ * (and the PBR radiance), never the ambient light. Outside every cascade a surface is lit as
+ * without shadows. Opaque and translucent props, volumes and overlays are drawn as the renderer
+ * would; while a hardware selector is active the pass renders exactly like the renderer without
+ * shadows, so picking keeps working.
+ *
+ * Use it like VTK's pair:
+ * @code
+ * vtkNew<vtkCascadedShadowMapPass> shadows;
+ * vtkNew<vtkSequencePass> seq;  // { shadows->GetShadowMapBakerPass(), shadows }
+ * vtkNew<vtkCameraPass> cameraPass; cameraPass->SetDelegatePass(seq);
+ * renderer->SetPass(cameraPass);
+ * @endcode
+ * or in one call: vtkCascadedShadowMapPass::UseShadowsOn(renderer).
+ */
+#ifndef vtkCascadedShadowMapPass_h
+#define vtkCascadedShadowMapPass_h
+
+#include "vtkOpenGLRenderPass.h"
+#include "vtkRenderingCascadedShadowsModule.h" // for export macro
+#include "vtkSmartPointer.h"                   // for members
+
+#include <string> // for members
+#include <vector> // for members
+
+class vtkCascadedShadowMapBakerPass;
+class vtkRenderer;
+
+class VTKRENDERINGCASCADEDSHADOWS_EXPORT vtkCascadedShadowMapPass : public vtkOpenGLRenderPass
+{
+public:
+  static vtkCascadedShadowMapPass* New();
+  vtkTypeMacro(vtkCascadedShadowMapPass, vtkOpenGLRenderPass);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  void Render(const vtkRenderState* s) override;
+  void ReleaseGraphicsResources(vtkWindow* w) override;
+
+  ///@{
+  /// The pass that renders the maps this pass reads. Created by default.
+  vtkGetObjectMacro(ShadowMapBakerPass, vtkCascadedShadowMapBakerPass);
+  virtual void SetShadowMapBakerPass(vtkCascadedShadowMapBakerPass* baker);
+  ///@}
+
+  ///@{
+  /// PCF kernel width in texels of the cascade: 1, 3, 5 or 7 (even values round up). Default 5
+  /// (Barroso & Celes §4).
+  virtual void SetPCFSize(int size);
+  vtkGetMacro(PCFSize, int);
+  ///@}
+
+  enum Kernels
+  {
+    KERNEL_GRID = 0,    ///< regular grid of taps one texel apart
+    KERNEL_JITTERED = 1 ///< jittered circular kernel, unaligned virtual samples
+  };
+  ///@{
+  /// PCF kernel shape. Default KERNEL_GRID.
+  vtkSetClampMacro(PCFKernel, int, KERNEL_GRID, KERNEL_JITTERED);
+  vtkGetMacro(PCFKernel, int);
+  ///@}
+
+  ///@{
+  /// Constant depth bias, in the map's [0,1] depth (Barroso & Celes Table 1 (a)). Default 0.002.
+  vtkSetClampMacro(ConstantBias, double, 0.0, 1.0);
+  vtkGetMacro(ConstantBias, double);
+  ///@}
+
+  ///@{
+  /// Slope-scaled bias: times the receiver plane's depth change over one texel. Default 1.5.
+  vtkSetClampMacro(SlopeBias, double, 0.0, 100.0);
+  vtkGetMacro(SlopeBias, double);
+  ///@}
+
+  ///@{
+  /// Share of each cascade's depth range, at its far end, blended into the next cascade so that
+  /// no seam shows; 0 switches blending off. Default 0.05.
+  vtkSetClampMacro(BlendBand, double, 0.0, 0.5);
+  vtkGetMacro(BlendBand, double);
+  ///@}
+
+  ///@{
+  /// How dark a shadow is, 0 (no shadow) .. 1 (light fully blocked). Used when the light's own
+  /// ShadowAttenuation is left at its default of 1. Default 1.
+  vtkSetClampMacro(ShadowDarkness, double, 0.0, 1.0);
+  vtkGetMacro(ShadowDarkness, double);
+  ///@}
+
+  enum DebugModes
+  {
+    DEBUG_OFF = 0,
+    DEBUG_CASCADES = 1, ///< colour by cascade index (first shadowed light)
+    DEBUG_ERROR = 2,    ///< heat map of the aliasing error m (Lloyd Eq. 1): blue over-, red undersampled
+    DEBUG_FACTOR = 3    ///< the shadow visibility alone, as grey
+  };
+  ///@{
+  /// Debug output. Default DEBUG_OFF.
+  vtkSetClampMacro(DebugMode, int, DEBUG_OFF, DEBUG_FACTOR);
+  vtkGetMacro(DebugMode, int);
+  ///@}
+
+  /**
+   * The equivalent of vtkRenderer::UseShadowsOn() for cascaded shadows: installs
+   * camera pass -> sequence{ baker, shadow pass } on the renderer and returns the shadow pass
+   * (owned by the renderer's pass chain). UseShadowsOff() removes the chain.
+   */
+  static vtkCascadedShadowMapPass* UseShadowsOn(vtkRenderer* renderer);
+  static void UseShadowsOff(vtkRenderer* renderer);
+
+  /// Bumped when the injected shader code changes (lights shadowed, their indices).
+  vtkMTimeType GetShaderStageMTime() override;
+
+protected:
+  vtkCascadedShadowMapPass();
+  ~vtkCascadedShadowMapPass() override;
+
+  bool PostReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
+    std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
+  bool SetShaderParameters(vtkShaderProgram* program, vtkAbstractMapper* mapper, vtkProp* prop,
+    vtkOpenGLVertexArrayObject* VAO = nullptr) override;
+
+  vtkCascadedShadowMapBakerPass* ShadowMapBakerPass = nullptr;
+  int PCFSize = 5;
+  int PCFKernel = KERNEL_GRID;
+  double ConstantBias = 0.002;
+  double SlopeBias = 1.5;
+  double BlendBand = 0.05;
+  double ShadowDarkness = 1.0;
+  int DebugMode = DEBUG_OFF;
+
+  /// Per shadowed light, what the shader needs this frame (view space -> map).
+  struct LightUniforms
+  {
+    int LightIndex = -1;
+    int Count = 0;
+    float VCToMap[8][16]; // column-major, for glUniformMatrix4fv
+    float Tile[8][4];
+    float SplitFar[8];
+    float SplitNear = 0.0f;
+    float Attenuation = 1.0f;
+    int TextureUnit = 0;
+  };
+  std::vector<LightUniforms> Uniforms;
+  std::string ShaderSignature; // light indices the injected code refers to
+  vtkTimeStamp ShaderTime;
+
+private:
+  vtkCascadedShadowMapPass(const vtkCascadedShadowMapPass&) = delete;
+  void operator=(const vtkCascadedShadowMapPass&) = delete;
+};
+
+#endif
