@@ -2,6 +2,7 @@
 
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapPlanner.h"
+#include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix4x4.h"
@@ -107,6 +108,13 @@ bool vtkCascadedShadowMapBakerPass::NeedsBake(vtkRenderer* renderer)
   props->InitTraversal(pit);
   while (vtkProp* prop = props->GetNextProp(pit))
   {
+    if (!prop->GetPropertyKeys())
+    {
+      // The passes tag props through their keys; creating them modifies the prop, so do it
+      // here, once, rather than have the first tagging trigger a second bake.
+      vtkNew<vtkInformation> keys;
+      prop->SetPropertyKeys(keys);
+    }
     input = std::max(input, prop->GetRedrawMTime());
   }
   int* size = renderer->GetSize();
@@ -176,6 +184,10 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   {
     return;
   }
+  // Bounds first: computing them brings the props' pipelines up to date, which must not count
+  // as a change next frame.
+  double sceneBounds[6];
+  renderer->ComputeVisiblePropBounds(sceneBounds);
   if (!this->NeedsBake(renderer) && !this->Maps.empty())
   {
     return;
@@ -191,8 +203,6 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   this->Planner->SetLambda(this->Lambda);
   this->Planner->SetAlpha(this->Alpha);
   this->Planner->SetDepthClamp(this->DepthClamp);
-  double sceneBounds[6];
-  renderer->ComputeVisiblePropBounds(sceneBounds);
   const double aspect = renderer->GetTiledAspectRatio();
 
   // Casters: visible opaque props. Receivers: every visible prop; their boxes fit the cascades

@@ -7,7 +7,7 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD="${CSM_BUILD_DIR:-$ROOT/build}"
 LOGS="$BUILD/logs"
 PACKAGES=(cmake g++ make pkg-config libvtk9-dev libglm-dev libgtest-dev libbenchmark-dev
-  xvfb xauth libgl1-mesa-dri)
+  xvfb xauth libgl1-mesa-dri assimp-testmodels)
 
 die() { echo "error: $*" >&2; exit 1; }
 
@@ -48,7 +48,7 @@ with_display() {
   if [ -n "${DISPLAY:-}" ]; then
     "$@"
   else
-    xvfb-run -a -s "-screen 0 1280x1024x24" "$@"
+    xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$@"
   fi
 }
 

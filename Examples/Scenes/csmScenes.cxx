@@ -48,6 +48,12 @@ struct Bar
 class Builder
 {
 public:
+  explicit Builder(double offset = 0.0)
+    : Offset(offset)
+  {
+    this->Points->SetDataTypeToDouble();
+  }
+
   void AddBar(const Bar& bar, int sides)
   {
     Vec axis = bar.b - bar.a;
@@ -100,6 +106,15 @@ public:
 
   vtkSmartPointer<vtkPolyData> Finish(bool splitNormals)
   {
+    if (this->Offset != 0.0)
+    {
+      for (vtkIdType i = 0; i < this->Points->GetNumberOfPoints(); ++i)
+      {
+        double p[3];
+        this->Points->GetPoint(i, p);
+        this->Points->SetPoint(i, p[0] + this->Offset, p[1], p[2] + this->Offset);
+      }
+    }
     vtkNew<vtkPolyData> data;
     data->SetPoints(this->Points);
     data->SetPolys(this->Polys);
@@ -114,6 +129,7 @@ public:
   }
 
 private:
+  double Offset = 0.0;
   vtkNew<vtkPoints> Points;
   vtkNew<vtkCellArray> Polys;
 };
@@ -168,9 +184,10 @@ vtkSmartPointer<vtkActor> MakeActor(vtkPolyData* data, double r, double g, doubl
   return actor;
 }
 
-vtkSmartPointer<vtkPolyData> Ground(double x0, double x1, double z0, double z1, double y)
+vtkSmartPointer<vtkPolyData> Ground(
+  double x0, double x1, double z0, double z1, double y, double offset = 0.0)
 {
-  Builder builder;
+  Builder builder(offset);
   builder.AddBox({ x0, y - 0.5, z0 }, { x1, y, z1 });
   return builder.Finish(true);
 }
@@ -211,7 +228,7 @@ long long CountTriangles(vtkPolyData* data)
   return count;
 }
 
-Scene Platform(long long targetTriangles)
+Scene Platform(long long targetTriangles, double offset)
 {
   std::vector<Bar> heavy; // legs, main braces, deck columns
   std::vector<Bar> thin;  // handrails, lattices, gratings
@@ -305,7 +322,7 @@ Scene Platform(long long targetTriangles)
   const long long bars = static_cast<long long>(heavy.size() + thin.size());
   const int sides =
     static_cast<int>(std::max<long long>(4, std::min<long long>(256, targetTriangles / (2 * bars))));
-  Builder steel, light, decks;
+  Builder steel(offset), light(offset), decks(offset);
   for (const Bar& bar : heavy)
     steel.AddBar(bar, sides);
   for (const Bar& bar : thin)
@@ -317,12 +334,14 @@ Scene Platform(long long targetTriangles)
 
   Scene scene;
   scene.Name = "platform";
-  scene.Actors.push_back(MakeActor(Ground(-150, 150, -150, 150, 0.0), 0.35, 0.45, 0.55, 0.1));
+  scene.Actors.push_back(
+    MakeActor(Ground(-150, 150, -150, 150, 0.0, offset), 0.35, 0.45, 0.55, 0.1));
   scene.Actors.push_back(MakeActor(steel.Finish(false), 0.85, 0.75, 0.35));
   scene.Actors.push_back(MakeActor(light.Finish(false), 0.9, 0.5, 0.2));
   scene.Actors.push_back(MakeActor(decks.Finish(true), 0.7, 0.7, 0.72));
   Finish(scene);
-  const double eye[3] = { 75.0, 60.0, 95.0 }, focal[3] = { 0.0, 30.0, 0.0 };
+  const double eye[3] = { 95.0 + offset, 75.0, 120.0 + offset };
+  const double focal[3] = { 0.0 + offset, 32.0, 0.0 + offset };
   std::copy(eye, eye + 3, scene.CameraPosition);
   std::copy(focal, focal + 3, scene.FocalPoint);
   return scene;

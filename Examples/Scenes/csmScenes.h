@@ -30,7 +30,8 @@ struct Scene
 /// A procedural offshore platform (sea plane, jacket legs and X-braces, two decks, handrails,
 /// a lattice derrick, a crane boom, a flare boom, gratings): thin bars and lattices. About
 /// targetTriangles triangles (the bar tessellation scales with it), at least ~40k.
-Scene Platform(long long targetTriangles = 250000);
+/// offset moves the whole scene (points stored in double precision) far from the origin.
+Scene Platform(long long targetTriangles = 250000, double offset = 0.0);
 
 /// A row of lattice towers along -z every 40 m to the horizon, over a long ground strip; the
 /// default view starts next to the first tower with near 0.25 and far 6000 (f/n > 10^4).
