@@ -275,6 +275,12 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     maps.Atlas = this->AtlasPool[slot];
     this->Maps.push_back(maps);
   }
+  // Textures only for the lights that cast shadows now.
+  for (size_t i = this->Maps.size(); i < this->AtlasPool.size(); ++i)
+  {
+    this->AtlasPool[i]->ReleaseGraphicsResources(window);
+  }
+  this->AtlasPool.resize(this->Maps.size());
   if (this->Maps.empty())
   {
     return;
@@ -386,10 +392,10 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
 bool vtkCascadedShadowMapBakerPass::PreReplaceShaderValues(std::string&, std::string&,
   std::string& fragmentShader, vtkAbstractMapper*, vtkProp*)
 {
-  // Keeps the depth program apart from the main pass's: the shader cache is keyed by source,
-  // and the lighting uniforms of a shared program would keep the light camera's values.
+  // Depth only: no lighting in the maps' fragment shader (the mapper finds no tag to expand).
+  // This also keeps the depth program apart from the main pass's in the shader cache.
   vtkShaderProgram::Substitute(fragmentShader, "//VTK::Light::Impl",
-    "//VTK::Light::Impl\n  // cascaded shadow map: depth pass\n", false);
+    "gl_FragData[0] = vec4(1.0); // cascaded shadow map: depth pass\n", false);
   return true;
 }
 

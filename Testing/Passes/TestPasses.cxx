@@ -8,6 +8,7 @@
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkNew.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
@@ -333,4 +334,41 @@ TEST(Passes, CastersOutsideACascadeAreNotDrawnIntoIt)
   // 3 casters x 3 cascades would be 9 draws; culling must save some.
   EXPECT_LT(baker->GetLastPropsDrawn(), 9);
   EXPECT_GE(baker->GetLastPropsDrawn(), 3);
+}
+
+TEST(Passes, FourDirectionalLightsAndPBR)
+{
+  BoxScene scene;
+  scene.Box->GetProperty()->SetInterpolationToPBR();
+  scene.Ground->GetProperty()->SetInterpolationToPBR();
+  scene.Ground->GetProperty()->SetRoughness(0.6);
+  scene.Light->SetIntensity(0.4);
+  const double positions[3][3] = { { 6, 10, 0 }, { -6, 10, 0 }, { 0, 10, 6 } };
+  for (const auto& p : positions)
+  {
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    light->SetPositional(false);
+    light->SetPosition(p[0], p[1], p[2]);
+    light->SetFocalPoint(0, 0, 0);
+    light->SetIntensity(0.4);
+    scene.Renderer->AddLight(light);
+  }
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  auto shadowed = scene.Render();
+  ASSERT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps().size(), 4u);
+  for (const auto& maps : pass->GetShadowMapBakerPass()->GetLightMaps())
+    EXPECT_GT(maps.NumberOfCascades, 0);
+  // Four shadows of the box, each taking a quarter of the light: many pixels darker.
+  EXPECT_GT(Darkened(shadowed, plain), 600);
+  // Switching three lights off frees their maps.
+  int off = 0;
+  vtkCollectionSimpleIterator it;
+  scene.Renderer->GetLights()->InitTraversal(it);
+  while (vtkLight* light = scene.Renderer->GetLights()->GetNextLight(it))
+    if (light != scene.Light.Get() && off++ < 3)
+      light->SwitchOff();
+  scene.Render();
+  EXPECT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps().size(), 1u);
 }
