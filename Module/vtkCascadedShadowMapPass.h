@@ -31,7 +31,7 @@
 #include <string> // for members
 #include <vector> // for members
 
-class vtkCascadedShadowMapBakerPass;
+#include "vtkCascadedShadowMapBakerPass.h" // for GetShadowMapBakerPass() options
 class vtkRenderer;
 
 class VTKRENDERINGCASCADEDSHADOWS_EXPORT vtkCascadedShadowMapPass : public vtkOpenGLRenderPass

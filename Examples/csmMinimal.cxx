@@ -1,0 +1,50 @@
+// The complete minimal program of Documentation/Passes.md: a box casting a cascaded shadow.
+#include "vtkActor.h"
+#include "vtkCascadedShadowMapPass.h"
+#include "vtkCubeSource.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPlaneSource.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderWindowInteractor.h"
+#include "vtkRenderer.h"
+
+int main()
+{
+  vtkNew<vtkPlaneSource> ground;
+  ground->SetOrigin(-10, 0, -10);
+  ground->SetPoint1(10, 0, -10);
+  ground->SetPoint2(-10, 0, 10);
+  vtkNew<vtkCubeSource> box;
+  box->SetBounds(-1, 1, 2, 4, -1, 1);
+  vtkNew<vtkRenderer> renderer;
+  for (vtkAlgorithm* source : { static_cast<vtkAlgorithm*>(ground), static_cast<vtkAlgorithm*>(box) })
+  {
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(source->GetOutputPort());
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    renderer->AddActor(actor);
+  }
+  vtkNew<vtkLight> sun; // a scene light: VTK shadows scene and camera lights, not headlights
+  sun->SetLightTypeToSceneLight();
+  sun->SetPositional(false);
+  sun->SetPosition(3, 10, 2);
+  sun->SetFocalPoint(0, 0, 0);
+  renderer->AddLight(sun);
+
+  // One call, like vtkRenderer::UseShadowsOn(); returns the pass for its options.
+  vtkCascadedShadowMapPass* shadows = vtkCascadedShadowMapPass::UseShadowsOn(renderer);
+  shadows->SetPCFSize(5);
+  shadows->GetShadowMapBakerPass()->SetNumberOfCascades(3);
+
+  vtkNew<vtkRenderWindow> window;
+  window->AddRenderer(renderer);
+  vtkNew<vtkRenderWindowInteractor> interactor;
+  interactor->SetRenderWindow(window);
+  renderer->ResetCamera();
+  window->Render();
+  interactor->Start();
+  return 0;
+}
