@@ -191,6 +191,12 @@ Options parse(int argc, char** argv)
     }
     else
     {
+      static const char* const numeric[] = { "--triangles", "--cascades", "--resolution", "--pcf",
+        "--lambda", "--alpha", "--bias", "--slope-bias", "--blend", "--darkness", "--gamma",
+        "--frames" };
+      if (std::none_of(std::begin(numeric), std::end(numeric),
+            [&](const char* known) { return f == known; }))
+        fail("unknown option '" + f + "'");
       const double value = number(f, v);
       next();
       auto whole = [&](double lo, double hi) {
