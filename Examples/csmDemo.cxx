@@ -207,7 +207,7 @@ Options parse(int argc, char** argv)
       };
       auto range = [&](double lo, double hi) {
         if (value < lo || value > hi)
-          fail(f + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+          fail(f + " is out of range (see --help)");
         return value;
       };
       if (f == "--triangles")

@@ -221,6 +221,30 @@ double vtkCascadedShadowMapPlanner::GetGammaDegrees() const
   return this->Internal->Setup.gammaDeg;
 }
 
+void vtkCascadedShadowMapPlanner::ComputeAliasing(vtkCamera* camera, double aspect,
+  const double lightDirection[3], const double worldToClip[16], const double point[3], double m[2])
+{
+  m[0] = m[1] = 0.0;
+  csm::Camera cam;
+  if (!toCamera(camera, aspect, cam) || !lightDirection || !worldToClip || !point)
+  {
+    return;
+  }
+  glm::dmat4 matrix;
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int column = 0; column < 4; ++column)
+    {
+      matrix[column][row] = worldToClip[4 * row + column];
+    }
+  }
+  const csm::Aliasing a = csm::aliasingAt(matrix, cam,
+    glm::dvec3(lightDirection[0], lightDirection[1], lightDirection[2]),
+    glm::dvec3(point[0], point[1], point[2]));
+  m[0] = a.mx;
+  m[1] = a.mz;
+}
+
 const char* vtkCascadedShadowMapPlanner::GetLastMessage() const
 {
   return this->Internal->Setup.message.c_str();

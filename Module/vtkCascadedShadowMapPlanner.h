@@ -129,6 +129,15 @@ public:
   /// Angle between light and view direction of the last plan, degrees (0: light from behind).
   double GetGammaDegrees() const;
 
+  /**
+   * Perspective aliasing at a world point (Lloyd et al. Eq. 1-4 with the map and image
+   * resolutions set to 1) for a world -> light clip matrix (row-major) of a directional light
+   * travelling along lightDirection, seen by the camera in a viewport of the given aspect:
+   * m[0] = m_x, m[1] = m_z. Multiply by image height / map resolution for texels per pixel.
+   */
+  static void ComputeAliasing(vtkCamera* camera, double aspect, const double lightDirection[3],
+    const double worldToClip[16], const double point[3], double m[2]);
+
   /// Why the last plan has no cascades (empty when it has some).
   const char* GetLastMessage() const;
 

@@ -1,0 +1,284 @@
+#include "csmTruth.h"
+
+#include "vtkActor.h"
+#include "vtkActorCollection.h"
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
+#include "vtkImageData.h"
+#include "vtkMapper.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkRenderer.h"
+#include "vtkTriangleFilter.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace csmTruth
+{
+
+struct RayScene::Internals
+{
+  RTCDevice Device = nullptr;
+  RTCScene Scene = nullptr;
+  double Origin[3] = { 0, 0, 0 }; // world position of the Embree origin
+  double Scale = 1.0;             // size of the scene, for ray offsets
+  ~Internals()
+  {
+    if (this->Scene)
+      rtcReleaseScene(this->Scene);
+    if (this->Device)
+      rtcReleaseDevice(this->Device);
+  }
+};
+
+RayScene::RayScene()
+  : Internal(new Internals)
+{
+}
+
+RayScene::~RayScene() = default;
+
+long long RayScene::Build(vtkRenderer* renderer)
+{
+  auto& in = *this->Internal;
+  if (in.Scene)
+    rtcReleaseScene(in.Scene);
+  in.Scene = nullptr;
+  if (!in.Device)
+    in.Device = rtcNewDevice(nullptr);
+  if (!in.Device)
+    return 0;
+  double bounds[6];
+  renderer->ComputeVisiblePropBounds(bounds);
+  if (!(bounds[0] <= bounds[1]))
+    return 0;
+  for (int i = 0; i < 3; ++i)
+    in.Origin[i] = 0.5 * (bounds[2 * i] + bounds[2 * i + 1]);
+  in.Scale = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-9 });
+  in.Scene = rtcNewScene(in.Device);
+  long long triangles = 0;
+  vtkActorCollection* actors = renderer->GetActors();
+  vtkCollectionSimpleIterator it;
+  actors->InitTraversal(it);
+  while (vtkActor* actor = actors->GetNextActor(it))
+  {
+    if (!actor->GetVisibility() || !actor->GetMapper())
+      continue;
+    auto* data = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0));
+    if (!data)
+      continue;
+    vtkNew<vtkTriangleFilter> triangulate;
+    triangulate->SetInputData(data);
+    triangulate->PassVertsOff();
+    triangulate->PassLinesOff();
+    triangulate->Update();
+    vtkPolyData* tris = triangulate->GetOutput();
+    const vtkIdType np = tris->GetNumberOfPoints();
+    const vtkIdType nt = tris->GetNumberOfPolys();
+    if (np == 0 || nt == 0)
+      continue;
+    vtkNew<vtkMatrix4x4> matrix;
+    actor->GetMatrix(matrix);
+    RTCGeometry geometry = rtcNewGeometry(in.Device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), np));
+    for (vtkIdType i = 0; i < np; ++i)
+    {
+      double p[4] = { 0, 0, 0, 1 };
+      tris->GetPoint(i, p);
+      double w[4];
+      matrix->MultiplyPoint(p, w);
+      for (int c = 0; c < 3; ++c)
+        vertices[3 * i + c] = static_cast<float>(w[c] / w[3] - in.Origin[c]);
+    }
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), nt));
+    vtkIdType n;
+    const vtkIdType* ids;
+    vtkIdType t = 0;
+    vtkCellArray* polys = tris->GetPolys();
+    for (polys->InitTraversal(); polys->GetNextCell(n, ids) && t < nt; ++t)
+      for (int c = 0; c < 3; ++c)
+        indices[3 * t + c] = static_cast<unsigned>(ids[c]);
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(in.Scene, geometry);
+    rtcReleaseGeometry(geometry);
+    triangles += nt;
+  }
+  rtcCommitScene(in.Scene);
+  return triangles;
+}
+
+std::vector<Surface> RayScene::CastPrimary(vtkCamera* camera, int width, int height) const
+{
+  const auto& in = *this->Internal;
+  std::vector<Surface> surfaces(static_cast<size_t>(width) * height);
+  if (!in.Scene)
+    return surfaces;
+  vtkNew<vtkMatrix4x4> inverse;
+  vtkMatrix4x4::Invert(
+    camera->GetCompositeProjectionTransformMatrix(double(width) / height, -1, 1), inverse);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const double x = 2.0 * (i + 0.5) / width - 1.0, y = 2.0 * (j + 0.5) / height - 1.0;
+      double nearH[4] = { x, y, -1, 1 }, farH[4] = { x, y, 1, 1 }, a[4], b[4];
+      inverse->MultiplyPoint(nearH, a);
+      inverse->MultiplyPoint(farH, b);
+      double origin[3], dir[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        origin[c] = a[c] / a[3];
+        dir[c] = b[c] / b[3] - origin[c];
+      }
+      const double length = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+      RTCRayHit rh;
+      rh.ray.org_x = float(origin[0] - in.Origin[0]);
+      rh.ray.org_y = float(origin[1] - in.Origin[1]);
+      rh.ray.org_z = float(origin[2] - in.Origin[2]);
+      rh.ray.dir_x = float(dir[0] / length);
+      rh.ray.dir_y = float(dir[1] / length);
+      rh.ray.dir_z = float(dir[2] / length);
+      rh.ray.tnear = 0.0f;
+      rh.ray.tfar = float(length);
+      rh.ray.mask = 0xFFFFFFFF;
+      rh.ray.flags = 0;
+      rh.ray.time = 0.0f;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(in.Scene, &context, &rh);
+      Surface& s = surfaces[static_cast<size_t>(j) * width + i];
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+        continue;
+      s.Hit = true;
+      s.Distance = rh.ray.tfar;
+      double n[3] = { rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z };
+      const double nl = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      const double d[3] = { dir[0] / length, dir[1] / length, dir[2] / length };
+      const double facing = (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) > 0 ? -1.0 : 1.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        s.Position[c] = origin[c] + d[c] * rh.ray.tfar;
+        s.Normal[c] = nl > 0 ? facing * n[c] / nl : 0.0;
+      }
+    }
+  }
+  return surfaces;
+}
+
+bool RayScene::Occluded(const Surface& s, const double lightDirection[3]) const
+{
+  const auto& in = *this->Internal;
+  const double l = std::sqrt(lightDirection[0] * lightDirection[0] +
+    lightDirection[1] * lightDirection[1] + lightDirection[2] * lightDirection[2]);
+  const double eps = 1e-5 * in.Scale + 1e-4 * s.Distance;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray;
+  ray.org_x = float(s.Position[0] - in.Origin[0] + s.Normal[0] * eps);
+  ray.org_y = float(s.Position[1] - in.Origin[1] + s.Normal[1] * eps);
+  ray.org_z = float(s.Position[2] - in.Origin[2] + s.Normal[2] * eps);
+  ray.dir_x = float(-lightDirection[0] / l);
+  ray.dir_y = float(-lightDirection[1] / l);
+  ray.dir_z = float(-lightDirection[2] / l);
+  ray.tnear = float(eps);
+  ray.tfar = std::numeric_limits<float>::infinity();
+  ray.mask = 0xFFFFFFFF;
+  ray.flags = 0;
+  ray.time = 0.0f;
+  rtcOccluded1(in.Scene, &context, &ray);
+  return ray.tfar < 0.0f; // Embree sets tfar to -inf on a hit
+}
+
+std::vector<char> ComparablePixels(const std::vector<Surface>& surfaces, int width, int height,
+  const double lightDirection[3])
+{
+  std::vector<char> ok(surfaces.size(), 0);
+  const double l = std::sqrt(lightDirection[0] * lightDirection[0] +
+    lightDirection[1] * lightDirection[1] + lightDirection[2] * lightDirection[2]);
+  for (int j = 1; j + 1 < height; ++j)
+  {
+    for (int i = 1; i + 1 < width; ++i)
+    {
+      const size_t k = static_cast<size_t>(j) * width + i;
+      const Surface& s = surfaces[k];
+      if (!s.Hit)
+        continue;
+      const double facing = -(s.Normal[0] * lightDirection[0] + s.Normal[1] * lightDirection[1] +
+                               s.Normal[2] * lightDirection[2]) / l;
+      if (facing <= 0.05)
+        continue;
+      bool edge = false;
+      for (size_t n : { k - 1, k + 1, k - width, k + width })
+        edge = edge || !surfaces[n].Hit ||
+          std::abs(surfaces[n].Distance - s.Distance) > 0.02 * s.Distance;
+      ok[k] = !edge;
+    }
+  }
+  return ok;
+}
+
+Classification Classify(const std::vector<Surface>& surfaces, const std::vector<char>& comparable,
+  const std::vector<char>& occluded, const std::vector<float>& factor)
+{
+  Classification c;
+  for (size_t k = 0; k < surfaces.size(); ++k)
+  {
+    if (!comparable[k] || std::isnan(factor[k]))
+      continue;
+    ++c.Considered;
+    const bool dark = factor[k] < 0.5f;
+    c.FalseShadow += dark && !occluded[k];
+    c.FalseLight += !dark && occluded[k];
+  }
+  return c;
+}
+
+std::vector<float> FactorFromRenders(vtkImageData* shadowed, vtkImageData* plain)
+{
+  auto* a = vtkUnsignedCharArray::SafeDownCast(shadowed->GetPointData()->GetScalars());
+  auto* b = vtkUnsignedCharArray::SafeDownCast(plain->GetPointData()->GetScalars());
+  std::vector<float> factor(b ? b->GetNumberOfTuples() : 0, NAN);
+  if (!a || !b || a->GetNumberOfTuples() != b->GetNumberOfTuples())
+    return factor;
+  const int nc = a->GetNumberOfComponents();
+  for (vtkIdType i = 0; i < b->GetNumberOfTuples(); ++i)
+  {
+    double la = 0, lb = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      la += a->GetValue(nc * i + c);
+      lb += b->GetValue(nc * i + c);
+    }
+    if (lb >= 3 * 12.0) // too dark to measure a ratio
+      factor[i] = static_cast<float>(la / lb);
+  }
+  return factor;
+}
+
+Stats Summarize(std::vector<double> values)
+{
+  Stats s;
+  if (values.empty())
+    return s;
+  std::sort(values.begin(), values.end());
+  s.Max = values.back();
+  s.P95 = values[static_cast<size_t>(0.95 * (values.size() - 1))];
+  double sum = 0;
+  for (double v : values)
+    sum += v;
+  s.Mean = sum / values.size();
+  return s;
+}
+
+} // namespace csmTruth

@@ -1,0 +1,82 @@
+// Ground truth for shadows by ray casting (Embree), and the error measures of csm-bench:
+// misclassified pixels against the truth, and the perspective aliasing m of Lloyd et al.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+class vtkCamera;
+class vtkImageData;
+class vtkRenderer;
+
+namespace csmTruth
+{
+
+/// One pixel's visible surface, from a primary ray through the pixel centre.
+struct Surface
+{
+  bool Hit = false;
+  double Position[3] = { 0, 0, 0 }; ///< world
+  double Normal[3] = { 0, 0, 0 };   ///< geometric, unit, facing the camera
+  double Distance = 0.0;            ///< along the ray
+};
+
+/// The triangles of a renderer's visible actors (world space, actor matrices applied) in an
+/// Embree scene. Coordinates are stored relative to the scene's centre, so scenes far from the
+/// origin keep their precision in Embree's single-precision vertices.
+class RayScene
+{
+public:
+  RayScene();
+  ~RayScene();
+  RayScene(const RayScene&) = delete;
+  RayScene& operator=(const RayScene&) = delete;
+
+  /// Returns the number of triangles, 0 when there is nothing to cast against.
+  long long Build(vtkRenderer* renderer);
+
+  /// Visible surface of every pixel (row 0 at the bottom, as VTK images), for the camera seen
+  /// in a width x height viewport.
+  std::vector<Surface> CastPrimary(vtkCamera* camera, int width, int height) const;
+
+  /// True when something lies between the surface point and a directional light travelling
+  /// along lightDirection.
+  bool Occluded(const Surface& s, const double lightDirection[3]) const;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+/// Result of comparing a shadow-factor image with the truth.
+struct Classification
+{
+  long Considered = 0;  ///< visible pixels that face the light, away from silhouettes
+  long FalseShadow = 0; ///< factor < 0.5 but lit (acne, widened shadows)
+  long FalseLight = 0;  ///< factor >= 0.5 but occluded (leaks, peter-panning, lost thin casters)
+  double MismatchPct() const { return Considered ? 100.0 * (FalseShadow + FalseLight) / Considered : 0.0; }
+  double FalseShadowPct() const { return Considered ? 100.0 * FalseShadow / Considered : 0.0; }
+  double FalseLightPct() const { return Considered ? 100.0 * FalseLight / Considered : 0.0; }
+};
+
+/// Pixels to compare: hit, facing the light (n . -L > 0.05), and not on a silhouette (no
+/// 4-neighbour whose hit is more than 2% farther or nearer).
+std::vector<char> ComparablePixels(const std::vector<Surface>& surfaces, int width, int height,
+  const double lightDirection[3]);
+
+/// factor: per pixel, 0 (shadowed) .. 1 (lit), NaN where it cannot be measured.
+Classification Classify(const std::vector<Surface>& surfaces, const std::vector<char>& comparable,
+  const std::vector<char>& occluded, const std::vector<float>& factor);
+
+/// Shadow factor of a technique: the render with shadows over the render without, for a scene
+/// lit by one white light with only diffuse reflection (NaN where the plain render is dark).
+std::vector<float> FactorFromRenders(vtkImageData* shadowed, vtkImageData* plain);
+
+/// Max, 95th percentile and mean of a list (empty: zeros).
+struct Stats
+{
+  double Max = 0, P95 = 0, Mean = 0;
+};
+Stats Summarize(std::vector<double> values);
+
+} // namespace csmTruth
