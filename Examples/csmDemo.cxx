@@ -45,6 +45,7 @@ struct Options
   bool Offscreen = false;
   std::string Out;
   int Frames = 0;
+  double Orbit = 360.0; // degrees the camera turns over --frames
   bool HaveLight = false;
   double Light[3] = { -0.45, -1.0, -0.35 };
   bool HaveGamma = false;
@@ -80,6 +81,7 @@ void usage()
     "  --offscreen        no window; with --out writes the image\n"
     "  --out FILE.png     write the rendered image\n"
     "  --frames N         render N frames orbiting the scene, print median_frame_ms\n"
+    "  --orbit DEG        degrees the camera turns over the frames [360]; 0: a still camera\n"
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
     "  t technique, l light angle +15 deg\n");
 }
@@ -193,7 +195,7 @@ Options parse(int argc, char** argv)
     {
       static const char* const numeric[] = { "--triangles", "--cascades", "--resolution", "--pcf",
         "--lambda", "--alpha", "--bias", "--slope-bias", "--blend", "--darkness", "--gamma",
-        "--frames" };
+        "--frames", "--orbit" };
       if (std::none_of(std::begin(numeric), std::end(numeric),
             [&](const char* known) { return f == known; }))
         fail("unknown option '" + f + "'");
@@ -249,6 +251,8 @@ Options parse(int argc, char** argv)
       }
       else if (f == "--frames")
         o.Frames = whole(1, 100000);
+      else if (f == "--orbit")
+        o.Orbit = range(0, 3600);
       else
         fail("unknown option '" + f + "'");
     }
@@ -406,7 +410,7 @@ int main(int argc, char** argv)
     window->Render(); // warm-up: shader compilation, first maps
     for (int i = 0; i < app.Opt.Frames; ++i)
     {
-      renderer->GetActiveCamera()->Azimuth(360.0 / app.Opt.Frames);
+      renderer->GetActiveCamera()->Azimuth(app.Opt.Orbit / app.Opt.Frames);
       if (scene.ClippingRange[1] <= 0.0)
         renderer->ResetCameraClippingRange();
       timer->StartTimer();

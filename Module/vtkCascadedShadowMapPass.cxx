@@ -15,6 +15,7 @@
 
 #include "csmShadowFS.h" // the GLSL of Module/glsl/csmShadowFS.glsl
 
+#include <algorithm>
 #include <sstream>
 
 vtkStandardNewMacro(vtkCascadedShadowMapPass);
@@ -139,21 +140,14 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
     return true; // unlit: no view-space position, no lights to shadow
   }
   std::ostringstream decl;
-  decl << csmShadowFS << "\n";
+  decl << "#define CSM_LIGHTS " << this->Uniforms.size() << "\n" << csmShadowFS << "\n";
   std::ostringstream impl;
   impl << kVertexVC << "\n  vec4 csmDVCdx = dFdx(vertexVC);\n  vec4 csmDVCdy = dFdy(vertexVC);\n";
   for (size_t j = 0; j < this->Uniforms.size(); ++j)
   {
-    decl << "uniform sampler2DShadow csmMap" << j << ";\n"
-         << "uniform mat4 csmToMap" << j << "[CSM_MAX_CASCADES];\n"
-         << "uniform vec4 csmTile" << j << "[CSM_MAX_CASCADES];\n"
-         << "uniform float csmSplitFar" << j << "[CSM_MAX_CASCADES];\n"
-         << "uniform float csmSplitNear" << j << ";\n"
-         << "uniform int csmCount" << j << ";\n"
-         << "uniform float csmAttenuation" << j << ";\n";
-    impl << "  vec4 csmResult" << j << " = csmShadow(csmMap" << j << ", csmToMap" << j
-         << ", csmTile" << j << ", csmSplitFar" << j << ", csmSplitNear" << j << ", csmCount" << j
-         << ", csmAttenuation" << j << ", vertexVC, csmDVCdx, csmDVCdy);\n";
+    decl << "uniform sampler2DShadow csmMap" << j << ";\n";
+    impl << "  vec4 csmResult" << j << " = csmShadow(csmMap" << j << ", " << j
+         << ", vertexVC, csmDVCdx, csmDVCdy);\n";
   }
   fragmentShader.insert(mainLine, decl.str());
   vtkShaderProgram::Substitute(fragmentShader, kVertexVC, impl.str(), false);
@@ -192,17 +186,27 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   program->SetUniformf("csmSlopeBias", static_cast<float>(this->SlopeBias));
   program->SetUniformf("csmBlendBand", static_cast<float>(this->BlendBand));
   program->SetUniformi("csmDebug", this->DebugMode);
-  for (size_t j = 0; j < this->Uniforms.size(); ++j)
+  const int lights = static_cast<int>(this->Uniforms.size());
+  std::vector<float> toMap(lights * 8 * 16), tiles(lights * 8 * 4), splitFar(lights * 8);
+  std::vector<float> splitNear(lights), attenuation(lights);
+  std::vector<int> counts(lights);
+  for (int j = 0; j < lights; ++j)
   {
-    LightUniforms& u = this->Uniforms[j];
+    const LightUniforms& u = this->Uniforms[j];
     program->SetUniformi(indexed("csmMap", j).c_str(), u.TextureUnit);
-    program->SetUniformMatrix4x4v(indexed("csmToMap", j).c_str(), 8, &u.VCToMap[0][0]);
-    program->SetUniform4fv(indexed("csmTile", j).c_str(), 8, u.Tile);
-    program->SetUniform1fv(indexed("csmSplitFar", j).c_str(), 8, u.SplitFar);
-    program->SetUniformf(indexed("csmSplitNear", j).c_str(), u.SplitNear);
-    program->SetUniformi(indexed("csmCount", j).c_str(), u.Count);
-    program->SetUniformf(indexed("csmAttenuation", j).c_str(), u.Attenuation);
+    std::copy(&u.VCToMap[0][0], &u.VCToMap[0][0] + 8 * 16, toMap.begin() + j * 8 * 16);
+    std::copy(&u.Tile[0][0], &u.Tile[0][0] + 8 * 4, tiles.begin() + j * 8 * 4);
+    std::copy(u.SplitFar, u.SplitFar + 8, splitFar.begin() + j * 8);
+    splitNear[j] = u.SplitNear;
+    attenuation[j] = u.Attenuation;
+    counts[j] = u.Count;
   }
+  program->SetUniformMatrix4x4v("csmToMap", lights * 8, toMap.data());
+  program->SetUniform4fv("csmTile", lights * 8, tiles.data());
+  program->SetUniform1fv("csmSplitFar", lights * 8, splitFar.data());
+  program->SetUniform1fv("csmSplitNear", lights, splitNear.data());
+  program->SetUniform1iv("csmCount", lights, counts.data());
+  program->SetUniform1fv("csmAttenuation", lights, attenuation.data());
   return true;
 }
 

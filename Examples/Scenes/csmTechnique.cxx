@@ -32,33 +32,47 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   pass->SetDebugMode(o.Debug);
 }
 
-Installed InstallTechnique(vtkRenderer* renderer, const ShadowOptions& o)
+vtkSmartPointer<vtkRenderPass> BuildChain(const ShadowOptions& o, Installed& installed)
 {
-  Installed installed;
+  installed = Installed();
+  vtkSmartPointer<vtkOpenGLRenderPass> shadows;
+  vtkRenderPass* baker = nullptr;
   if (o.Technique == "csm")
   {
-    installed.Cascaded = vtkCascadedShadowMapPass::UseShadowsOn(renderer);
-    Configure(installed.Cascaded, o);
+    auto pass = vtkSmartPointer<vtkCascadedShadowMapPass>::New();
+    Configure(pass, o);
+    baker = pass->GetShadowMapBakerPass();
+    installed.Cascaded = pass;
+    shadows = pass;
   }
   else if (o.Technique == "vtk")
   {
     // VTK's own pair, as its documentation and tests use it.
-    vtkNew<vtkShadowMapPass> shadows;
-    shadows->GetShadowMapBakerPass()->SetResolution(o.Resolution);
-    vtkNew<vtkRenderPassCollection> passes;
-    passes->AddItem(shadows->GetShadowMapBakerPass());
-    passes->AddItem(shadows);
-    vtkNew<vtkSequencePass> sequence;
-    sequence->SetPasses(passes);
-    vtkNew<vtkCameraPass> cameraPass;
-    cameraPass->SetDelegatePass(sequence);
-    renderer->SetPass(cameraPass);
-    installed.Vtk = shadows;
+    auto pass = vtkSmartPointer<vtkShadowMapPass>::New();
+    pass->GetShadowMapBakerPass()->SetResolution(o.Resolution);
+    baker = pass->GetShadowMapBakerPass();
+    installed.Vtk = pass;
+    shadows = pass;
   }
   else
   {
-    renderer->SetPass(nullptr);
+    return nullptr;
   }
+  vtkNew<vtkRenderPassCollection> passes;
+  passes->AddItem(baker);
+  passes->AddItem(shadows);
+  vtkNew<vtkSequencePass> sequence;
+  sequence->SetPasses(passes);
+  auto cameraPass = vtkSmartPointer<vtkCameraPass>::New();
+  cameraPass->SetDelegatePass(sequence);
+  return cameraPass;
+}
+
+Installed InstallTechnique(vtkRenderer* renderer, const ShadowOptions& o)
+{
+  Installed installed;
+  vtkSmartPointer<vtkRenderPass> chain = BuildChain(o, installed);
+  renderer->SetPass(chain);
   return installed;
 }
 

@@ -1,9 +1,12 @@
 // Installs a shadow technique on a renderer: ours (cascaded), VTK's own pass, or none.
 #pragma once
 
+#include "vtkSmartPointer.h"
+
 #include <string>
 
 class vtkCascadedShadowMapPass;
+class vtkRenderPass;
 class vtkRenderer;
 class vtkShadowMapPass;
 
@@ -34,6 +37,10 @@ struct Installed
   vtkCascadedShadowMapPass* Cascaded = nullptr; ///< set for technique csm
   vtkShadowMapPass* Vtk = nullptr;              ///< set for technique vtk
 };
+
+/// Builds the pass chain of a technique (camera pass -> sequence{ baker, shadow pass }; null
+/// for technique none) without installing it; `installed` receives the shadow passes.
+vtkSmartPointer<vtkRenderPass> BuildChain(const ShadowOptions& options, Installed& installed);
 
 /// Sets the renderer's pass chain for the technique; returns the passes (owned by the chain).
 Installed InstallTechnique(vtkRenderer* renderer, const ShadowOptions& options);

@@ -101,33 +101,44 @@ float csmVisibility(sampler2DShadow map, mat4 vcToMap, vec4 tile, vec4 vc, vec4 
   return sum / count;
 }
 
-// Shadow of one light: x = light factor (1 lit .. 1 - attenuation), y = cascade index (-1:
-// none), z = aliasing error m, w = visibility.
-vec4 csmShadow(sampler2DShadow map, mat4 vcToMap[CSM_MAX_CASCADES],
-  vec4 tiles[CSM_MAX_CASCADES], float splitFar[CSM_MAX_CASCADES], float splitNear, int count,
-  float attenuation, vec4 vc, vec4 dvcdx, vec4 dvcdy)
+// Per shadowed light j (CSM_LIGHTS of them, defined by the pass), its cascades at
+// [j * CSM_MAX_CASCADES, ...): view space -> map matrices, atlas tiles, far split depths.
+uniform mat4 csmToMap[CSM_LIGHTS * CSM_MAX_CASCADES];
+uniform vec4 csmTile[CSM_LIGHTS * CSM_MAX_CASCADES];
+uniform float csmSplitFar[CSM_LIGHTS * CSM_MAX_CASCADES];
+uniform float csmSplitNear[CSM_LIGHTS];
+uniform int csmCount[CSM_LIGHTS];
+uniform float csmAttenuation[CSM_LIGHTS];
+
+// Shadow of light j: x = light factor (1 lit .. 1 - attenuation), y = cascade index (-1: none),
+// z = aliasing error m, w = visibility.
+vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
 {
+  int count = csmCount[j];
+  int first = j * CSM_MAX_CASCADES;
   float depth = -vc.z;
-  if (count <= 0 || depth < splitNear || depth > splitFar[count - 1])
+  if (count <= 0 || depth < csmSplitNear[j] || depth > csmSplitFar[first + count - 1])
   {
     return vec4(1.0, -1.0, 0.0, 1.0); // outside every cascade: lit as without shadows
   }
   int c = 0;
-  while (c < count - 1 && depth > splitFar[c])
+  while (c < count - 1 && depth > csmSplitFar[first + c])
   {
     ++c;
   }
   float m;
-  float visibility = csmVisibility(map, vcToMap[c], tiles[c], vc, dvcdx, dvcdy, m);
-  float cascadeNear = c == 0 ? splitNear : splitFar[c - 1];
-  float band = csmBlendBand * (splitFar[c] - cascadeNear);
-  if (c + 1 < count && band > 0.0 && depth > splitFar[c] - band)
+  float visibility =
+    csmVisibility(map, csmToMap[first + c], csmTile[first + c], vc, dvcdx, dvcdy, m);
+  float cascadeNear = c == 0 ? csmSplitNear[j] : csmSplitFar[first + c - 1];
+  float band = csmBlendBand * (csmSplitFar[first + c] - cascadeNear);
+  if (c + 1 < count && band > 0.0 && depth > csmSplitFar[first + c] - band)
   {
     float mNext;
-    float next = csmVisibility(map, vcToMap[c + 1], tiles[c + 1], vc, dvcdx, dvcdy, mNext);
-    visibility = mix(visibility, next, (depth - (splitFar[c] - band)) / band);
+    float next = csmVisibility(
+      map, csmToMap[first + c + 1], csmTile[first + c + 1], vc, dvcdx, dvcdy, mNext);
+    visibility = mix(visibility, next, (depth - (csmSplitFar[first + c] - band)) / band);
   }
-  return vec4(1.0 - attenuation * (1.0 - visibility), float(c), m, visibility);
+  return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), float(c), m, visibility);
 }
 
 vec3 csmCascadeColor(float c)

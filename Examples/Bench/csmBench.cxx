@@ -1,0 +1,675 @@
+// csm-bench: speed against error. Renders scenes along camera paths and light sweeps with VTK's
+// shadow pass and with cascaded variants at equal total shadow-map texels, measures frame time
+// (median, interleaved, glFinish in each frame), misclassified pixels against Embree ground
+// truth and the perspective aliasing m, and writes a CSV and a plot (vtkChartXY).
+#include "csmScenes.h"
+#include "csmTechnique.h"
+#include "csmTruth.h"
+
+#include "vtkAxis.h"
+#include "vtkCamera.h"
+#include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkCascadedShadowMapPass.h"
+#include "vtkCascadedShadowMapPlanner.h"
+#include "vtkChartMatrix.h"
+#include "vtkChartXY.h"
+#include "vtkContextScene.h"
+#include "vtkContextView.h"
+#include "vtkDoubleArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkPNGWriter.h"
+#include "vtkPen.h"
+#include "vtkPlot.h"
+#include "vtkPlotPoints.h"
+#include "vtkProperty.h"
+#include "vtkActor.h"
+#include "vtkRenderPass.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkShadowMapBakerPass.h"
+#include "vtkShadowMapPass.h"
+#include "vtkStringArray.h"
+#include "vtkTable.h"
+#include "vtkTextProperty.h"
+#include "vtkTimerLog.h"
+#include "vtkWindowToImageFilter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+const char* const kWarps[] = { "none", "psm", "lispsm", "generalized" };
+const char* const kPartitions[] = { "single", "uniform", "log", "practical", "adaptive" };
+
+struct Options
+{
+  bool Quick = false;
+  std::string Out = "csm-bench.csv";
+  std::string Plot;
+  int Width = 800, Height = 600;
+  int Frames = 30;       // per camera path (orbit, fly-through)
+  int Budget = 4096;     // total texels = Budget^2
+  int Rounds = 3;        // interleaving rounds
+  int AccuracyEvery = 10; // accuracy on every n-th path frame
+  std::vector<std::string> Scenes = { "platform", "platform-2m", "towers", "engine" };
+};
+
+[[noreturn]] void fail(const std::string& message)
+{
+  std::fprintf(stderr, "csm-bench: error: %s (see --help)\n", message.c_str());
+  std::exit(2);
+}
+
+struct Technique
+{
+  std::string Label;
+  csmScenes::ShadowOptions Shadow;
+  long long Texels = 0;
+  double MemoryMB = 0;
+  vtkSmartPointer<vtkRenderPass> Chain;
+  csmScenes::Installed Passes;
+  std::vector<double> Times;
+  csmTruth::Classification Errors;
+  std::vector<double> M;
+  std::vector<double> Storage;
+  std::vector<double> MathUs;
+};
+
+std::vector<Technique> Techniques(const Options& o)
+{
+  std::vector<Technique> list;
+  auto add = [&](const std::string& label, const std::string& technique, int warp, int partition,
+               int k, int pcf) {
+    Technique t;
+    t.Label = label;
+    t.Shadow.Technique = technique;
+    t.Shadow.Warp = warp;
+    t.Shadow.Partition = partition;
+    t.Shadow.Cascades = k;
+    t.Shadow.PCF = pcf;
+    t.Shadow.Resolution = static_cast<int>(std::lround(o.Budget / std::sqrt(double(k))));
+    t.Texels = static_cast<long long>(k) * t.Shadow.Resolution * t.Shadow.Resolution;
+    // VTK: an R32F colour map plus a depth renderbuffer; ours: one 32-bit depth texel.
+    t.MemoryMB = (technique == "vtk" ? 8.0 : 4.0) * t.Texels / (1024.0 * 1024.0);
+    list.push_back(t);
+  };
+  add("vtk", "vtk", 0, 0, 1, 1);
+  if (!o.Quick)
+  {
+    add("uniform", "csm", 0, 0, 1, 1);
+    add("lispsm k1", "csm", 2, 0, 1, 1);
+    add("pssm k4", "csm", 0, 3, 4, 1);
+    add("log+lispsm k4", "csm", 2, 2, 4, 1);
+    add("ours k2 pcf1", "csm", 3, 4, 2, 1);
+    add("ours k2 pcf3", "csm", 3, 4, 2, 3);
+  }
+  add("ours k2 pcf5", "csm", 3, 4, 2, 5);
+  if (!o.Quick)
+  {
+    add("ours k3 pcf5", "csm", 3, 4, 3, 5);
+    add("ours k4 pcf5", "csm", 3, 4, 4, 5);
+  }
+  return list;
+}
+
+struct View
+{
+  double Position[3], Focal[3], Up[3];
+  double Light[3];
+  std::string Name;
+  bool Timed;
+  bool Measured;
+};
+
+double Dot(const double a[3], const double b[3])
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/// The camera paths (orbit, fly-through: timed, every n-th measured) and the light sweep
+/// (gamma 0..180 at the scene's default view: measured).
+std::vector<View> Views(const csmScenes::Scene& scene, const Options& o)
+{
+  std::vector<View> views;
+  const double* eye = scene.CameraPosition;
+  const double* focal = scene.FocalPoint;
+  const double key[3] = { -0.45, -1.0, -0.35 };
+  double radius = std::hypot(eye[0] - focal[0], eye[2] - focal[2]);
+  for (int i = 0; i < o.Frames; ++i)
+  {
+    View v;
+    const double a = 2.0 * M_PI * i / o.Frames + std::atan2(eye[2] - focal[2], eye[0] - focal[0]);
+    v.Position[0] = focal[0] + radius * std::cos(a);
+    v.Position[1] = eye[1];
+    v.Position[2] = focal[2] + radius * std::sin(a);
+    std::copy(focal, focal + 3, v.Focal);
+    v.Up[0] = 0, v.Up[1] = 1, v.Up[2] = 0;
+    std::copy(key, key + 3, v.Light);
+    v.Name = "orbit" + std::to_string(i);
+    v.Timed = true;
+    v.Measured = i % o.AccuracyEvery == 0;
+    views.push_back(v);
+  }
+  for (int i = 0; i < o.Frames; ++i)
+  {
+    // Fly from the default eye through the focal point's neighbourhood, looking ahead.
+    View v;
+    const double t = 0.9 * i / o.Frames;
+    for (int c = 0; c < 3; ++c)
+    {
+      v.Position[c] = eye[c] + t * (focal[c] - eye[c]);
+      v.Focal[c] = focal[c] + (focal[c] - eye[c]) * 0.5;
+    }
+    v.Position[1] = std::max(v.Position[1], focal[1] * 0.5 + 1.0);
+    v.Up[0] = 0, v.Up[1] = 1, v.Up[2] = 0;
+    std::copy(key, key + 3, v.Light);
+    v.Name = "fly" + std::to_string(i);
+    v.Timed = true;
+    v.Measured = i % o.AccuracyEvery == o.AccuracyEvery / 2;
+    views.push_back(v);
+  }
+  const std::vector<double> gammas =
+    o.Quick ? std::vector<double>{ 45.0 } : std::vector<double>{ 0, 10, 30, 60, 90, 120, 150, 170, 180 };
+  for (double g : gammas)
+  {
+    View v;
+    std::copy(eye, eye + 3, v.Position);
+    std::copy(focal, focal + 3, v.Focal);
+    v.Up[0] = 0, v.Up[1] = 1, v.Up[2] = 0;
+    double dir[3] = { focal[0] - eye[0], focal[1] - eye[1], focal[2] - eye[2] };
+    const double l = std::sqrt(Dot(dir, dir));
+    for (double& c : dir)
+      c /= l;
+    // Camera up orthogonal to the view; the light in the plane of view and up.
+    double up[3] = { 0, 1, 0 };
+    const double along = Dot(up, dir);
+    for (int c = 0; c < 3; ++c)
+      up[c] -= along * dir[c];
+    const double lu = std::sqrt(Dot(up, up));
+    const double r = g * M_PI / 180.0;
+    for (int c = 0; c < 3; ++c)
+      v.Light[c] = std::cos(r) * dir[c] - std::sin(r) * up[c] / lu;
+    v.Name = "gamma" + std::to_string(static_cast<int>(g));
+    v.Timed = false;
+    v.Measured = true;
+    views.push_back(v);
+  }
+  return views;
+}
+
+void Apply(const View& v, vtkRenderer* renderer, vtkLight* light, const csmScenes::Scene& scene)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(v.Position);
+  camera->SetFocalPoint(v.Focal);
+  camera->SetViewUp(v.Up);
+  camera->OrthogonalizeViewUp();
+  if (scene.ClippingRange[1] > 0)
+    camera->SetClippingRange(scene.ClippingRange);
+  else
+    renderer->ResetCameraClippingRange();
+  light->SetFocalPoint(0, 0, 0);
+  light->SetPosition(-v.Light[0], -v.Light[1], -v.Light[2]);
+}
+
+vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff();
+  grab->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->DeepCopy(grab->GetOutput());
+  return image;
+}
+
+/// Texels per pixel of the map at a point: max(m_x, m_z) of Lloyd Eq. 2-4, scaled to the map
+/// and image resolutions.
+double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[3],
+  const double p[3], int imageHeight)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const double aspect = renderer->GetTiledAspectRatio();
+  double m[2] = { 0, 0 };
+  if (t.Passes.Cascaded)
+  {
+    const auto& maps = t.Passes.Cascaded->GetShadowMapBakerPass()->GetLightMaps();
+    if (maps.empty() || maps[0].NumberOfCascades == 0)
+      return NAN;
+    double dir[3], eye[3];
+    camera->GetDirectionOfProjection(dir);
+    camera->GetPosition(eye);
+    const double q[3] = { p[0] - eye[0], p[1] - eye[1], p[2] - eye[2] };
+    const double depth = Dot(q, dir);
+    const auto& lm = maps[0];
+    if (depth < lm.SplitNear || depth > lm.SplitFar[lm.NumberOfCascades - 1])
+      return NAN;
+    int c = 0;
+    while (c < lm.NumberOfCascades - 1 && depth > lm.SplitFar[c])
+      ++c;
+    vtkCascadedShadowMapPlanner::ComputeAliasing(camera, aspect, light, lm.WorldToMap[c], p, m);
+  }
+  else if (t.Passes.Vtk)
+  {
+    auto* cameras = t.Passes.Vtk->GetShadowMapBakerPass()->GetLightCameras();
+    if (!cameras || cameras->empty())
+      return NAN;
+    vtkCamera* lc = (*cameras)[0];
+    // As VTK's lookup builds it: projection with aspect 1, times the light's view.
+    vtkMatrix4x4* composite = lc->GetCompositeProjectionTransformMatrix(1.0, -1, 1);
+    vtkCascadedShadowMapPlanner::ComputeAliasing(camera, aspect, light, composite->GetData(), p, m);
+  }
+  else
+    return NAN;
+  return std::max(m[0], m[1]) * imageHeight / t.Shadow.Resolution;
+}
+
+double Median(std::vector<double> v)
+{
+  if (v.empty())
+    return NAN;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+double Percentile(std::vector<double> v, double q)
+{
+  if (v.empty())
+    return NAN;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<size_t>(q * (v.size() - 1))];
+}
+
+struct Row
+{
+  std::string Scene;
+  const Technique* T;
+};
+
+void Plot(const std::vector<std::pair<std::string, std::vector<Technique>>>& results,
+  const std::string& file)
+{
+  vtkNew<vtkContextView> view;
+  view->GetRenderWindow()->SetOffScreenRendering(1);
+  view->GetRenderWindow()->SetMultiSamples(0);
+  const int rows = static_cast<int>(results.size());
+  view->GetRenderWindow()->SetSize(1100, 380 * rows);
+  view->GetRenderer()->SetBackground(1, 1, 1);
+  vtkNew<vtkChartMatrix> matrix;
+  matrix->SetSize(vtkVector2i(2, rows));
+  matrix->SetGutter(vtkVector2f(70, 60));
+  view->GetScene()->AddItem(matrix);
+  for (int r = 0; r < rows; ++r)
+  {
+    const auto& scene = results[rows - 1 - r]; // first scene at the top
+    for (int col = 0; col < 2; ++col)
+    {
+      vtkChart* chart = matrix->GetChart(vtkVector2i(col, r));
+      chart->SetTitle(scene.first + (col == 0 ? ": misclassified % vs frame ms" : ": max m vs frame ms"));
+      chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("median frame time (ms, software Mesa)");
+      chart->GetAxis(vtkAxis::LEFT)->SetTitle(col == 0 ? "misclassified pixels (%)" : "max m (texels per pixel)");
+      if (col == 1)
+        chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
+      // One series per technique family, and the Pareto front (lower time and error) as a line.
+      std::vector<std::pair<double, double>> points;
+      for (const std::string family : { "vtk", "baselines", "ours" })
+      {
+        vtkNew<vtkTable> table;
+        vtkNew<vtkDoubleArray> x, y;
+        x->SetName("ms");
+        y->SetName(family.c_str());
+        table->AddColumn(x);
+        table->AddColumn(y);
+        for (const Technique& t : scene.second)
+        {
+          const bool isOurs = t.Label.rfind("ours", 0) == 0;
+          const std::string f = t.Label == "vtk" ? "vtk" : isOurs ? "ours" : "baselines";
+          if (f != family)
+            continue;
+          const double ms = Median(t.Times);
+          const double err = col == 0 ? t.Errors.MismatchPct() : csmTruth::Summarize(t.M).Max;
+          if (!std::isfinite(ms) || !std::isfinite(err))
+            continue;
+          table->InsertNextBlankRow();
+          const vtkIdType k = table->GetNumberOfRows() - 1;
+          table->SetValue(k, 0, ms);
+          table->SetValue(k, 1, err);
+          points.emplace_back(ms, err);
+        }
+        vtkPlot* plot = chart->AddPlot(vtkChart::POINTS);
+        plot->SetInputData(table, 0, 1);
+        const unsigned char color[3][3] = { { 220, 40, 40 }, { 120, 120, 120 }, { 30, 80, 220 } };
+        const int ci = family == "vtk" ? 0 : family == "baselines" ? 1 : 2;
+        plot->SetColor(color[ci][0], color[ci][1], color[ci][2], 255);
+        plot->SetWidth(2.0);
+        vtkPlotPoints::SafeDownCast(plot)->SetMarkerSize(12);
+      }
+      std::sort(points.begin(), points.end());
+      vtkNew<vtkTable> front;
+      vtkNew<vtkDoubleArray> fx, fy;
+      fx->SetName("ms");
+      fy->SetName("Pareto front");
+      front->AddColumn(fx);
+      front->AddColumn(fy);
+      double best = INFINITY;
+      for (const auto& p : points)
+        if (p.second < best)
+        {
+          best = p.second;
+          front->InsertNextBlankRow();
+          front->SetValue(front->GetNumberOfRows() - 1, 0, p.first);
+          front->SetValue(front->GetNumberOfRows() - 1, 1, p.second);
+        }
+      vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+      line->SetInputData(front, 0, 1);
+      line->SetColor(0, 0, 0, 255);
+      line->SetWidth(1.5);
+      vtkChartXY::SafeDownCast(chart)->SetShowLegend(r == rows - 1 && col == 0);
+    }
+  }
+  view->GetRenderWindow()->Render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(view->GetRenderWindow());
+  grab->Update();
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(file.c_str());
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->Write();
+}
+
+Options Parse(int argc, char** argv)
+{
+  Options o;
+  bool framesGiven = false, budgetGiven = false, sizeGiven = false, scenesGiven = false;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string f = argv[i];
+    const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
+    if (f == "--help" || f == "-h")
+    {
+      std::printf("usage: csm-bench [--quick] [--out FILE.csv] [--plot FILE.png] [--size WxH]\n"
+                  "                 [--frames N] [--budget TEXELS_SIDE] [--scenes a,b,...]\n"
+                  "scenes: platform, platform-2m, towers, engine. --quick: platform, 640x480,\n"
+                  "6 frames, budget 2048, VTK's pass and ours with the defaults.\n");
+      std::exit(0);
+    }
+    else if (f == "--quick")
+      o.Quick = true;
+    else if ((f == "--out" || f == "--plot" || f == "--size" || f == "--frames" ||
+               f == "--budget" || f == "--scenes") && !v)
+      fail(f + " needs a value");
+    else if (f == "--out")
+      o.Out = argv[++i];
+    else if (f == "--plot")
+      o.Plot = argv[++i];
+    else if (f == "--size")
+    {
+      char extra;
+      if (std::sscanf(argv[++i], "%dx%d%c", &o.Width, &o.Height, &extra) != 2 || o.Width < 64 ||
+        o.Height < 64 || o.Width > 4096 || o.Height > 4096)
+        fail("--size needs WxH, 64..4096 each");
+      sizeGiven = true;
+    }
+    else if (f == "--frames")
+    {
+      o.Frames = std::atoi(argv[++i]);
+      if (o.Frames < 2 || o.Frames > 10000)
+        fail("--frames must be in [2, 10000]");
+      framesGiven = true;
+    }
+    else if (f == "--budget")
+    {
+      o.Budget = std::atoi(argv[++i]);
+      if (o.Budget < 256 || o.Budget > 8192)
+        fail("--budget must be in [256, 8192]");
+      budgetGiven = true;
+    }
+    else if (f == "--scenes")
+    {
+      o.Scenes.clear();
+      std::stringstream list(argv[++i]);
+      std::string name;
+      while (std::getline(list, name, ','))
+      {
+        if (name != "platform" && name != "platform-2m" && name != "towers" && name != "engine")
+          fail("unknown scene '" + name + "'");
+        o.Scenes.push_back(name);
+      }
+      scenesGiven = true;
+    }
+    else
+      fail("unknown option '" + f + "'");
+  }
+  if (o.Quick)
+  {
+    if (!framesGiven)
+      o.Frames = 6;
+    if (!budgetGiven)
+      o.Budget = 2048;
+    if (!sizeGiven)
+      o.Width = 640, o.Height = 480;
+    if (!scenesGiven)
+      o.Scenes = { "platform" };
+    o.Rounds = 2;
+    o.AccuracyEvery = 6;
+  }
+  return o;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  const Options o = Parse(argc, argv);
+  std::ofstream csv(o.Out);
+  if (!csv)
+    fail("cannot write '" + o.Out + "'");
+  std::ofstream detail(o.Out + ".views.csv");
+  csv << "scene,technique,label,warp,partition,cascades,resolution,pcf,texels,memory_mb,median_ms,"
+         "p10_ms,p90_ms,math_us,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m,"
+         "storage,frames,measured_pixels\n";
+  detail << "scene,label,view,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m\n";
+  std::vector<std::pair<std::string, std::vector<Technique>>> results;
+
+  for (const std::string& sceneName : o.Scenes)
+  {
+    csmScenes::Scene scene;
+    if (sceneName == "platform")
+      scene = csmScenes::Platform(250000);
+    else if (sceneName == "platform-2m")
+      scene = csmScenes::Platform(2000000);
+    else if (sceneName == "towers")
+      scene = csmScenes::Towers();
+    else
+    {
+      std::string error;
+      if (!csmScenes::FromFile("/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/"
+                               "2CylinderEngine.glb",
+            scene, error))
+      {
+        std::fprintf(stderr, "csm-bench: skipping scene engine: %s\n", error.c_str());
+        continue;
+      }
+    }
+    std::printf("scene %s: %lld triangles\n", sceneName.c_str(), scene.Triangles);
+    std::fflush(stdout);
+
+    vtkNew<vtkRenderer> renderer;
+    vtkNew<vtkRenderWindow> window;
+    window->SetSize(o.Width, o.Height);
+    window->SetMultiSamples(0);
+    window->SetOffScreenRendering(1);
+    window->AddRenderer(renderer);
+    renderer->SetBackground(0.75, 0.82, 0.9);
+    renderer->AutomaticLightCreationOff();
+    csmScenes::Install(scene, renderer, double(o.Width) / o.Height);
+    vtkNew<vtkLight> key;
+    key->SetLightTypeToSceneLight();
+    key->SetPositional(false);
+    key->SetIntensity(0.85);
+    renderer->AddLight(key);
+    vtkNew<vtkLight> fill;
+    fill->SetLightTypeToHeadlight();
+    fill->SetIntensity(0.25);
+    renderer->AddLight(fill);
+
+    std::vector<Technique> techniques = Techniques(o);
+    for (Technique& t : techniques)
+      t.Chain = csmScenes::BuildChain(t.Shadow, t.Passes);
+    const std::vector<View> views = Views(scene, o);
+
+    // Timing: rounds of blocks, each technique rendering every Rounds-th frame of the paths,
+    // after one untimed warm-up frame (shader set-up when the chain changes).
+    vtkNew<vtkTimerLog> timer;
+    for (int round = 0; round < o.Rounds; ++round)
+    {
+      for (Technique& t : techniques)
+      {
+        renderer->SetPass(t.Chain);
+        bool warm = false;
+        for (size_t i = 0; i < views.size(); ++i)
+        {
+          if (!views[i].Timed || static_cast<int>(i) % o.Rounds != round)
+            continue;
+          Apply(views[i], renderer, key, scene);
+          if (!warm)
+          {
+            window->Render();
+            window->WaitForCompletion();
+            warm = true;
+          }
+          timer->StartTimer();
+          window->Render();
+          window->WaitForCompletion(); // glFinish: the frame is done
+          timer->StopTimer();
+          t.Times.push_back(1000.0 * timer->GetElapsedTime());
+        }
+      }
+    }
+
+    // Accuracy: white, diffuse-only materials and the key light alone, so that the render with
+    // shadows over the render without is the shadow factor.
+    csmTruth::RayScene rays;
+    rays.Build(renderer);
+    for (const auto& actor : scene.Actors)
+    {
+      actor->GetProperty()->SetColor(1, 1, 1);
+      actor->GetProperty()->SetAmbient(0.0);
+      actor->GetProperty()->SetDiffuse(1.0);
+      actor->GetProperty()->SetSpecular(0.0);
+    }
+    fill->SwitchOff();
+    key->SetIntensity(1.0);
+    renderer->SetBackground(0, 0, 0);
+    long long measuredPixels = 0;
+    vtkNew<vtkCascadedShadowMapPlanner> planner;
+    for (const View& v : views)
+    {
+      if (!v.Measured)
+        continue;
+      Apply(v, renderer, key, scene);
+      renderer->SetPass(nullptr);
+      window->Render();
+      auto plain = Grab(window);
+      const auto surfaces = rays.CastPrimary(renderer->GetActiveCamera(), o.Width, o.Height);
+      const auto comparable = csmTruth::ComparablePixels(surfaces, o.Width, o.Height, v.Light);
+      std::vector<char> occluded(surfaces.size(), 0);
+      for (size_t k = 0; k < surfaces.size(); ++k)
+        occluded[k] = comparable[k] && rays.Occluded(surfaces[k], v.Light);
+      for (Technique& t : techniques)
+      {
+        renderer->SetPass(t.Chain);
+        window->Render();
+        auto shadowed = Grab(window);
+        const auto factor = csmTruth::FactorFromRenders(shadowed, plain);
+        const csmTruth::Classification c = csmTruth::Classify(surfaces, comparable, occluded, factor);
+        t.Errors.Considered += c.Considered;
+        t.Errors.FalseShadow += c.FalseShadow;
+        t.Errors.FalseLight += c.FalseLight;
+        std::vector<double> m;
+        for (size_t k = 0; k < surfaces.size(); k += 1)
+        {
+          if (!comparable[k])
+            continue;
+          const double value = AliasingAt(t, renderer, v.Light, surfaces[k].Position, o.Height);
+          if (std::isfinite(value))
+            m.push_back(value);
+        }
+        const csmTruth::Stats ms = csmTruth::Summarize(m);
+        t.M.insert(t.M.end(), m.begin(), m.end());
+        detail << sceneName << "," << t.Label << "," << v.Name << "," << c.MismatchPct() << ","
+               << c.FalseShadowPct() << "," << c.FalseLightPct() << "," << ms.Max << "," << ms.P95
+               << "," << ms.Mean << "\n";
+        if (t.Passes.Cascaded)
+        {
+          // The analytic storage factor of this frame and the time of the math that plans it.
+          vtkCascadedShadowMapBakerPass* baker = t.Passes.Cascaded->GetShadowMapBakerPass();
+          planner->SetNumberOfCascades(baker->GetNumberOfCascades());
+          planner->SetWarpMode(baker->GetWarpMode());
+          planner->SetSplitScheme(baker->GetSplitScheme());
+          double bounds[6];
+          renderer->ComputeVisiblePropBounds(bounds);
+          planner->ClearReceiverBounds();
+          for (const auto& actor : scene.Actors)
+            planner->AddReceiverBounds(actor->GetBounds());
+          const double aspect = double(o.Width) / o.Height;
+          timer->StartTimer();
+          for (int r = 0; r < 20; ++r)
+            planner->Plan(renderer->GetActiveCamera(), aspect, v.Light, bounds);
+          timer->StopTimer();
+          t.MathUs.push_back(1e6 * timer->GetElapsedTime() / 20.0);
+          t.Storage.push_back(planner->GetStorageTotal());
+        }
+      }
+      measuredPixels += std::count(comparable.begin(), comparable.end(), 1);
+    }
+
+    for (const Technique& t : techniques)
+    {
+      const csmTruth::Stats ms = csmTruth::Summarize(t.M);
+      const bool csm = t.Shadow.Technique == "csm";
+      csv << sceneName << "," << t.Shadow.Technique << "," << t.Label << ","
+          << (csm ? kWarps[t.Shadow.Warp] : "none") << ","
+          << (csm ? kPartitions[t.Shadow.Partition] : "single") << "," << t.Shadow.Cascades << ","
+          << t.Shadow.Resolution << "," << (csm ? t.Shadow.PCF : 1) << "," << t.Texels << ","
+          << t.MemoryMB << "," << Median(t.Times) << "," << Percentile(t.Times, 0.1) << ","
+          << Percentile(t.Times, 0.9) << "," << (csm ? Median(t.MathUs) : NAN) << ","
+          << t.Errors.MismatchPct() << "," << t.Errors.FalseShadowPct() << ","
+          << t.Errors.FalseLightPct() << "," << ms.Max << "," << ms.P95 << "," << ms.Mean << ","
+          << (csm ? Median(t.Storage) : NAN) << "," << t.Times.size() << "," << measuredPixels
+          << "\n";
+      std::printf("  %-16s %8.1f ms  mismatch %6.3f%% (shadow %6.3f%%, light %6.3f%%)  max m %8.2f"
+                  "  p95 m %6.2f\n",
+        t.Label.c_str(), Median(t.Times), t.Errors.MismatchPct(), t.Errors.FalseShadowPct(),
+        t.Errors.FalseLightPct(), ms.Max, ms.P95);
+    }
+    std::fflush(stdout);
+    renderer->SetPass(nullptr);
+    for (Technique& t : techniques)
+    {
+      t.Chain->ReleaseGraphicsResources(window);
+      t.Chain = nullptr;
+    }
+    results.emplace_back(sceneName, std::move(techniques));
+  }
+  csv.close();
+  std::printf("wrote %s and %s.views.csv\n", o.Out.c_str(), o.Out.c_str());
+  if (!o.Plot.empty() && !results.empty())
+  {
+    Plot(results, o.Plot);
+    std::printf("wrote %s\n", o.Plot.c_str());
+  }
+  return 0;
+}
