@@ -489,7 +489,7 @@ int main(int argc, char** argv)
     if (sceneName == "platform")
       scene = csmScenes::Platform(250000);
     else if (sceneName == "platform-2m")
-      scene = csmScenes::Platform(2000000);
+      scene = csmScenes::Platform(2100000); // >= 2M triangles
     else if (sceneName == "towers")
       scene = csmScenes::Towers();
     else

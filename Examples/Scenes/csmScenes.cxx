@@ -321,7 +321,7 @@ Scene Platform(long long targetTriangles, double offset)
   // Tessellation from the triangle budget: 2 * sides triangles per bar.
   const long long bars = static_cast<long long>(heavy.size() + thin.size());
   const int sides =
-    static_cast<int>(std::max<long long>(4, std::min<long long>(256, targetTriangles / (2 * bars))));
+    static_cast<int>(std::max<long long>(4, std::min<long long>(4096, targetTriangles / (2 * bars))));
   Builder steel(offset), light(offset), decks(offset);
   for (const Bar& bar : heavy)
     steel.AddBar(bar, sides);
