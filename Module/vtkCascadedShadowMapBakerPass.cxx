@@ -5,7 +5,9 @@
 #include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkCommunicator.h"
 #include "vtkMatrix4x4.h"
+#include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
@@ -22,9 +24,11 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 
 vtkStandardNewMacro(vtkCascadedShadowMapBakerPass);
+vtkCxxSetObjectMacro(vtkCascadedShadowMapBakerPass, Controller, vtkMultiProcessController);
 
 namespace
 {
@@ -83,7 +87,31 @@ vtkCascadedShadowMapBakerPass::vtkCascadedShadowMapBakerPass()
   this->LightCamera->UseExplicitProjectionTransformMatrixOn();
 }
 
-vtkCascadedShadowMapBakerPass::~vtkCascadedShadowMapBakerPass() = default;
+vtkCascadedShadowMapBakerPass::~vtkCascadedShadowMapBakerPass()
+{
+  this->SetController(nullptr);
+}
+
+bool vtkCascadedShadowMapBakerPass::Distributed() const
+{
+  return this->Controller && this->Controller->GetNumberOfProcesses() > 1;
+}
+
+void vtkCascadedShadowMapBakerPass::CombineAcrossProcesses(vtkTextureObject* atlas)
+{
+  // Every process drew its own casters; the nearest depth of all is the map of the whole scene.
+  const auto start = std::chrono::steady_clock::now();
+  const vtkIdType size = static_cast<vtkIdType>(atlas->GetWidth()) * atlas->GetHeight();
+  std::vector<float> local(size), global(size);
+  atlas->Activate();
+  glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, local.data());
+  this->Controller->AllReduce(local.data(), global.data(), size, vtkCommunicator::MIN_OP);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, static_cast<GLsizei>(atlas->GetWidth()),
+    static_cast<GLsizei>(atlas->GetHeight()), GL_DEPTH_COMPONENT, GL_FLOAT, global.data());
+  atlas->Deactivate();
+  this->LastCombineSeconds +=
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 bool vtkCascadedShadowMapBakerPass::LightCastsShadows(vtkLight* light)
 {
@@ -188,10 +216,29 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   // as a change next frame.
   double sceneBounds[6];
   renderer->ComputeVisiblePropBounds(sceneBounds);
-  if (!this->NeedsBake(renderer) && !this->Maps.empty())
+  int needed = this->NeedsBake(renderer) || this->Maps.empty() ? 1 : 0;
+  if (this->Distributed())
+  {
+    // All processes plan from the global bounds and bake together, or none does.
+    double lo[3] = { sceneBounds[0], sceneBounds[2], sceneBounds[4] };
+    double hi[3] = { sceneBounds[1], sceneBounds[3], sceneBounds[5] };
+    double globalLo[3], globalHi[3];
+    this->Controller->AllReduce(lo, globalLo, 3, vtkCommunicator::MIN_OP);
+    this->Controller->AllReduce(hi, globalHi, 3, vtkCommunicator::MAX_OP);
+    for (int i = 0; i < 3; ++i)
+    {
+      sceneBounds[2 * i] = globalLo[i];
+      sceneBounds[2 * i + 1] = globalHi[i];
+    }
+    int anyNeeded = 0;
+    this->Controller->AllReduce(&needed, &anyNeeded, 1, vtkCommunicator::MAX_OP);
+    needed = anyNeeded;
+  }
+  if (!needed)
   {
     return;
   }
+  this->LastCombineSeconds = 0.0;
   ++this->BakeCount;
   this->LastCascadeRenders = 0;
   this->LastPropsDrawn = 0;
@@ -224,6 +271,30 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
       {
         casters.push_back(prop);
         casterBounds.push_back(b);
+      }
+    }
+  }
+  if (this->Distributed())
+  {
+    // The same receiver boxes on every process: gather them all (padded with empty boxes).
+    int count = static_cast<int>(receivers.size()), most = 0;
+    this->Controller->AllReduce(&count, &most, 1, vtkCommunicator::MAX_OP);
+    std::vector<double> mine(6 * static_cast<size_t>(most), 0.0), all;
+    for (int i = 0; i < most; ++i)
+    {
+      for (int k = 0; k < 6; ++k)
+      {
+        mine[6 * i + k] = i < count ? receivers[i][k] : (k % 2 == 0 ? 1.0 : -1.0);
+      }
+    }
+    all.resize(mine.size() * this->Controller->GetNumberOfProcesses());
+    this->Controller->AllGather(mine.data(), all.data(), static_cast<vtkIdType>(mine.size()));
+    receivers.clear();
+    for (size_t i = 0; i + 5 < all.size(); i += 6)
+    {
+      if (all[i] <= all[i + 1])
+      {
+        receivers.push_back({ all[i], all[i + 1], all[i + 2], all[i + 3], all[i + 4], all[i + 5] });
       }
     }
   }
@@ -383,6 +454,10 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
       renderer->SetActiveCamera(realCamera);
     }
     this->FrameBuffer->RemoveDepthAttachment();
+    if (this->Distributed())
+    {
+      this->CombineAcrossProcesses(maps.Atlas);
+    }
   }
   ostate->PopFramebufferBindings();
   renderer->SetAutomaticLightCreation(automaticLights);
@@ -427,4 +502,5 @@ void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PolygonOffsetFactor: " << this->PolygonOffsetFactor << "\n";
   os << indent << "PolygonOffsetUnits: " << this->PolygonOffsetUnits << "\n";
   os << indent << "ShadowedLights: " << this->Maps.size() << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
 }

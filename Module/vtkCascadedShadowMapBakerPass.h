@@ -29,6 +29,7 @@ class vtkCamera;
 class vtkCascadedShadowMapPlanner;
 class vtkLight;
 class vtkMatrix4x4;
+class vtkMultiProcessController;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
@@ -88,6 +89,21 @@ public:
   vtkGetMacro(PolygonOffsetUnits, double);
   ///@}
 
+  ///@{
+  /**
+   * Distributed data: with a controller of more than one process, every process renders its
+   * own casters into the maps, the maps are combined across processes (minimum depth), and all
+   * processes use the same cascades, planned from the global bounds of the scene. Every process
+   * must then render every frame with the same camera and lights (as ParaView and parallel VTK
+   * programs do). Default: none (one process).
+   */
+  virtual void SetController(vtkMultiProcessController* controller);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  /// Seconds the last bake spent combining the maps across processes (0 for one process).
+  vtkGetMacro(LastCombineSeconds, double);
+
   /// Does VTK shadow this light? Scene and camera lights that are on: directional, or spot with
   /// cone angle < 90 degrees (the same rule as vtkShadowMapBakerPass).
   static bool LightCastsShadows(vtkLight* light);
@@ -126,6 +142,8 @@ protected:
     std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
 
   bool NeedsBake(vtkRenderer* renderer);
+  bool Distributed() const;
+  void CombineAcrossProcesses(vtkTextureObject* atlas);
   bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles);
 
   int NumberOfCascades = 2;
@@ -144,6 +162,8 @@ protected:
   vtkSmartPointer<vtkOpenGLFramebufferObject> FrameBuffer;
   vtkSmartPointer<vtkCamera> LightCamera;
   vtkSmartPointer<vtkMatrix4x4> Projection;
+  vtkMultiProcessController* Controller = nullptr;
+  double LastCombineSeconds = 0.0;
   vtkMTimeType LastInputTime = 0;
   int LastSize[2] = { 0, 0 };
   int BakeCount = 0;

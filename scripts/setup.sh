@@ -7,7 +7,7 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD="${CSM_BUILD_DIR:-$ROOT/build}"
 LOGS="$BUILD/logs"
 PACKAGES=(cmake g++ make pkg-config libvtk9-dev libglm-dev libgtest-dev libbenchmark-dev
-  xvfb xauth libgl1-mesa-dri assimp-testmodels libembree-dev)
+  xvfb xauth libgl1-mesa-dri assimp-testmodels libembree-dev openmpi-bin)
 
 die() { echo "error: $*" >&2; exit 1; }
 
