@@ -1,5 +1,7 @@
 #include "vtkCascadedShadowMapBakerPass.h"
 
+#include "csmShadowSetup.h" // the shadow math: culling test
+
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapPlanner.h"
 #include "vtkInformation.h"
@@ -51,24 +53,19 @@ bool propBounds(vtkProp* prop, double bounds[6])
   return true;
 }
 
-/// True when no corner of the box lands in the light's clip volume (homogeneous test).
-bool outsideLightVolume(const double m[16], const double b[6], bool depthClamp)
+/// Does any part of the box reach the light volume of a cascade (row-major world -> clip)?
+bool reachesLightVolume(const double m[16], const double b[6], bool depthClamp)
 {
-  int outside[7] = { 0, 0, 0, 0, 0, 0, 0 };
-  for (int i = 0; i < 8; ++i)
+  glm::dmat4 matrix;
+  for (int row = 0; row < 4; ++row)
   {
-    const double p[4] = { b[(i & 1) ? 1 : 0], b[(i & 2) ? 3 : 2], b[(i & 4) ? 5 : 4], 1.0 };
-    double h[4];
-    vtkMatrix4x4::MultiplyPoint(m, p, h);
-    outside[0] += h[0] < -h[3];
-    outside[1] += h[0] > h[3];
-    outside[2] += h[1] < -h[3];
-    outside[3] += h[1] > h[3];
-    outside[4] += h[2] > h[3];
-    outside[5] += !depthClamp && h[2] < -h[3];
-    outside[6] += h[3] <= 0.0;
+    for (int column = 0; column < 4; ++column)
+    {
+      matrix[column][row] = m[4 * row + column];
+    }
   }
-  return std::any_of(std::begin(outside), std::end(outside), [](int c) { return c == 8; });
+  const csm::Bounds box{ { b[0], b[2], b[4] }, { b[1], b[3], b[5] } };
+  return !csm::boxOutsideClipVolume(matrix, box, depthClamp);
 }
 }
 
@@ -187,6 +184,7 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
       return false;
     }
   }
+  maps.Resolution = resolution;
   for (int i = 0; i < tiles; ++i)
   {
     maps.Tile[i][0] = double(i % columns) / columns;
@@ -428,7 +426,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
       std::vector<vtkProp*> drawn;
       for (size_t i = 0; i < casters.size(); ++i)
       {
-        if (!outsideLightVolume(maps.WorldToMap[c], casterBounds[i].data(), this->DepthClamp))
+        if (reachesLightVolume(maps.WorldToMap[c], casterBounds[i].data(), this->DepthClamp))
         {
           drawn.push_back(casters[i]);
         }

@@ -118,6 +118,7 @@ public:
     double SplitNear = 0.0;       ///< view depth where the first cascade begins
     double SplitFar[8];           ///< view depth where each cascade ends
     double Tile[8][4];            ///< atlas tile: offset x, y and scale x, y in [0, 1]
+    int Resolution = 0;           ///< texels per cascade side (Resolution, or less if GL limits)
     vtkSmartPointer<vtkTextureObject> Atlas;
   };
 

@@ -85,6 +85,7 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
     u.Count = maps.NumberOfCascades;
     u.SplitNear = static_cast<float>(maps.SplitNear);
     u.Attenuation = static_cast<float>(this->ShadowDarkness * maps.Light->GetShadowAttenuation());
+    u.TileTexel = 1.0f / static_cast<float>(std::max(1, maps.Resolution));
     for (int c = 0; c < 8; ++c)
     {
       double clipFromView[16], mapFromView[16];
@@ -178,8 +179,7 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   {
     return true;
   }
-  const int resolution = this->ShadowMapBakerPass ? this->ShadowMapBakerPass->GetResolution() : 1;
-  program->SetUniformf("csmTileTexel", 1.0f / static_cast<float>(resolution));
+  program->SetUniformf("csmTileTexel", this->Uniforms[0].TileTexel);
   program->SetUniformi("csmPCFSize", this->PCFSize);
   program->SetUniformi("csmKernel", this->PCFKernel);
   program->SetUniformf("csmConstantBias", static_cast<float>(this->ConstantBias));

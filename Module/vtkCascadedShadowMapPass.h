@@ -146,6 +146,7 @@ protected:
     float SplitFar[8];
     float SplitNear = 0.0f;
     float Attenuation = 1.0f;
+    float TileTexel = 1.0f; // one texel of a cascade in its [0,1] coordinates
     int TextureUnit = 0;
   };
   std::vector<LightUniforms> Uniforms;
