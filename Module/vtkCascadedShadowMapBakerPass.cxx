@@ -113,7 +113,8 @@ void vtkCascadedShadowMapBakerPass::CombineAcrossProcesses(vtkTextureObject* atl
 bool vtkCascadedShadowMapBakerPass::LightCastsShadows(vtkLight* light)
 {
   return light && light->GetSwitch() && !light->LightTypeIsHeadlight() &&
-    (!light->GetPositional() || light->GetConeAngle() < 90.0);
+    (!light->GetPositional() || light->GetConeAngle() < 90.0) &&
+    light->GetShadowAttenuation() > 0.0f; // a shadow of attenuation 0 is invisible: no maps
 }
 
 bool vtkCascadedShadowMapBakerPass::NeedsBake(vtkRenderer* renderer)
@@ -183,6 +184,9 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
       vtkErrorMacro(<< "Cannot allocate a " << width << " x " << height << " shadow map atlas");
       return false;
     }
+    // A new GL texture: its compare mode and filters must be sent again, but the setters above
+    // did not change the object when the values were the same as before.
+    atlas->Modified();
   }
   maps.Resolution = resolution;
   for (int i = 0; i < tiles; ++i)

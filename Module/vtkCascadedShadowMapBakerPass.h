@@ -105,7 +105,8 @@ public:
   vtkGetMacro(LastCombineSeconds, double);
 
   /// Does VTK shadow this light? Scene and camera lights that are on: directional, or spot with
-  /// cone angle < 90 degrees (the same rule as vtkShadowMapBakerPass).
+  /// cone angle < 90 degrees (the same rule as vtkShadowMapBakerPass), and whose
+  /// ShadowAttenuation is above 0 (an invisible shadow gets no maps).
   static bool LightCastsShadows(vtkLight* light);
 
   /// The maps of one shadowed light, as the shadow pass reads them.

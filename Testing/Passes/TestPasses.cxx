@@ -182,6 +182,19 @@ TEST(Passes, ResolutionAndCascadesCanChangeBetweenFrames)
   EXPECT_EQ(baker->GetLightMaps()[0].Atlas->GetHeight(), 2048u); // 2 rows
   pass->SetPCFSize(1);
   auto hard = scene.Render();
+  // A reallocated atlas must behave exactly like a first one (its compare mode and filters are
+  // sent again to the new texture): compare with a fresh pass made with the final settings.
+  baker->SetResolution(512);
+  baker->SetNumberOfCascades(1);
+  pass->SetPCFSize(5);
+  auto reallocated = scene.Render();
+  {
+    BoxScene fresh;
+    vtkCascadedShadowMapPass* first = vtkCascadedShadowMapPass::UseShadowsOn(fresh.Renderer);
+    first->GetShadowMapBakerPass()->SetResolution(512);
+    first->GetShadowMapBakerPass()->SetNumberOfCascades(1);
+    EXPECT_EQ(Differing(reallocated, fresh.Render()), 0);
+  }
   scene.Renderer->SetPass(nullptr);
   plain = scene.Render();
   EXPECT_GT(Darkened(one, plain), 800);
@@ -362,6 +375,11 @@ TEST(Passes, FourDirectionalLightsAndPBR)
     EXPECT_GT(maps.NumberOfCascades, 0);
   // Four shadows of the box, each taking a quarter of the light: many pixels darker.
   EXPECT_GT(Darkened(shadowed, plain), 600);
+  // A light whose shadow attenuation is 0 gets no maps.
+  scene.Light->SetShadowAttenuation(0.0f);
+  scene.Render();
+  EXPECT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps().size(), 3u);
+  scene.Light->SetShadowAttenuation(1.0f);
   // Switching three lights off frees their maps.
   int off = 0;
   vtkCollectionSimpleIterator it;

@@ -1,0 +1,122 @@
+#!/usr/bin/env bash
+# The ParaView 5.11 plugin (ParaView/): install what it needs, build it against ParaView's own
+# VTK, and run its pvbatch tests: one process (image against the baseline, shadow pixel count,
+# selection, properties) and 2 MPI ranks (shadows cast across the ranks' pieces).
+#
+# Debian's ParaView CMake config refers to files of python3-paraview, which conflicts with
+# python3-vtk9 (needed by libvtk9-dev, the main build). So paraview and paraview-dev come from
+# apt (they bring the runtime libraries), and paraview, paraview-dev and python3-paraview of the
+# same version are unpacked into $BUILD/prefix (dpkg -x): the plugin is configured against that
+# prefix and the test runs its pvbatch. Nothing of the libvtk9 build is used.
+#
+#   bash scripts/paraview.sh [all|single|mpi]   build dir: build-paraview/ (or $CSM_PV_BUILD_DIR)
+#   (CTest runs "single" as paraview.View and "mpi" as paraview.ViewMPI)
+set -euo pipefail
+MODE="${1:-all}"
+case "$MODE" in all|single|mpi) ;; *) echo "error: unknown mode '$MODE' (all, single or mpi)" >&2; exit 2 ;; esac
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BUILD="${CSM_PV_BUILD_DIR:-$ROOT/build-paraview}"
+PREFIX="$BUILD/prefix"
+LOGS="$BUILD/logs"
+PV_LIB="$PREFIX/usr/lib/x86_64-linux-gnu"
+PACKAGES=(cmake g++ make pkg-config libglm-dev xvfb xauth libgl1-mesa-dri
+  paraview paraview-dev python3-dev python3-numpy mpi-default-dev openmpi-bin
+  # development files ParaView's VTK config looks for (listed from a configure's CMakeCache)
+  libeigen3-dev libexpat1-dev libfreetype-dev libfontconfig-dev libglew-dev libjpeg-dev
+  liblz4-dev liblzma-dev libpng-dev libtiff-dev zlib1g-dev libdouble-conversion-dev
+  libutfcpp-dev libx11-dev libxt-dev libgl-dev libegl-dev libgles-dev libglu1-mesa-dev)
+
+die() { echo "error: $*" >&2; exit 1; }
+mkdir -p "$LOGS"
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || die "not root and no sudo: cannot run apt-get"
+  sudo="sudo"
+fi
+
+install_missing_packages() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "Installing Debian packages: ${missing[*]}"
+  # No recommends: paraview recommends python3-paraview, which would remove python3-vtk9 and
+  # libvtk9-dev; --no-remove makes apt stop rather than remove anything.
+  if ! { $sudo apt-get update -q &&
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends \
+      --no-remove "${missing[@]}"; } >"$LOGS/apt.log" 2>&1; then
+    tail -n 5 "$LOGS/apt.log" >&2
+    die "could not install the Debian packages: ${missing[*]} (full log: $LOGS/apt.log)"
+  fi
+}
+
+unpack_paraview_prefix() {
+  local version
+  version="$(dpkg-query -W -f='${Version}' paraview)"
+  if [ -f "$PREFIX/.version" ] && [ "$(cat "$PREFIX/.version")" = "$version" ]; then
+    return 0
+  fi
+  echo "Unpacking paraview, paraview-dev and python3-paraview $version into $PREFIX"
+  rm -rf "$PREFIX" "$BUILD/debs"
+  mkdir -p "$BUILD/debs" "$PREFIX"
+  chmod 777 "$BUILD/debs" # apt-get download runs as _apt when it can
+  if ! (cd "$BUILD/debs" && apt-get download "paraview=$version" "paraview-dev=$version" \
+    "python3-paraview=$version") >"$LOGS/download.log" 2>&1; then
+    tail -n 5 "$LOGS/download.log" >&2
+    die "could not download the ParaView $version packages (full log: $LOGS/download.log)"
+  fi
+  for deb in "$BUILD"/debs/*.deb; do
+    dpkg -x "$deb" "$PREFIX" || die "could not unpack $deb"
+  done
+  echo "$version" >"$PREFIX/.version"
+}
+
+configure_and_build() {
+  echo "Configuring and building the plugin in $BUILD (Release)"
+  if ! cmake -S "$ROOT/ParaView" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release \
+    -DParaView_DIR="$PV_LIB/cmake/paraview-5.11" >"$LOGS/configure.log" 2>&1; then
+    grep -A5 "CMake Error" "$LOGS/configure.log" | head -n 20 >&2 ||
+      tail -n 20 "$LOGS/configure.log" >&2
+    die "CMake configure of the plugin failed (full log: $LOGS/configure.log)"
+  fi
+  if ! cmake --build "$BUILD" -j "$(nproc)" >"$LOGS/build.log" 2>&1; then
+    grep -E "error|Error" "$LOGS/build.log" | head -n 20 >&2
+    die "build of the plugin failed (full log: $LOGS/build.log)"
+  fi
+}
+
+install_missing_packages
+unpack_paraview_prefix
+configure_and_build
+
+PLUGIN="$BUILD/lib/paraview-5.11/plugins/CascadedShadows/CascadedShadows.so"
+[ -f "$PLUGIN" ] || die "the build produced no plugin at $PLUGIN"
+TESTING="$ROOT/ParaView/Testing"
+XVFB=(xvfb-run -a -s "-screen 0 1280x1024x24 -noreset")
+MPIEXEC=(mpiexec -np 2 --oversubscribe -x LD_LIBRARY_PATH -x DISPLAY)
+[ "$(id -u)" -eq 0 ] && MPIEXEC+=(--allow-run-as-root)
+# ParaView's pvbatch and libraries from the prefix; a PYTHONPATH to another VTK must not leak in.
+unset PYTHONPATH
+export LD_LIBRARY_PATH="$PV_LIB${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+failed=()
+
+if [ "$MODE" != mpi ]; then
+  echo "== pvbatch test, 1 process (Xvfb, Mesa llvmpipe): $PLUGIN"
+  "${XVFB[@]}" "$PREFIX/usr/bin/pvbatch" "$TESTING/TestCascadedShadowsView.py" "$PLUGIN" \
+    "$TESTING/Baseline/CascadedShadowsView.png" "$BUILD/Testing" 2>&1 | tee "$LOGS/test.log" ||
+    failed+=("1 process (log: $LOGS/test.log)")
+fi
+
+if [ "$MODE" != single ]; then
+  echo "== pvbatch test, 2 MPI ranks (IceT)"
+  timeout 600 "${XVFB[@]}" "${MPIEXEC[@]}" "$PREFIX/usr/bin/pvbatch" --mpi \
+    "$TESTING/TestCascadedShadowsViewMPI.py" "$PLUGIN" "$BUILD/Testing" 2>&1 |
+    tee "$LOGS/test-mpi.log" | { grep -v "WARN|" || true; } ||
+    failed+=("2 MPI ranks (log: $LOGS/test-mpi.log)")
+fi
+
+[ ${#failed[@]} -eq 0 ] || die "ParaView plugin test failed: ${failed[*]}; images in $BUILD/Testing"
+echo "ParaView plugin tests passed"
