@@ -246,12 +246,8 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   this->LastPropsDrawn = 0;
 
   // Plan every shadowed light first: nothing may move while the light camera is active.
-  this->Planner->SetNumberOfCascades(this->NumberOfCascades);
-  this->Planner->SetWarpMode(this->WarpMode);
-  this->Planner->SetSplitScheme(this->SplitScheme);
-  this->Planner->SetLambda(this->Lambda);
-  this->Planner->SetAlpha(this->Alpha);
-  this->Planner->SetDepthClamp(this->DepthClamp);
+  const bool depthClamp = this->Planner->GetDepthClamp();
+  const int numberOfCascades = this->Planner->GetNumberOfCascades();
   const double aspect = renderer->GetTiledAspectRatio();
 
   // Casters: visible opaque props. Receivers: every visible prop; their boxes fit the cascades
@@ -378,7 +374,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
 
   for (LightMaps& maps : this->Maps)
   {
-    if (!this->PrepareAtlas(window, maps, this->NumberOfCascades))
+    if (!this->PrepareAtlas(window, maps, numberOfCascades))
     {
       maps.NumberOfCascades = 0;
       continue;
@@ -404,7 +400,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
     ostate->vtkglEnable(GL_DEPTH_TEST);
     ostate->vtkglDepthFunc(GL_LEQUAL);
-    if (this->DepthClamp)
+    if (depthClamp)
     {
       ostate->vtkglEnable(GL_DEPTH_CLAMP);
     }
@@ -430,7 +426,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
       std::vector<vtkProp*> drawn;
       for (size_t i = 0; i < casters.size(); ++i)
       {
-        if (reachesLightVolume(maps.WorldToMap[c], casterBounds[i].data(), this->DepthClamp))
+        if (reachesLightVolume(maps.WorldToMap[c], casterBounds[i].data(), depthClamp))
         {
           drawn.push_back(casters[i]);
         }
@@ -491,16 +487,72 @@ void vtkCascadedShadowMapBakerPass::ReleaseGraphicsResources(vtkWindow* w)
   this->LastInputTime = 0;
 }
 
+vtkCascadedShadowMapPlanner* vtkCascadedShadowMapBakerPass::GetPlanner()
+{
+  return this->Planner;
+}
+
+// The planning options live in the planner; the baker forwards them.
+void vtkCascadedShadowMapBakerPass::SetNumberOfCascades(int k)
+{
+  this->Planner->SetNumberOfCascades(k);
+}
+int vtkCascadedShadowMapBakerPass::GetNumberOfCascades()
+{
+  return this->Planner->GetNumberOfCascades();
+}
+void vtkCascadedShadowMapBakerPass::SetWarpMode(int mode)
+{
+  this->Planner->SetWarpMode(mode);
+}
+int vtkCascadedShadowMapBakerPass::GetWarpMode()
+{
+  return this->Planner->GetWarpMode();
+}
+void vtkCascadedShadowMapBakerPass::SetSplitScheme(int scheme)
+{
+  this->Planner->SetSplitScheme(scheme);
+}
+int vtkCascadedShadowMapBakerPass::GetSplitScheme()
+{
+  return this->Planner->GetSplitScheme();
+}
+void vtkCascadedShadowMapBakerPass::SetLambda(double lambda)
+{
+  this->Planner->SetLambda(lambda);
+}
+double vtkCascadedShadowMapBakerPass::GetLambda()
+{
+  return this->Planner->GetLambda();
+}
+void vtkCascadedShadowMapBakerPass::SetAlpha(double alpha)
+{
+  this->Planner->SetAlpha(alpha);
+}
+double vtkCascadedShadowMapBakerPass::GetAlpha()
+{
+  return this->Planner->GetAlpha();
+}
+void vtkCascadedShadowMapBakerPass::SetDepthClamp(bool clamp)
+{
+  this->Planner->SetDepthClamp(clamp);
+}
+bool vtkCascadedShadowMapBakerPass::GetDepthClamp()
+{
+  return this->Planner->GetDepthClamp();
+}
+
+vtkMTimeType vtkCascadedShadowMapBakerPass::GetMTime()
+{
+  return std::max(this->Superclass::GetMTime(), this->Planner->GetMTime());
+}
+
 void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "NumberOfCascades: " << this->NumberOfCascades << "\n";
   os << indent << "Resolution: " << this->Resolution << "\n";
-  os << indent << "WarpMode: " << this->WarpMode << "\n";
-  os << indent << "SplitScheme: " << this->SplitScheme << "\n";
-  os << indent << "Lambda: " << this->Lambda << "\n";
-  os << indent << "Alpha: " << this->Alpha << "\n";
-  os << indent << "DepthClamp: " << this->DepthClamp << "\n";
+  os << indent << "Planner:\n";
+  this->Planner->PrintSelf(os, indent.GetNextIndent());
   os << indent << "PolygonOffsetFactor: " << this->PolygonOffsetFactor << "\n";
   os << indent << "PolygonOffsetUnits: " << this->PolygonOffsetUnits << "\n";
   os << indent << "ShadowedLights: " << this->Maps.size() << "\n";

@@ -45,40 +45,39 @@ public:
   void ReleaseGraphicsResources(vtkWindow* w) override;
 
   ///@{
-  /// Cascades per directional light, 1..8. Default 2 (Barroso & Celes §4).
-  vtkSetClampMacro(NumberOfCascades, int, 1, 8);
-  vtkGetMacro(NumberOfCascades, int);
-  ///@}
-
-  ///@{
-  /// Width and height of each cascade's map in texels, 64..8192. Default 2048.
+  /// Resolution: width and height of each cascade's map in texels, 64..8192. Default 2048.
   vtkSetClampMacro(Resolution, int, 64, 8192);
   vtkGetMacro(Resolution, int);
   ///@}
 
   ///@{
-  /// Warp mode and split scheme: vtkCascadedShadowMapPlanner::WarpModes / SplitSchemes.
-  /// Defaults: generalized LiSPSM, adaptive splits.
-  vtkSetClampMacro(WarpMode, int, 0, 3);
-  vtkGetMacro(WarpMode, int);
-  vtkSetClampMacro(SplitScheme, int, 0, 4);
-  vtkGetMacro(SplitScheme, int);
-  ///@}
-
-  ///@{
-  /// Practical split weight lambda (default 0.5) and adaptive split ratio alpha (default 2).
-  vtkSetClampMacro(Lambda, double, 0.0, 1.0);
-  vtkGetMacro(Lambda, double);
-  vtkSetClampMacro(Alpha, double, 1.000001, 1.0e6);
-  vtkGetMacro(Alpha, double);
-  ///@}
-
-  ///@{
-  /// Clamp casters in front of a cascade to its near depth (Lloyd et al. §6.4). Default on.
-  vtkSetMacro(DepthClamp, bool);
-  vtkGetMacro(DepthClamp, bool);
+  /**
+   * How the cascades are planned; these forward to GetPlanner(), which documents them:
+   * number of cascades (1..8, default 2, Barroso & Celes §4), warp mode and split scheme
+   * (vtkCascadedShadowMapPlanner::WarpModes / SplitSchemes; defaults generalized LiSPSM and
+   * adaptive), lambda (practical splits, 0.5), alpha (adaptive splits, 2) and depth clamping
+   * (Lloyd et al. §6.4, on).
+   */
+  void SetNumberOfCascades(int cascades);
+  int GetNumberOfCascades();
+  void SetWarpMode(int mode);
+  int GetWarpMode();
+  void SetSplitScheme(int scheme);
+  int GetSplitScheme();
+  void SetLambda(double lambda);
+  double GetLambda();
+  void SetAlpha(double alpha);
+  double GetAlpha();
+  void SetDepthClamp(bool clamp);
+  bool GetDepthClamp();
   vtkBooleanMacro(DepthClamp, bool);
   ///@}
+
+  /// The planner that holds the options above and computes the cascades.
+  vtkCascadedShadowMapPlanner* GetPlanner();
+
+  /// Includes the planner's options.
+  vtkMTimeType GetMTime() override;
 
   ///@{
   /// Slope-scaled depth offset applied while rendering the maps (glPolygonOffset factor and
@@ -148,13 +147,7 @@ protected:
   void CombineAcrossProcesses(vtkTextureObject* atlas);
   bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles);
 
-  int NumberOfCascades = 2;
   int Resolution = 2048;
-  int WarpMode = 3;
-  int SplitScheme = 4;
-  double Lambda = 0.5;
-  double Alpha = 2.0;
-  bool DepthClamp = true;
   double PolygonOffsetFactor = 1.1;
   double PolygonOffsetUnits = 2.0;
 
