@@ -177,8 +177,8 @@ compare_to_first(view, "key-light-again", "after ShadowedLights All -> Key")
 # 6. Properties reach the passes, and setting them back gives the first image again: first the
 # options that keep the size of the maps, then the two that reallocate them.
 # name: (documented default, a different value, what the passes' PrintSelf then shows)
-settings = {"WarpMode": ("Generalized", "LiSPSM", "WarpMode: 2"),
-            "SplitScheme": ("Adaptive", "Practical", "SplitScheme: 3"),
+settings = {"WarpMode": ("Generalized", "LiSPSM", "WarpMode: lispsm"),
+            "SplitScheme": ("Adaptive", "Practical", "SplitScheme: practical"),
             "PCFSize": ("5x5", "3x3", "PCFSize: 3"),
             "ShadowDarkness": (1.0, 0.5, "ShadowDarkness: 0.5"),
             "ShadowDebugMode": ("Off", "Cascades", "DebugMode: 1"),
