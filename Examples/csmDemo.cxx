@@ -304,12 +304,12 @@ struct App
       return;
     const auto& s = this->Opt.Shadow;
     std::ostringstream t;
-    t << "technique " << s.Technique;
+    t << "technique " << s.Technique << " | " << s.Resolution << "^2 | frame "
+      << static_cast<int>(this->LastFrameMs) << " ms";
     if (s.Technique == "csm")
-      t << " | warp " << kWarps[s.Warp] << " | partition " << kPartitions[s.Partition]
+      t << "\nwarp " << kWarps[s.Warp] << " | partition " << kPartitions[s.Partition]
         << " | cascades " << s.Cascades << " | pcf " << s.PCF << " " << kKernels[s.Kernel]
         << " | debug " << kDebug[s.Debug];
-    t << " | " << s.Resolution << "^2 | frame " << static_cast<int>(this->LastFrameMs) << " ms";
     this->Text->SetInput(t.str().c_str());
   }
 
