@@ -77,19 +77,20 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
   vtkMatrix4x4::Invert(worldToView, viewToWorld);
   const double toUnit[16] = { 0.5, 0, 0, 0.5, 0, 0.5, 0, 0.5, 0, 0, 0.5, 0.5, 0, 0, 0, 1 };
   std::string signature;
-  this->Uniforms.clear();
+  ShaderUniforms& u = this->Uniforms;
+  u = ShaderUniforms();
   for (const auto& maps : baker->GetLightMaps())
   {
-    LightUniforms u;
-    u.LightIndex = maps.LightIndex;
-    u.Count = maps.NumberOfCascades;
-    u.SplitNear = static_cast<float>(maps.SplitNear);
-    u.Attenuation = static_cast<float>(this->ShadowDarkness * maps.Light->GetShadowAttenuation());
+    u.LightIndex.push_back(maps.LightIndex);
+    u.Count.push_back(maps.NumberOfCascades);
+    u.SplitNear.push_back(static_cast<float>(maps.SplitNear));
+    u.Attenuation.push_back(
+      static_cast<float>(this->ShadowDarkness * maps.Light->GetShadowAttenuation()));
     u.TileTexel = 1.0f / static_cast<float>(std::max(1, maps.Resolution));
     for (int c = 0; c < 8; ++c)
     {
       double clipFromView[16], mapFromView[16];
-      if (c < u.Count)
+      if (c < maps.NumberOfCascades)
       {
         vtkMatrix4x4::Multiply4x4(maps.WorldToMap[c], viewToWorld->GetData(), clipFromView);
         vtkMatrix4x4::Multiply4x4(toUnit, clipFromView, mapFromView);
@@ -98,23 +99,22 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
       {
         vtkMatrix4x4::Identity(mapFromView);
       }
-      for (int row = 0; row < 4; ++row)
+      for (int column = 0; column < 4; ++column)
       {
-        for (int column = 0; column < 4; ++column)
+        for (int row = 0; row < 4; ++row)
         {
-          u.VCToMap[c][4 * column + row] = static_cast<float>(mapFromView[4 * row + column]);
+          u.ToMap.push_back(static_cast<float>(mapFromView[4 * row + column]));
         }
       }
       for (int k = 0; k < 4; ++k)
       {
-        u.Tile[c][k] = static_cast<float>(maps.Tile[c][k]);
+        u.Tile.push_back(static_cast<float>(maps.Tile[c][k]));
       }
-      u.SplitFar[c] = c < u.Count ? static_cast<float>(maps.SplitFar[c]) : 0.0f;
+      u.SplitFar.push_back(c < maps.NumberOfCascades ? static_cast<float>(maps.SplitFar[c]) : 0.0f);
     }
     maps.Atlas->Activate();
-    u.TextureUnit = maps.Atlas->GetTextureUnit();
-    this->Uniforms.push_back(u);
-    signature += std::to_string(u.LightIndex) + ";";
+    u.TextureUnit.push_back(maps.Atlas->GetTextureUnit());
+    signature += std::to_string(maps.LightIndex) + ";";
   }
   if (signature != this->ShaderSignature)
   {
@@ -136,15 +136,15 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
 {
   const size_t vcLine = fragmentShader.find(kVertexVC);
   const size_t mainLine = fragmentShader.find("void main()");
-  if (this->Uniforms.empty() || vcLine == std::string::npos || mainLine == std::string::npos)
+  if (this->Uniforms.Lights() == 0 || vcLine == std::string::npos || mainLine == std::string::npos)
   {
     return true; // unlit: no view-space position, no lights to shadow
   }
   std::ostringstream decl;
-  decl << "#define CSM_LIGHTS " << this->Uniforms.size() << "\n" << csmShadowFS << "\n";
+  decl << "#define CSM_LIGHTS " << this->Uniforms.Lights() << "\n" << csmShadowFS << "\n";
   std::ostringstream impl;
   impl << kVertexVC << "\n  vec4 csmDVCdx = dFdx(vertexVC);\n  vec4 csmDVCdy = dFdy(vertexVC);\n";
-  for (size_t j = 0; j < this->Uniforms.size(); ++j)
+  for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
   {
     decl << "uniform sampler2DShadow csmMap" << j << ";\n";
     impl << "  vec4 csmResult" << j << " = csmShadow(csmMap" << j << ", " << j
@@ -152,9 +152,9 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   }
   fragmentShader.insert(mainLine, decl.str());
   vtkShaderProgram::Substitute(fragmentShader, kVertexVC, impl.str(), false);
-  for (size_t j = 0; j < this->Uniforms.size(); ++j)
+  for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
   {
-    const std::string k = std::to_string(this->Uniforms[j].LightIndex);
+    const std::string k = std::to_string(this->Uniforms.LightIndex[j]);
     const std::string factor = "csmResult" + std::to_string(j) + ".x * ";
     vtkShaderProgram::Substitute(fragmentShader, "diffuse += (df * lightColor" + k + ");",
       "diffuse += (df * " + factor + "lightColor" + k + ");", false);
@@ -175,38 +175,29 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
 bool vtkCascadedShadowMapPass::SetShaderParameters(
   vtkShaderProgram* program, vtkAbstractMapper*, vtkProp*, vtkOpenGLVertexArrayObject*)
 {
-  if (this->Uniforms.empty() || !program->IsUniformUsed("csmPCFSize"))
+  if (this->Uniforms.Lights() == 0 || !program->IsUniformUsed("csmPCFSize"))
   {
     return true;
   }
-  program->SetUniformf("csmTileTexel", this->Uniforms[0].TileTexel);
+  program->SetUniformf("csmTileTexel", this->Uniforms.TileTexel);
   program->SetUniformi("csmPCFSize", this->PCFSize);
   program->SetUniformi("csmKernel", this->PCFKernel);
   program->SetUniformf("csmConstantBias", static_cast<float>(this->ConstantBias));
   program->SetUniformf("csmSlopeBias", static_cast<float>(this->SlopeBias));
   program->SetUniformf("csmBlendBand", static_cast<float>(this->BlendBand));
   program->SetUniformi("csmDebug", this->DebugMode);
-  const int lights = static_cast<int>(this->Uniforms.size());
-  std::vector<float> toMap(lights * 8 * 16), tiles(lights * 8 * 4), splitFar(lights * 8);
-  std::vector<float> splitNear(lights), attenuation(lights);
-  std::vector<int> counts(lights);
+  const ShaderUniforms& u = this->Uniforms;
+  const int lights = static_cast<int>(u.Lights());
   for (int j = 0; j < lights; ++j)
   {
-    const LightUniforms& u = this->Uniforms[j];
-    program->SetUniformi(indexed("csmMap", j).c_str(), u.TextureUnit);
-    std::copy(&u.VCToMap[0][0], &u.VCToMap[0][0] + 8 * 16, toMap.begin() + j * 8 * 16);
-    std::copy(&u.Tile[0][0], &u.Tile[0][0] + 8 * 4, tiles.begin() + j * 8 * 4);
-    std::copy(u.SplitFar, u.SplitFar + 8, splitFar.begin() + j * 8);
-    splitNear[j] = u.SplitNear;
-    attenuation[j] = u.Attenuation;
-    counts[j] = u.Count;
+    program->SetUniformi(indexed("csmMap", j).c_str(), u.TextureUnit[j]);
   }
-  program->SetUniformMatrix4x4v("csmToMap", lights * 8, toMap.data());
-  program->SetUniform4fv("csmTile", lights * 8, tiles.data());
-  program->SetUniform1fv("csmSplitFar", lights * 8, splitFar.data());
-  program->SetUniform1fv("csmSplitNear", lights, splitNear.data());
-  program->SetUniform1iv("csmCount", lights, counts.data());
-  program->SetUniform1fv("csmAttenuation", lights, attenuation.data());
+  program->SetUniformMatrix4x4v("csmToMap", lights * 8, const_cast<float*>(u.ToMap.data()));
+  program->SetUniform4fv("csmTile", lights * 8, u.Tile.data());
+  program->SetUniform1fv("csmSplitFar", lights * 8, u.SplitFar.data());
+  program->SetUniform1fv("csmSplitNear", lights, u.SplitNear.data());
+  program->SetUniform1iv("csmCount", lights, u.Count.data());
+  program->SetUniform1fv("csmAttenuation", lights, u.Attenuation.data());
   return true;
 }
 

@@ -136,20 +136,21 @@ protected:
   double ShadowDarkness = 1.0;
   int DebugMode = DEBUG_OFF;
 
-  /// Per shadowed light, what the shader needs this frame (view space -> map).
-  struct LightUniforms
+  /// What the shader needs this frame, packed as its uniform arrays (light j's cascade c at
+  /// 8 j + c): filled once per frame in Render(), only uploaded per draw.
+  struct ShaderUniforms
   {
-    int LightIndex = -1;
-    int Count = 0;
-    float VCToMap[8][16]; // column-major, for glUniformMatrix4fv
-    float Tile[8][4];
-    float SplitFar[8];
-    float SplitNear = 0.0f;
-    float Attenuation = 1.0f;
-    float TileTexel = 1.0f; // one texel of a cascade in its [0,1] coordinates
-    int TextureUnit = 0;
+    std::vector<int> LightIndex;  ///< per light: index among the switched-on lights
+    std::vector<int> TextureUnit; ///< per light: its atlas
+    std::vector<int> Count;       ///< per light: cascades
+    std::vector<float> SplitNear, Attenuation; ///< per light
+    std::vector<float> ToMap;     ///< per cascade: view -> map, 16 floats column-major
+    std::vector<float> Tile;      ///< per cascade: atlas offset and scale, 4 floats
+    std::vector<float> SplitFar;  ///< per cascade
+    float TileTexel = 1.0f;       ///< one texel of a cascade in its [0,1] coordinates
+    size_t Lights() const { return this->Count.size(); }
   };
-  std::vector<LightUniforms> Uniforms;
+  ShaderUniforms Uniforms;
   std::string ShaderSignature; // light indices the injected code refers to
   vtkTimeStamp ShaderTime;
 
