@@ -16,6 +16,7 @@ MODE="${1:-all}"
 case "$MODE" in all|single|mpi) ;; *) echo "error: unknown mode '$MODE' (all, single or mpi)" >&2; exit 2 ;; esac
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$ROOT/scripts/common.sh"
 BUILD="${CSM_PV_BUILD_DIR:-$ROOT/build-paraview}"
 PREFIX="$BUILD/prefix"
 LOGS="$BUILD/logs"
@@ -27,31 +28,7 @@ PACKAGES=(cmake g++ make pkg-config libglm-dev xvfb xauth libgl1-mesa-dri
   liblz4-dev liblzma-dev libpng-dev libtiff-dev zlib1g-dev libdouble-conversion-dev
   libutfcpp-dev libx11-dev libxt-dev libgl-dev libegl-dev libgles-dev libglu1-mesa-dev)
 
-die() { echo "error: $*" >&2; exit 1; }
 mkdir -p "$LOGS"
-
-sudo=""
-if [ "$(id -u)" -ne 0 ]; then
-  command -v sudo >/dev/null || die "not root and no sudo: cannot run apt-get"
-  sudo="sudo"
-fi
-
-install_missing_packages() {
-  local missing=()
-  for p in "${PACKAGES[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-  done
-  [ ${#missing[@]} -eq 0 ] && return 0
-  echo "Installing Debian packages: ${missing[*]}"
-  # No recommends: paraview recommends python3-paraview, which would remove python3-vtk9 and
-  # libvtk9-dev; --no-remove makes apt stop rather than remove anything.
-  if ! { $sudo apt-get update -q &&
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends \
-      --no-remove "${missing[@]}"; } >"$LOGS/apt.log" 2>&1; then
-    tail -n 5 "$LOGS/apt.log" >&2
-    die "could not install the Debian packages: ${missing[*]} (full log: $LOGS/apt.log)"
-  fi
-}
 
 unpack_paraview_prefix() {
   local version

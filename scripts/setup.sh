@@ -4,31 +4,11 @@
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$ROOT/scripts/common.sh"
 BUILD="${CSM_BUILD_DIR:-$ROOT/build}"
 LOGS="$BUILD/logs"
 PACKAGES=(cmake g++ make pkg-config libvtk9-dev libglm-dev libgtest-dev libbenchmark-dev
   xvfb xauth libgl1-mesa-dri assimp-testmodels libembree-dev openmpi-bin)
-
-die() { echo "error: $*" >&2; exit 1; }
-
-install_missing_packages() {
-  local missing=()
-  for p in "${PACKAGES[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-  done
-  [ ${#missing[@]} -eq 0 ] && return 0
-  echo "Installing Debian packages: ${missing[*]}"
-  local sudo=""
-  if [ "$(id -u)" -ne 0 ]; then
-    command -v sudo >/dev/null || die "packages missing (${missing[*]}) and not root; install them with apt-get"
-    sudo="sudo"
-  fi
-  mkdir -p "$LOGS"
-  if ! { $sudo apt-get update -q && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"; } >"$LOGS/apt.log" 2>&1; then
-    tail -n 5 "$LOGS/apt.log" >&2
-    die "could not install the Debian packages: ${missing[*]} (full log: $LOGS/apt.log)"
-  fi
-}
 
 configure_and_build() {
   mkdir -p "$LOGS"
@@ -40,15 +20,6 @@ configure_and_build() {
   if ! cmake --build "$BUILD" -j "$(nproc)" >"$LOGS/build.log" 2>&1; then
     grep -E "error|Error" "$LOGS/build.log" | head -n 20 >&2
     die "build failed (full log: $LOGS/build.log)"
-  fi
-}
-
-# Runs a command with a display: the current one, else a virtual X server (Mesa llvmpipe).
-with_display() {
-  if [ -n "${DISPLAY:-}" ]; then
-    "$@"
-  else
-    xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$@"
   fi
 }
 
