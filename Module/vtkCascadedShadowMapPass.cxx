@@ -142,28 +142,35 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   }
   std::ostringstream decl;
   decl << "#define CSM_LIGHTS " << this->Uniforms.Lights() << "\n" << csmShadowFS << "\n";
+  // Screen derivatives where control flow is still uniform; the lookup itself only where the
+  // light reaches the surface (df > 0: behind it, diffuse and specular are 0 anyway), or always
+  // for the debug views.
   std::ostringstream impl;
   impl << kVertexVC << "\n  vec4 csmDVCdx = dFdx(vertexVC);\n  vec4 csmDVCdy = dFdy(vertexVC);\n";
   for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
   {
     decl << "uniform sampler2DShadow csmMap" << j << ";\n";
-    impl << "  vec4 csmResult" << j << " = csmShadow(csmMap" << j << ", " << j
-         << ", vertexVC, csmDVCdx, csmDVCdy);\n";
+    impl << "  vec4 csmResult" << j << " = vec4(1.0, -1.0, 0.0, 1.0);\n";
   }
   fragmentShader.insert(mainLine, decl.str());
   vtkShaderProgram::Substitute(fragmentShader, kVertexVC, impl.str(), false);
   for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
   {
     const std::string k = std::to_string(this->Uniforms.LightIndex[j]);
-    const std::string factor = "csmResult" + std::to_string(j) + ".x * ";
+    const std::string result = "csmResult" + std::to_string(j);
+    const std::string lookup = result + " = csmShadow(csmMap" + std::to_string(j) + ", " +
+      std::to_string(j) + ", vertexVC, csmDVCdx, csmDVCdy);";
+    const std::string factor = result + ".x * ";
     vtkShaderProgram::Substitute(fragmentShader, "diffuse += (df * lightColor" + k + ");",
-      "diffuse += (df * " + factor + "lightColor" + k + ");", false);
+      "if (df > 0.0 || csmDebug != 0) { " + lookup + " }\n  diffuse += (df * " + factor +
+        "lightColor" + k + ");",
+      false);
     vtkShaderProgram::Substitute(fragmentShader, "specular += (sf * lightColor" + k + ");",
       "specular += (sf * " + factor + "lightColor" + k + ");", false);
     vtkShaderProgram::Substitute(fragmentShader, "radiance = lightColor" + k + ";",
-      "radiance = " + factor + "lightColor" + k + ";", false);
+      lookup + "\n  radiance = " + factor + "lightColor" + k + ";", false);
     vtkShaderProgram::Substitute(fragmentShader, "radiance = lightColor" + k + " * attenuation;",
-      "radiance = " + factor + "lightColor" + k + " * attenuation;", false);
+      lookup + "\n  radiance = " + factor + "lightColor" + k + " * attenuation;", false);
   }
   vtkShaderProgram::Substitute(fragmentShader, "//VTK::Light::Impl",
     "//VTK::Light::Impl\n  if (csmDebug != 0) { gl_FragData[0] = csmDebugColor(gl_FragData[0], "

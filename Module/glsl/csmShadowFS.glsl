@@ -43,22 +43,88 @@ float csmTap(sampler2DShadow map, vec4 tile, vec2 uv, float z)
   return textureLod(map, vec3(tile.xy + inside * tile.zw, z), 0.0);
 }
 
-// Visibility (1 lit, 0 shadowed) of one cascade, and the aliasing error m there.
+// Texel-space PCF over (2r+1) x (2r+1) texels: the mean of (2r+1)^2 hardware bilinear compares
+// one texel apart around uv, taken with (r+1)^2 taps. Along each axis those compares weigh the
+// 2r+2 texels they touch [1-f, 1, ..., 1, f] (f: uv's fraction between texel centres); each
+// adjacent pair of texels is one bilinear tap of weight w0 + w1 placed w1/(w0+w1) past the first
+// (the "optimized PCF" of The Witness / Castano 2013, exact for the box of bilinear compares).
+// Every tap keeps its own receiver-plane depth (Barroso & Celes 2007, §2.2).
+float csmGridPCF(sampler2DShadow map, vec4 tile, vec2 uv, float zRef, vec2 dz, int r)
+{
+  float maxStep = 0.05; // keep grazing receivers from throwing the taps far off their plane
+  vec2 texel = uv / csmTileTexel - 0.5; // in texel-centre units
+  vec2 base = floor(texel);
+  vec2 f = texel - base;
+  float sum = 0.0;
+  for (int i = 0; i <= r; ++i)
+  {
+    float w0x = i == 0 ? 1.0 - f.x : 1.0;
+    float w1x = i == r ? f.x : 1.0;
+    float wx = w0x + w1x;
+    float px = base.x - float(r) + 2.0 * float(i) + w1x / wx;
+    for (int k = 0; k <= r; ++k)
+    {
+      float w0y = k == 0 ? 1.0 - f.y : 1.0;
+      float w1y = k == r ? f.y : 1.0;
+      float wy = w0y + w1y;
+      float py = base.y - float(r) + 2.0 * float(k) + w1y / wy;
+      vec2 tap = (vec2(px, py) + 0.5) * csmTileTexel;
+      vec2 o = tap - uv;
+      sum += wx * wy * csmTap(map, tile, tap, zRef + clamp(dot(dz, o), -maxStep, maxStep));
+    }
+  }
+  float n = float(2 * r + 1);
+  return sum / (n * n);
+}
+
+// Jittered circular kernel of radius r + 0.5 texels: as many bilinear taps as the grid kernel,
+// on a spiral rotated per pixel, so that the taps stay unaligned (Barroso & Celes 2007, §2.2).
+float csmJitteredPCF(sampler2DShadow map, vec4 tile, vec2 uv, float zRef, vec2 dz, int r)
+{
+  float maxStep = 0.05;
+  int n = (r + 1) * (r + 1);
+  float turn = 6.2831853 * csmHash(gl_FragCoord.xy);
+  float sum = 0.0;
+  for (int i = 0; i < n; ++i)
+  {
+    float radius = sqrt((float(i) + 0.5) / float(n)) * (float(r) + 0.5);
+    float angle = float(i) * 2.3999632 + turn;
+    vec2 o = radius * vec2(cos(angle), sin(angle)) * csmTileTexel;
+    sum += csmTap(map, tile, uv + o, zRef + clamp(dot(dz, o), -maxStep, maxStep));
+  }
+  return sum / float(n);
+}
+
+// Is a view-space point inside a cascade's map (its xy square and in front of its far plane)?
+bool csmInside(mat4 vcToMap, vec4 vc)
+{
+  vec4 h = vcToMap * vc;
+  vec3 p = h.xyz / h.w;
+  return h.w > 0.0 && all(greaterThanEqual(p.xy, vec2(0.0))) && all(lessThanEqual(p.xy, vec2(1.0))) &&
+    p.z <= 1.0;
+}
+
+// Visibility (1 lit, 0 shadowed) of one cascade, or -1 when the point is outside its map; the
+// aliasing error m there when the error view asks for it.
 float csmVisibility(sampler2DShadow map, mat4 vcToMap, vec4 tile, vec4 vc, vec4 dvcdx,
   vec4 dvcdy, out float m)
 {
+  m = 0.0;
+  if (!csmInside(vcToMap, vc))
+  {
+    return -1.0;
+  }
   vec3 p = csmProject(vcToMap, vc);
   vec3 dx, dy;
   csmDerivatives(vcToMap, vc, dvcdx, dvcdy, dx, dy);
-  // Lloyd Eq. 1: a texel's footprint in pixels, 1 / smallest singular value of d(texel)/d(pixel).
-  mat2 j = mat2(dx.xy, dy.xy) / csmTileTexel;
-  float e = dot(j[0], j[0]) + dot(j[1], j[1]);
-  float d = abs(determinant(j));
-  float smin2 = 0.5 * (e - sqrt(max(e * e - 4.0 * d * d, 0.0)));
-  m = 1.0 / sqrt(max(smin2, 1e-12));
-  if (any(lessThan(p.xy, vec2(0.0))) || any(greaterThan(p.xy, vec2(1.0))) || p.z > 1.0)
+  if (csmDebug == 2)
   {
-    return 1.0; // outside this cascade's map: nothing casts here
+    // Lloyd Eq. 1: a texel's footprint in pixels, 1 / smallest singular value of d(texel)/d(pixel).
+    mat2 j = mat2(dx.xy, dy.xy) / csmTileTexel;
+    float e = dot(j[0], j[0]) + dot(j[1], j[1]);
+    float d = abs(determinant(j));
+    float smin2 = 0.5 * (e - sqrt(max(e * e - 4.0 * d * d, 0.0)));
+    m = 1.0 / sqrt(max(smin2, 1e-12));
   }
   // Receiver plane: depth change per unit of map u and v (Barroso & Celes §2.2 virtual samples).
   float det = dx.x * dy.y - dx.y * dy.x;
@@ -68,37 +134,8 @@ float csmVisibility(sampler2DShadow map, mat4 vcToMap, vec4 tile, vec4 vc, vec4 
   float zSlopePerTexel = min((abs(dz.x) + abs(dz.y)) * csmTileTexel, 0.05);
   float zRef = p.z - csmConstantBias - csmSlopeBias * zSlopePerTexel;
   int r = csmPCFSize / 2;
-  float maxStep = 0.05; // keep grazing receivers from throwing the taps far off their plane
-  float sum = 0.0;
-  float count = 0.0;
-  if (csmKernel == 0 || r == 0)
-  {
-    for (int i = -r; i <= r; ++i)
-    {
-      for (int k = -r; k <= r; ++k)
-      {
-        vec2 o = vec2(float(i), float(k)) * csmTileTexel;
-        sum += csmTap(map, tile, p.xy + o, zRef + clamp(dot(dz, o), -maxStep, maxStep));
-        count += 1.0;
-      }
-    }
-  }
-  else
-  {
-    // Jittered circular kernel: as many taps as the square kernel, on a spiral of radius
-    // r + 0.5 texels rotated per pixel; taps stay unaligned (Barroso & Celes §2.2).
-    int n = (2 * r + 1) * (2 * r + 1);
-    float turn = 6.2831853 * csmHash(gl_FragCoord.xy);
-    for (int i = 0; i < n; ++i)
-    {
-      float radius = sqrt((float(i) + 0.5) / float(n)) * (float(r) + 0.5);
-      float angle = float(i) * 2.3999632 + turn;
-      vec2 o = radius * vec2(cos(angle), sin(angle)) * csmTileTexel;
-      sum += csmTap(map, tile, p.xy + o, zRef + clamp(dot(dz, o), -maxStep, maxStep));
-      count += 1.0;
-    }
-  }
-  return sum / count;
+  return csmKernel == 0 || r == 0 ? csmGridPCF(map, tile, p.xy, zRef, dz, r)
+                                  : csmJitteredPCF(map, tile, p.xy, zRef, dz, r);
 }
 
 // Per shadowed light j (CSM_LIGHTS of them, defined by the pass), its cascades at
@@ -111,7 +148,7 @@ uniform int csmCount[CSM_LIGHTS];
 uniform float csmAttenuation[CSM_LIGHTS];
 
 // Shadow of light j: x = light factor (1 lit .. 1 - attenuation), y = cascade index (-1: none),
-// z = aliasing error m, w = visibility.
+// z = aliasing error m (error view only), w = visibility.
 vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
 {
   int count = csmCount[j];
@@ -129,10 +166,22 @@ vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
   float m;
   float visibility =
     csmVisibility(map, csmToMap[first + c], csmTile[first + c], vc, dvcdx, dvcdy, m);
+  // A map kept from an earlier frame that misses this point: the next one that covers it.
+  while (visibility < 0.0 && c + 1 < count)
+  {
+    ++c;
+    visibility = csmVisibility(map, csmToMap[first + c], csmTile[first + c], vc, dvcdx, dvcdy, m);
+  }
+  if (visibility < 0.0)
+  {
+    return vec4(1.0, -1.0, 0.0, 1.0);
+  }
   float cascadeNear = c == 0 ? csmSplitNear[j] : csmSplitFar[first + c - 1];
   float band = csmBlendBand * (csmSplitFar[first + c] - cascadeNear);
-  if (c + 1 < count && band > 0.0 && depth > csmSplitFar[first + c] - band)
+  if (c + 1 < count && band > 0.0 && depth > csmSplitFar[first + c] - band &&
+    csmInside(csmToMap[first + c + 1], vc))
   {
+    // Blend into the next cascade only where its map covers the point.
     float mNext;
     float next = csmVisibility(
       map, csmToMap[first + c + 1], csmTile[first + c + 1], vc, dvcdx, dvcdy, mNext);
