@@ -36,6 +36,12 @@ namespace
 {
 constexpr int kMaxCascades = 8;
 constexpr size_t kMaxReceiverBoxes = 64;
+// Frames per second from which the window's desired update rate means "interacting" (the
+// interactor's default is 15, its still rate 0.0001).
+constexpr double kInteractiveUpdateRate = 1.0;
+// Border a kept map must have around the new body, in texels: none, as a freshly planned map,
+// fitted to the body, has none either (the lookup clamps its taps to the map).
+constexpr double kReuseMarginTexels = 0.0;
 
 /// Bounds of a prop that draws 3D geometry, or false (2D actors, invisible, no bounds).
 bool propBounds(vtkProp* prop, double bounds[6])
@@ -72,7 +78,6 @@ bool reachesLightVolume(const double m[16], const double b[6], bool depthClamp)
 vtkCascadedShadowMapBakerPass::vtkCascadedShadowMapBakerPass()
 {
   this->Planner = vtkSmartPointer<vtkCascadedShadowMapPlanner>::New();
-  this->FrameBuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
   this->LightCamera = vtkSmartPointer<vtkCamera>::New();
   this->Projection = vtkSmartPointer<vtkMatrix4x4>::New();
   // Identity view: the cascade matrix (world -> light clip) is the whole projection.
@@ -117,17 +122,89 @@ bool vtkCascadedShadowMapBakerPass::LightCastsShadows(vtkLight* light)
     light->GetShadowAttenuation() > 0.0f; // a shadow of attenuation 0 is invisible: no maps
 }
 
-bool vtkCascadedShadowMapBakerPass::NeedsBake(vtkRenderer* renderer)
+void vtkCascadedShadowMapBakerPass::SetInteractiveMapBorder(double border)
 {
-  vtkMTimeType input = std::max(this->GetMTime(), renderer->GetActiveCamera()->GetMTime());
-  vtkLightCollection* lights = renderer->GetLights();
-  input = std::max(input, lights->GetMTime());
-  vtkCollectionSimpleIterator lit;
-  lights->InitTraversal(lit);
-  while (vtkLight* light = lights->GetNextLight(lit))
+  if (!std::isfinite(border))
   {
-    input = std::max(input, light->GetMTime());
+    vtkErrorMacro(<< "InteractiveMapBorder must be finite; keeping " << this->InteractiveMapBorder);
+    return;
   }
+  border = std::min(std::max(border, 0.0), 0.5);
+  if (border != this->InteractiveMapBorder)
+  {
+    this->InteractiveMapBorder = border;
+    this->Modified();
+  }
+}
+
+void vtkCascadedShadowMapBakerPass::SetMapReuseTolerance(double tolerance)
+{
+  if (!std::isfinite(tolerance))
+  {
+    vtkErrorMacro(<< "MapReuseTolerance must be finite; keeping " << this->MapReuseTolerance);
+    return;
+  }
+  tolerance = std::min(std::max(tolerance, 1.0), 100.0);
+  if (tolerance != this->MapReuseTolerance)
+  {
+    this->MapReuseTolerance = tolerance;
+    this->Modified();
+  }
+}
+
+vtkCascadedShadowMapBakerPass::RendererMaps& vtkCascadedShadowMapBakerPass::MapsOf(
+  vtkRenderer* renderer, vtkOpenGLRenderWindow* window)
+{
+  // Forget renderers that are gone (their textures free themselves with their context).
+  this->Renderers.erase(std::remove_if(this->Renderers.begin(), this->Renderers.end(),
+                          [](const RendererMaps& r) { return !r.Renderer; }),
+    this->Renderers.end());
+  for (RendererMaps& state : this->Renderers)
+  {
+    if (state.Renderer == renderer)
+    {
+      if (state.Window != window)
+      {
+        state = RendererMaps(); // moved to another context: start afresh
+        state.Renderer = renderer;
+        state.Window = window;
+      }
+      return state;
+    }
+  }
+  RendererMaps state;
+  state.Renderer = renderer;
+  state.Window = window;
+  this->Renderers.push_back(std::move(state));
+  return this->Renderers.back();
+}
+
+const std::vector<vtkCascadedShadowMapBakerPass::LightMaps>&
+vtkCascadedShadowMapBakerPass::GetLightMaps(vtkRenderer* renderer) const
+{
+  static const std::vector<LightMaps> none;
+  for (const RendererMaps& state : this->Renderers)
+  {
+    if (renderer && state.Renderer == renderer)
+    {
+      return state.Maps;
+    }
+  }
+  return none;
+}
+
+const std::vector<vtkCascadedShadowMapBakerPass::LightMaps>&
+vtkCascadedShadowMapBakerPass::GetLightMaps() const
+{
+  return this->GetLightMaps(this->LastRenderer);
+}
+
+bool vtkCascadedShadowMapBakerPass::InputsChanged(vtkRenderer* renderer, RendererMaps& state)
+{
+  // Everything but the camera and the lights' geometry: a camera move is judged cascade by
+  // cascade, a light's direction or position with its maps (Render()). Headlights and camera
+  // lights follow the camera, so their MTime changes with every camera move.
+  vtkMTimeType input = std::max(this->GetMTime(), renderer->GetLights()->GetMTime());
   vtkPropCollection* props = renderer->GetViewProps();
   input = std::max(input, props->GetMTime());
   vtkCollectionSimpleIterator pit;
@@ -144,17 +221,18 @@ bool vtkCascadedShadowMapBakerPass::NeedsBake(vtkRenderer* renderer)
     input = std::max(input, prop->GetRedrawMTime());
   }
   int* size = renderer->GetSize();
-  const bool changed = input > this->LastInputTime || size[0] != this->LastSize[0] ||
-    size[1] != this->LastSize[1];
-  this->LastInputTime = input;
-  this->LastSize[0] = size[0];
-  this->LastSize[1] = size[1];
+  const bool changed = input > state.LastInputTime || size[0] != state.LastSize[0] ||
+    size[1] != state.LastSize[1];
+  state.LastInputTime = input;
+  state.LastSize[0] = size[0];
+  state.LastSize[1] = size[1];
   return changed;
 }
 
 bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
-  vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles)
+  vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles, bool& reallocated)
 {
+  reallocated = false;
   const int columns = std::min(tiles, 4);
   const int rows = (tiles + columns - 1) / columns;
   GLint maxSize = 4096;
@@ -169,7 +247,8 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
   vtkTextureObject* atlas = maps.Atlas;
   const unsigned int width = static_cast<unsigned int>(columns * resolution);
   const unsigned int height = static_cast<unsigned int>(rows * resolution);
-  if (atlas->GetContext() != window || atlas->GetWidth() != width || atlas->GetHeight() != height)
+  if (atlas->GetContext() != window || atlas->GetWidth() != width ||
+    atlas->GetHeight() != height || !atlas->GetHandle())
   {
     atlas->ReleaseGraphicsResources(window);
     atlas->SetContext(window);
@@ -187,6 +266,7 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
     // A new GL texture: its compare mode and filters must be sent again, but the setters above
     // did not change the object when the values were the same as before.
     atlas->Modified();
+    reallocated = true;
   }
   maps.Resolution = resolution;
   for (int i = 0; i < tiles; ++i)
@@ -197,6 +277,54 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
     maps.Tile[i][3] = 1.0 / rows;
   }
   return true;
+}
+
+void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
+  vtkOpenGLFramebufferObject* frameBuffer, LightMaps& maps, int c,
+  const std::vector<vtkProp*>& casters, const std::vector<std::array<double, 6>>& casterBounds,
+  bool depthClamp)
+{
+  vtkOpenGLState* ostate = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow())->GetState();
+  const int width = static_cast<int>(maps.Atlas->GetWidth());
+  const int height = static_cast<int>(maps.Atlas->GetHeight());
+  const int x = static_cast<int>(std::lround(maps.Tile[c][0] * width));
+  const int y = static_cast<int>(std::lround(maps.Tile[c][1] * height));
+  const int w = static_cast<int>(std::lround(maps.Tile[c][2] * width));
+  const int h = static_cast<int>(std::lround(maps.Tile[c][3] * height));
+  ostate->vtkglViewport(x, y, w, h);
+  ostate->vtkglScissor(x, y, w, h);
+  // Far depth where nothing casts (the scissor keeps the other cascades' tiles).
+  ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+
+  // Only the casters whose bounds reach this cascade's light volume.
+  std::vector<vtkProp*> drawn;
+  for (size_t i = 0; i < casters.size(); ++i)
+  {
+    if (reachesLightVolume(maps.WorldToMap[c], casterBounds[i].data(), depthClamp))
+    {
+      drawn.push_back(casters[i]);
+    }
+  }
+  ++this->LastCascadeRenders;
+  this->LastPropsDrawn += static_cast<int>(drawn.size());
+  if (drawn.empty())
+  {
+    return;
+  }
+  vtkSmartPointer<vtkCamera> realCamera = renderer->GetActiveCamera();
+  this->Projection->DeepCopy(maps.WorldToMap[c]);
+  this->LightCamera->Modified();
+  renderer->SetActiveCamera(this->LightCamera);
+  vtkRenderState casterState(renderer);
+  casterState.SetPropArrayAndCount(drawn.data(), static_cast<int>(drawn.size()));
+  casterState.SetFrameBuffer(frameBuffer);
+  this->PreRender(&casterState);
+  for (vtkProp* prop : drawn)
+  {
+    this->NumberOfRenderedProps += prop->RenderOpaqueGeometry(renderer);
+  }
+  this->PostRender(&casterState);
+  renderer->SetActiveCamera(realCamera);
 }
 
 void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
@@ -214,14 +342,25 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   {
     return;
   }
+  using Clock = std::chrono::steady_clock;
+  const auto planStart = Clock::now();
+  this->LastRenderer = renderer;
+  RendererMaps& state = this->MapsOf(renderer, window);
+  this->LastCombineSeconds = 0.0;
+  this->LastPlanSeconds = 0.0;
+  this->LastMapSeconds = 0.0;
+  this->LastCascadeRenders = 0;
+  this->LastCascadesKept = 0;
+  this->LastPropsDrawn = 0;
+
   // Bounds first: computing them brings the props' pipelines up to date, which must not count
   // as a change next frame.
   double sceneBounds[6];
   renderer->ComputeVisiblePropBounds(sceneBounds);
-  int needed = this->NeedsBake(renderer) || this->Maps.empty() ? 1 : 0;
+  int changed = this->InputsChanged(renderer, state) || state.Maps.empty() ? 1 : 0;
   if (this->Distributed())
   {
-    // All processes plan from the global bounds and bake together, or none does.
+    // All processes plan from the global bounds and render the same cascades.
     double lo[3] = { sceneBounds[0], sceneBounds[2], sceneBounds[4] };
     double hi[3] = { sceneBounds[1], sceneBounds[3], sceneBounds[5] };
     double globalLo[3], globalHi[3];
@@ -232,20 +371,11 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
       sceneBounds[2 * i] = globalLo[i];
       sceneBounds[2 * i + 1] = globalHi[i];
     }
-    int anyNeeded = 0;
-    this->Controller->AllReduce(&needed, &anyNeeded, 1, vtkCommunicator::MAX_OP);
-    needed = anyNeeded;
+    int anyChanged = 0;
+    this->Controller->AllReduce(&changed, &anyChanged, 1, vtkCommunicator::MAX_OP);
+    changed = anyChanged;
   }
-  if (!needed)
-  {
-    return;
-  }
-  this->LastCombineSeconds = 0.0;
-  ++this->BakeCount;
-  this->LastCascadeRenders = 0;
-  this->LastPropsDrawn = 0;
 
-  // Plan every shadowed light first: nothing may move while the light camera is active.
   const bool depthClamp = this->Planner->GetDepthClamp();
   const int numberOfCascades = this->Planner->GetNumberOfCascades();
   const double aspect = renderer->GetTiledAspectRatio();
@@ -304,7 +434,19 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     }
   }
 
-  this->Maps.clear();
+  // Plan every shadowed light for this frame, and decide per cascade whether the map kept from
+  // an earlier frame still serves (only the camera moved, it covers, its error is bounded).
+  // While the user interacts (VTK's convention: the interactor raises the window's desired
+  // update rate), maps get a border and may be kept within MapReuseTolerance; a still frame
+  // keeps only a map that is exactly the one it would plan, so it always has full quality.
+  const bool interacting = window->GetDesiredUpdateRate() >= kInteractiveUpdateRate;
+  const double border = interacting ? this->InteractiveMapBorder : 0.0;
+  // (The tolerance is against a fresh map with the same border, whose error is 1 + 2 border
+  // times a tight one's.)
+  const double tolerance =
+    interacting ? this->MapReuseTolerance * (1.0 + 2.0 * border) : 1.0 + 1e-9;
+  std::vector<LightMaps> planned;
+  std::vector<int> render; // per light slot and cascade: 1 render, 0 keep
   int lightIndex = 0;
   vtkLightCollection* lights = renderer->GetLights();
   vtkCollectionSimpleIterator lit;
@@ -320,38 +462,69 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     {
       continue;
     }
+    const size_t slot = planned.size();
     LightMaps maps;
     maps.Light = light;
     maps.LightIndex = index;
-    const int planned = this->Planner->Plan(camera, aspect, light, sceneBounds);
-    maps.NumberOfCascades = std::min(planned, kMaxCascades);
+    const int count = this->Planner->Plan(camera, aspect, light, sceneBounds);
+    maps.NumberOfCascades = std::min(count, kMaxCascades);
+    light->GetTransformedPosition(maps.LightGeometry);
+    light->GetTransformedFocalPoint(maps.LightGeometry + 3);
+    maps.LightGeometry[6] = light->GetPositional() ? light->GetConeAngle() : -1.0;
+    const LightMaps* kept = !changed && depthClamp && slot < state.Maps.size() &&
+        state.Maps[slot].Light == light &&
+        std::equal(maps.LightGeometry, maps.LightGeometry + 7, state.Maps[slot].LightGeometry) &&
+        state.Maps[slot].NumberOfCascades == maps.NumberOfCascades
+      ? &state.Maps[slot]
+      : nullptr;
+    vtkNew<vtkMatrix4x4> m;
+    for (int c = 0; c < maps.NumberOfCascades; ++c)
+    {
+      this->Planner->GetCascadeMatrix(c, m, border);
+      std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
+      maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
+      const bool keep = kept &&
+        this->Planner->CompareKeptMap(c, kept->WorldToMap[c], kReuseMarginTexels,
+          kept->Resolution) <= tolerance;
+      if (keep)
+      {
+        std::copy(kept->WorldToMap[c], kept->WorldToMap[c] + 16, maps.WorldToMap[c]);
+      }
+      render.push_back(keep ? 0 : 1);
+    }
+    render.resize(kMaxCascades * (slot + 1), 0);
     if (maps.NumberOfCascades > 0)
     {
-      vtkNew<vtkMatrix4x4> m;
-      for (int c = 0; c < maps.NumberOfCascades; ++c)
-      {
-        this->Planner->GetCascadeMatrix(c, m);
-        std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
-        maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
-      }
       maps.SplitNear = this->Planner->GetCascadeNear(0);
     }
-    const size_t slot = this->Maps.size();
-    if (this->AtlasPool.size() <= slot)
+    if (state.AtlasPool.size() <= slot)
     {
-      this->AtlasPool.push_back(vtkSmartPointer<vtkTextureObject>::New());
+      state.AtlasPool.push_back(vtkSmartPointer<vtkTextureObject>::New());
     }
-    maps.Atlas = this->AtlasPool[slot];
-    this->Maps.push_back(maps);
+    maps.Atlas = state.AtlasPool[slot];
+    planned.push_back(maps);
+  }
+  if (this->Distributed() && !render.empty())
+  {
+    // One process's "render" is every process's: the maps are combined across them.
+    std::vector<int> any(render.size(), 0);
+    this->Controller->AllReduce(render.data(), any.data(), static_cast<vtkIdType>(render.size()),
+      vtkCommunicator::MAX_OP);
+    render = any;
   }
   // Textures only for the lights that cast shadows now.
-  for (size_t i = this->Maps.size(); i < this->AtlasPool.size(); ++i)
+  for (size_t i = planned.size(); i < state.AtlasPool.size(); ++i)
   {
-    this->AtlasPool[i]->ReleaseGraphicsResources(window);
+    state.AtlasPool[i]->ReleaseGraphicsResources(window);
   }
-  this->AtlasPool.resize(this->Maps.size());
-  if (this->Maps.empty())
+  state.AtlasPool.resize(planned.size());
+  if (this->MeasureTimes)
   {
+    this->LastPlanSeconds = std::chrono::duration<double>(Clock::now() - planStart).count();
+  }
+  if (planned.empty())
+  {
+    state.Maps.clear();
     return;
   }
 
@@ -367,37 +540,53 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   vtkOpenGLState::ScopedglEnableDisable savedOffset(ostate, GL_POLYGON_OFFSET_FILL);
   ostate->PushFramebufferBindings();
 
-  vtkSmartPointer<vtkCamera> realCamera = camera;
   const bool automaticLights = renderer->GetAutomaticLightCreation() != 0;
   renderer->SetAutomaticLightCreation(false);
-  this->FrameBuffer->SetContext(window);
-
-  for (LightMaps& maps : this->Maps)
+  if (!state.FrameBuffer)
   {
-    if (!this->PrepareAtlas(window, maps, numberOfCascades))
+    state.FrameBuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
+  }
+  state.FrameBuffer->SetContext(window);
+  const auto mapStart = Clock::now();
+  if (this->MeasureTimes)
+  {
+    glFinish();
+  }
+
+  for (size_t slot = 0; slot < planned.size(); ++slot)
+  {
+    LightMaps& maps = planned[slot];
+    bool reallocated = false;
+    if (!this->PrepareAtlas(window, maps, numberOfCascades, reallocated))
     {
       maps.NumberOfCascades = 0;
       continue;
     }
-    this->FrameBuffer->Bind();
-    this->FrameBuffer->AddDepthAttachment(maps.Atlas);
-    this->FrameBuffer->DeactivateDrawBuffers();
-    this->FrameBuffer->DeactivateReadBuffer();
-    if (this->FrameBuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER) == 0)
+    int* renderCascade = render.data() + kMaxCascades * slot;
+    bool any = false;
+    for (int c = 0; c < maps.NumberOfCascades; ++c)
+    {
+      renderCascade[c] = renderCascade[c] || reallocated;
+      any = any || renderCascade[c];
+    }
+    this->LastCascadesKept += maps.NumberOfCascades;
+    if (!any)
+    {
+      continue;
+    }
+    state.FrameBuffer->Bind();
+    state.FrameBuffer->AddDepthAttachment(maps.Atlas);
+    state.FrameBuffer->DeactivateDrawBuffers();
+    state.FrameBuffer->DeactivateReadBuffer();
+    if (state.FrameBuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER) == 0)
     {
       vtkErrorMacro(<< "The shadow map framebuffer is incomplete; no shadows");
       maps.NumberOfCascades = 0;
       continue;
     }
-    const int width = static_cast<int>(maps.Atlas->GetWidth());
-    const int height = static_cast<int>(maps.Atlas->GetHeight());
-    // Clear the whole atlas to far depth: unused tiles and skipped cascades read as lit.
-    ostate->vtkglDisable(GL_SCISSOR_TEST);
-    ostate->vtkglViewport(0, 0, width, height);
     ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     ostate->vtkglDepthMask(GL_TRUE);
     ostate->vtkglClearDepth(1.0);
-    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
     ostate->vtkglEnable(GL_DEPTH_TEST);
     ostate->vtkglDepthFunc(GL_LEQUAL);
     if (depthClamp)
@@ -412,51 +601,30 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     glPolygonOffset(static_cast<GLfloat>(this->PolygonOffsetFactor),
       static_cast<GLfloat>(this->PolygonOffsetUnits));
     ostate->vtkglEnable(GL_SCISSOR_TEST);
-
     for (int c = 0; c < maps.NumberOfCascades; ++c)
     {
-      const int x = static_cast<int>(std::lround(maps.Tile[c][0] * width));
-      const int y = static_cast<int>(std::lround(maps.Tile[c][1] * height));
-      const int w = static_cast<int>(std::lround(maps.Tile[c][2] * width));
-      const int h = static_cast<int>(std::lround(maps.Tile[c][3] * height));
-      ostate->vtkglViewport(x, y, w, h);
-      ostate->vtkglScissor(x, y, w, h);
-
-      // Only the casters whose bounds reach this cascade's light volume.
-      std::vector<vtkProp*> drawn;
-      for (size_t i = 0; i < casters.size(); ++i)
+      if (renderCascade[c])
       {
-        if (reachesLightVolume(maps.WorldToMap[c], casterBounds[i].data(), depthClamp))
-        {
-          drawn.push_back(casters[i]);
-        }
+        --this->LastCascadesKept;
+        this->RenderCascade(renderer, state.FrameBuffer, maps, c, casters, casterBounds, depthClamp);
       }
-      ++this->LastCascadeRenders;
-      this->LastPropsDrawn += static_cast<int>(drawn.size());
-      if (drawn.empty())
-      {
-        continue;
-      }
-      this->Projection->DeepCopy(maps.WorldToMap[c]);
-      this->LightCamera->Modified();
-      renderer->SetActiveCamera(this->LightCamera);
-      vtkRenderState casterState(renderer);
-      casterState.SetPropArrayAndCount(drawn.data(), static_cast<int>(drawn.size()));
-      casterState.SetFrameBuffer(this->FrameBuffer);
-      this->PreRender(&casterState);
-      for (vtkProp* prop : drawn)
-      {
-        this->NumberOfRenderedProps += prop->RenderOpaqueGeometry(renderer);
-      }
-      this->PostRender(&casterState);
-      renderer->SetActiveCamera(realCamera);
     }
-    this->FrameBuffer->RemoveDepthAttachment();
+    state.FrameBuffer->RemoveDepthAttachment();
     if (this->Distributed())
     {
       this->CombineAcrossProcesses(maps.Atlas);
     }
   }
+  if (this->MeasureTimes)
+  {
+    glFinish();
+    this->LastMapSeconds = std::chrono::duration<double>(Clock::now() - mapStart).count();
+  }
+  if (this->LastCascadeRenders > 0)
+  {
+    ++this->BakeCount;
+  }
+  state.Maps = planned;
   ostate->PopFramebufferBindings();
   renderer->SetAutomaticLightCreation(automaticLights);
   vtkOpenGLCheckErrorMacro("failed after rendering the cascaded shadow maps");
@@ -474,17 +642,26 @@ bool vtkCascadedShadowMapBakerPass::PreReplaceShaderValues(std::string&, std::st
 
 void vtkCascadedShadowMapBakerPass::ReleaseGraphicsResources(vtkWindow* w)
 {
-  for (auto& atlas : this->AtlasPool)
+  // The maps of the renderers drawn in this window (all of them for no window).
+  for (RendererMaps& state : this->Renderers)
   {
-    atlas->ReleaseGraphicsResources(w);
+    if (w && state.Window != w)
+    {
+      continue;
+    }
+    for (auto& atlas : state.AtlasPool)
+    {
+      atlas->ReleaseGraphicsResources(w ? w : state.Window);
+    }
+    if (state.FrameBuffer)
+    {
+      state.FrameBuffer->ReleaseGraphicsResources(w ? w : state.Window);
+    }
+    state.Renderer = nullptr; // forgotten at the next Render()
   }
-  this->AtlasPool.clear();
-  this->Maps.clear();
-  if (this->FrameBuffer)
-  {
-    this->FrameBuffer->ReleaseGraphicsResources(w);
-  }
-  this->LastInputTime = 0;
+  this->Renderers.erase(std::remove_if(this->Renderers.begin(), this->Renderers.end(),
+                          [](const RendererMaps& r) { return !r.Renderer; }),
+    this->Renderers.end());
 }
 
 vtkCascadedShadowMapPlanner* vtkCascadedShadowMapBakerPass::GetPlanner()
@@ -555,6 +732,10 @@ void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
   this->Planner->PrintSelf(os, indent.GetNextIndent());
   os << indent << "PolygonOffsetFactor: " << this->PolygonOffsetFactor << "\n";
   os << indent << "PolygonOffsetUnits: " << this->PolygonOffsetUnits << "\n";
-  os << indent << "ShadowedLights: " << this->Maps.size() << "\n";
+  os << indent << "MapReuseTolerance: " << this->MapReuseTolerance << "\n";
+  os << indent << "InteractiveMapBorder: " << this->InteractiveMapBorder << "\n";
+  os << indent << "MeasureTimes: " << (this->MeasureTimes ? "on" : "off") << "\n";
+  os << indent << "Renderers: " << this->Renderers.size() << "\n";
+  os << indent << "ShadowedLights: " << this->GetLightMaps().size() << "\n";
   os << indent << "Controller: " << this->Controller << "\n";
 }

@@ -9,8 +9,13 @@
  * whose bounds reach each cascade's light volume into one tile of a depth-texture atlas per
  * light, cleared to far depth and sampled with hardware depth compare.
  *
- * Maps are re-rendered only when the camera, a light, a prop, the window size or an option
- * changed. Used with vtkCascadedShadowMapPass, which reads the maps:
+ * The cascades are planned anew every frame (microseconds), but a map is re-rendered only when
+ * it must be: every map when a light, a prop, the window size or an option changed; when only
+ * the camera moved, a cascade keeps the map it has (with its own world -> map matrix, still a
+ * valid shadow map) while that map covers the cascade's part of the visible scene and its
+ * aliasing error there (Lloyd et al. 2006) is bounded: equal to a fresh map's in a still frame,
+ * within MapReuseTolerance while the user interacts (see SetInteractiveMapBorder()). Maps are kept per renderer (and so per GL context): one pass chain may serve several
+ * renderers. Used with vtkCascadedShadowMapPass, which reads the maps:
  * @code
  * camera pass -> sequence{ shadowPass->GetShadowMapBakerPass(), shadowPass }
  * @endcode
@@ -22,7 +27,9 @@
 #include "vtkOpenGLRenderPass.h"
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 #include "vtkSmartPointer.h"                   // for members
+#include "vtkWeakPointer.h"                    // for members
 
+#include <array>  // for members
 #include <vector> // for members
 
 class vtkCamera;
@@ -32,6 +39,9 @@ class vtkMatrix4x4;
 class vtkMultiProcessController;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
+class vtkOpenGLRenderer;
+class vtkProp;
+class vtkRenderer;
 class vtkTextureObject;
 
 class VTKRENDERINGCASCADEDSHADOWS_EXPORT vtkCascadedShadowMapBakerPass : public vtkOpenGLRenderPass
@@ -71,6 +81,26 @@ public:
   void SetDepthClamp(bool clamp);
   bool GetDepthClamp();
   vtkBooleanMacro(DepthClamp, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Maps across frames while the user interacts. VTK's interactor raises the window's desired
+   * update rate while the user drags (vtkRenderWindow::GetDesiredUpdateRate() >= 1 here); then
+   * each cascade's map is rendered with a border of InteractiveMapBorder of its width on each
+   * side around its part of the scene (the texel size grows by 1 + 2 border), and a map is kept
+   * while the camera moves as long as it covers the cascade's part of the visible scene and its
+   * aliasing error there is at most MapReuseTolerance times that of a freshly planned map with
+   * the same border (Lloyd et al. 2006, Eq. 2-4, at the vertices of the cascade's receiver body). A still frame
+   * keeps only maps that are exactly what it would plan: it always has full quality.
+   * Defaults 0.2 (0..0.5) and 1.25 (1..100; 1: re-render every map the camera moves). Maps
+   * are only kept with DepthClamp on (without it, a kept map's near plane may cut the casters
+   * of the new view).
+   */
+  virtual void SetInteractiveMapBorder(double border);
+  vtkGetMacro(InteractiveMapBorder, double);
+  virtual void SetMapReuseTolerance(double tolerance);
+  vtkGetMacro(MapReuseTolerance, double);
   ///@}
 
   /// The planner that holds the options above and computes the cascades.
@@ -119,21 +149,39 @@ public:
     double SplitFar[8];           ///< view depth where each cascade ends
     double Tile[8][4];            ///< atlas tile: offset x, y and scale x, y in [0, 1]
     int Resolution = 0;           ///< texels per cascade side (Resolution, or less if GL limits)
+    double LightGeometry[7] = { 0, 0, 0, 0, 0, 0, 0 }; ///< position, focal point, cone angle (-1: directional) the maps were rendered for
     vtkSmartPointer<vtkTextureObject> Atlas;
   };
 
-  /// The shadowed lights of the last Render(), in the renderer's light order.
-  const std::vector<LightMaps>& GetLightMaps() const { return this->Maps; }
+  /// The shadowed lights of a renderer (as of its last Render()), in its light order.
+  const std::vector<LightMaps>& GetLightMaps(vtkRenderer* renderer) const;
+  /// The same for the renderer of the last Render().
+  const std::vector<LightMaps>& GetLightMaps() const;
 
-  /// True when the last Render() produced at least one shadowed light.
-  bool GetHasShadows() const { return !this->Maps.empty(); }
+  /// True when the last Render() for the renderer produced at least one shadowed light.
+  bool GetHasShadows(vtkRenderer* renderer) const { return !this->GetLightMaps(renderer).empty(); }
+  bool GetHasShadows() const { return !this->GetLightMaps().empty(); }
 
-  /// Number of times the maps were rendered (not skipped as up to date); for tests.
+  /// Number of Render() calls that rendered at least one map (not all kept); for tests.
   vtkGetMacro(BakeCount, int);
 
-  /// Number of cascade renders and of props drawn into them in the last bake; for tests.
+  /// In the last Render(): cascades rendered, cascades kept from an earlier frame, and props
+  /// drawn into the rendered ones; for tests and benchmarks.
   vtkGetMacro(LastCascadeRenders, int);
+  vtkGetMacro(LastCascadesKept, int);
   vtkGetMacro(LastPropsDrawn, int);
+
+  ///@{
+  /**
+   * For benchmarks: with MeasureTimes on, the last Render() measures the seconds spent planning
+   * (all lights) and rendering the maps, the GPU work included (glFinish around each; this slows
+   * rendering down, so it is off by default).
+   */
+  vtkSetMacro(MeasureTimes, bool);
+  vtkGetMacro(MeasureTimes, bool);
+  vtkGetMacro(LastPlanSeconds, double);
+  vtkGetMacro(LastMapSeconds, double);
+  ///@}
 
 protected:
   vtkCascadedShadowMapBakerPass();
@@ -142,27 +190,48 @@ protected:
   bool PreReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
     std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
 
-  bool NeedsBake(vtkRenderer* renderer);
+  /// The maps of one renderer and the GL objects (of its window's context) that hold them.
+  struct RendererMaps
+  {
+    vtkWeakPointer<vtkRenderer> Renderer;
+    vtkOpenGLRenderWindow* Window = nullptr; // the context of the atlases and framebuffer
+    std::vector<LightMaps> Maps;
+    std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPool; // one per light slot, reused
+    vtkSmartPointer<vtkOpenGLFramebufferObject> FrameBuffer;
+    vtkMTimeType LastInputTime = 0;
+    int LastSize[2] = { 0, 0 };
+  };
+
+  RendererMaps& MapsOf(vtkRenderer* renderer, vtkOpenGLRenderWindow* window);
+  bool InputsChanged(vtkRenderer* renderer, RendererMaps& state);
   bool Distributed() const;
   void CombineAcrossProcesses(vtkTextureObject* atlas);
-  bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles);
+  /// Sizes the light's atlas and its tiles; returns false when it cannot be allocated. Sets
+  /// reallocated when the texture is new (nothing in it may be kept).
+  bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles, bool& reallocated);
+  void RenderCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebufferObject* frameBuffer,
+    LightMaps& maps, int cascade, const std::vector<vtkProp*>& casters,
+    const std::vector<std::array<double, 6>>& casterBounds, bool depthClamp);
 
   int Resolution = 2048;
   double PolygonOffsetFactor = 1.1;
   double PolygonOffsetUnits = 2.0;
+  double MapReuseTolerance = 1.25;
+  double InteractiveMapBorder = 0.2;
+  bool MeasureTimes = false;
 
-  std::vector<LightMaps> Maps;
-  std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPool; // one per light slot, reused
+  std::vector<RendererMaps> Renderers;
+  vtkWeakPointer<vtkRenderer> LastRenderer;
   vtkSmartPointer<vtkCascadedShadowMapPlanner> Planner;
-  vtkSmartPointer<vtkOpenGLFramebufferObject> FrameBuffer;
   vtkSmartPointer<vtkCamera> LightCamera;
   vtkSmartPointer<vtkMatrix4x4> Projection;
   vtkMultiProcessController* Controller = nullptr;
   double LastCombineSeconds = 0.0;
-  vtkMTimeType LastInputTime = 0;
-  int LastSize[2] = { 0, 0 };
+  double LastPlanSeconds = 0.0;
+  double LastMapSeconds = 0.0;
   int BakeCount = 0;
   int LastCascadeRenders = 0;
+  int LastCascadesKept = 0;
   int LastPropsDrawn = 0;
 
 private:

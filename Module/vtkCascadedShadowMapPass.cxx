@@ -64,7 +64,7 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
   this->UpdateLightGeometry(renderer);
   this->UpdateLights(renderer);
   vtkCascadedShadowMapBakerPass* baker = this->ShadowMapBakerPass;
-  if (renderer->GetSelector() || !baker || !baker->GetHasShadows())
+  if (renderer->GetSelector() || !baker || !baker->GetHasShadows(renderer))
   {
     // Picking, or nothing shadowed: exactly the renderer's own geometry pass.
     this->UpdateGeometry(renderer, s->GetFrameBuffer());
@@ -79,7 +79,7 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
   std::string signature;
   ShaderUniforms& u = this->Uniforms;
   u = ShaderUniforms();
-  for (const auto& maps : baker->GetLightMaps())
+  for (const auto& maps : baker->GetLightMaps(renderer))
   {
     u.LightIndex.push_back(maps.LightIndex);
     u.Count.push_back(maps.NumberOfCascades);
@@ -125,7 +125,7 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
   this->PreRender(s);
   this->UpdateGeometry(renderer, s->GetFrameBuffer());
   this->PostRender(s);
-  for (const auto& maps : baker->GetLightMaps())
+  for (const auto& maps : baker->GetLightMaps(renderer))
   {
     maps.Atlas->Deactivate();
   }

@@ -1,5 +1,6 @@
 #include "vtkCascadedShadowMapPlanner.h"
 
+#include "csmReuse.h"
 #include "csmShadowSetup.h"
 
 #include "vtkCamera.h"
@@ -9,6 +10,7 @@
 #include "vtkObjectFactory.h"
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,10 @@ struct vtkCascadedShadowMapPlanner::Internals
   csm::ShadowSetup Setup;
   std::vector<csm::Bounds> Receivers;
   std::string ReportedMessage; // the last error reported, so that a bad input is reported once
+  // What the last plan was made for (compares kept maps with it).
+  csm::Camera Camera;
+  glm::dvec3 wsLightDirection{ 0.0, -1.0, 0.0 };
+  bool Directional = true;
 };
 
 vtkCascadedShadowMapPlanner::vtkCascadedShadowMapPlanner()
@@ -91,6 +97,9 @@ int vtkCascadedShadowMapPlanner::Plan(
   const glm::dvec3 light(lightDirection[0], lightDirection[1], lightDirection[2]);
   const std::vector<csm::Bounds>* parts =
     this->Internal->Receivers.empty() ? nullptr : &this->Internal->Receivers;
+  this->Internal->Camera = cam;
+  this->Internal->wsLightDirection = light;
+  this->Internal->Directional = true;
   this->Internal->Setup =
     csm::computeShadowSetup(cam, light, bounds ? &scene : nullptr, settings, parts);
   return this->Report();
@@ -123,6 +132,9 @@ int vtkCascadedShadowMapPlanner::Plan(
   }
   else
   {
+    this->Internal->Camera = cam;
+    this->Internal->wsLightDirection = glm::dvec3(direction[0], direction[1], direction[2]);
+    this->Internal->Directional = false;
     this->Internal->Setup = csm::computeSpotSetup(cam,
       glm::dvec3(position[0], position[1], position[2]),
       glm::dvec3(direction[0], direction[1], direction[2]), light->GetConeAngle(),
@@ -169,6 +181,11 @@ int vtkCascadedShadowMapPlanner::GetNumberOfPlannedCascades() const
 
 void vtkCascadedShadowMapPlanner::GetCascadeMatrix(int i, vtkMatrix4x4* matrix) const
 {
+  this->GetCascadeMatrix(i, matrix, 0.0);
+}
+
+void vtkCascadedShadowMapPlanner::GetCascadeMatrix(int i, vtkMatrix4x4* matrix, double border) const
+{
   if (!matrix)
   {
     return;
@@ -178,7 +195,7 @@ void vtkCascadedShadowMapPlanner::GetCascadeMatrix(int i, vtkMatrix4x4* matrix) 
     matrix->Identity();
     return;
   }
-  const glm::dmat4& m = this->Internal->Setup.cascades[i].wsToClip;
+  const glm::dmat4 m = csm::withBorder(this->Internal->Setup.cascades[i].wsToClip, border);
   for (int row = 0; row < 4; ++row)
   {
     for (int column = 0; column < 4; ++column)
@@ -243,6 +260,27 @@ void vtkCascadedShadowMapPlanner::ComputeAliasing(vtkCamera* camera, double aspe
     glm::dvec3(point[0], point[1], point[2]));
   m[0] = a.mx;
   m[1] = a.mz;
+}
+
+double vtkCascadedShadowMapPlanner::CompareKeptMap(
+  int i, const double keptWorldToClip[16], double marginTexels, int resolution) const
+{
+  const auto& cascades = this->Internal->Setup.cascades;
+  if (!keptWorldToClip || i < 0 || i >= static_cast<int>(cascades.size()) || resolution <= 0)
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  glm::dmat4 kept;
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int column = 0; column < 4; ++column)
+    {
+      kept[column][row] = keptWorldToClip[4 * row + column];
+    }
+  }
+  const csm::MapReuse reuse = csm::compareKeptMap(kept, cascades[i], this->Internal->Camera,
+    this->Internal->wsLightDirection, this->Internal->Directional, 2.0 * marginTexels / resolution);
+  return reuse.covers ? reuse.errorRatio : std::numeric_limits<double>::infinity();
 }
 
 const char* vtkCascadedShadowMapPlanner::GetLastMessage() const

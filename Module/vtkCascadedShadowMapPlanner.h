@@ -115,6 +115,10 @@ public:
   /// World -> light clip matrix of cascade i (after the division by w, its body is in [-1,1]^3).
   void GetCascadeMatrix(int i, vtkMatrix4x4* worldToLightClip) const;
 
+  /// The same with a border of the given share of the map's width on each side around the body
+  /// (0: none), so that a camera that moves a little stays covered (see csm::withBorder).
+  void GetCascadeMatrix(int i, vtkMatrix4x4* worldToLightClip, double border) const;
+
   /// Split depths of cascade i along the view direction.
   double GetCascadeNear(int i) const;
   double GetCascadeFar(int i) const;
@@ -137,6 +141,16 @@ public:
    */
   static void ComputeAliasing(vtkCamera* camera, double aspect, const double lightDirection[3],
     const double worldToClip[16], const double point[3], double m[2]);
+
+  /**
+   * Can a map rendered earlier with keptWorldToClip (row-major world -> light clip) stand in for
+   * cascade i of the last plan? Returns the kept map's aliasing error over the planned map's on
+   * the cascade's receiver body at equal resolution (1: as good; csm::compareKeptMap), or
+   * +infinity when the kept map does not cover that body with a border of marginTexels texels
+   * of a map of the given resolution.
+   */
+  double CompareKeptMap(int i, const double keptWorldToClip[16], double marginTexels,
+    int resolution) const;
 
   /// Why the last plan has no cascades (empty when it has some).
   const char* GetLastMessage() const;

@@ -63,6 +63,9 @@ struct Options
   int Budget = 4096;     // total texels = Budget^2
   int Rounds = 3;        // interleaving rounds
   int AccuracyEvery = 10; // accuracy on every n-th path frame
+  int InteractiveFrames = 30; // interactive orbit: 2 degrees a frame, as a user drags
+  int StillFrames = 8;        // the default view, camera still
+  bool Breakdown = false;     // per frame: planning and map times, maps rendered
   std::vector<std::string> Scenes = { "platform", "platform-2m", "towers", "engine" };
 };
 
@@ -80,7 +83,11 @@ struct Technique
   double MemoryMB = 0;
   vtkSmartPointer<vtkRenderPass> Chain;
   csmScenes::Installed Passes;
-  std::vector<double> Times;
+  std::vector<double> Times;            // coarse orbit + fly-through
+  std::vector<double> InteractiveTimes; // interactive orbit
+  std::vector<double> StillTimes;       // still camera
+  std::vector<double> PlanMs, MapMs;    // --breakdown: per timed frame
+  long long MapsRendered = 0, MapsKept = 0;
   csmTruth::Classification Errors;
   std::vector<double> M;
   std::vector<double> Storage;
@@ -106,6 +113,14 @@ std::vector<Technique> Techniques(const Options& o)
     list.push_back(t);
   };
   add("vtk", "vtk", 0, 0, 1, 1);
+  // The pass as a user gets it: no option set.
+  add("default", "csm", 3, 4, 2, 5);
+  list.back().Shadow.PassDefaults = true;
+  list.back().Shadow.Resolution = vtkNew<vtkCascadedShadowMapBakerPass>()->GetResolution();
+  list.back().Shadow.Cascades = vtkNew<vtkCascadedShadowMapBakerPass>()->GetNumberOfCascades();
+  list.back().Texels = static_cast<long long>(list.back().Shadow.Cascades) *
+    list.back().Shadow.Resolution * list.back().Shadow.Resolution;
+  list.back().MemoryMB = 4.0 * list.back().Texels / (1024.0 * 1024.0);
   if (!o.Quick)
   {
     add("uniform", "csm", 0, 0, 1, 1);
@@ -115,9 +130,9 @@ std::vector<Technique> Techniques(const Options& o)
     add("ours k2 pcf1", "csm", 3, 4, 2, 1);
     add("ours k2 pcf3", "csm", 3, 4, 2, 3);
   }
-  add("ours k2 pcf5", "csm", 3, 4, 2, 5);
   if (!o.Quick)
   {
+    add("ours k2 pcf5", "csm", 3, 4, 2, 5);
     add("ours k3 pcf5", "csm", 3, 4, 3, 5);
     add("ours k4 pcf5", "csm", 3, 4, 4, 5);
   }
@@ -277,6 +292,22 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
   return std::max(m[0], m[1]) * imageHeight / t.Shadow.Resolution;
 }
 
+/// After a timed frame: what the baker did (maps rendered and kept; with --breakdown, the
+/// planning and map times).
+void Account(Technique& t)
+{
+  if (!t.Passes.Cascaded)
+    return;
+  vtkCascadedShadowMapBakerPass* baker = t.Passes.Cascaded->GetShadowMapBakerPass();
+  t.MapsRendered += baker->GetLastCascadeRenders();
+  t.MapsKept += baker->GetLastCascadesKept();
+  if (baker->GetMeasureTimes())
+  {
+    t.PlanMs.push_back(1000.0 * baker->GetLastPlanSeconds());
+    t.MapMs.push_back(1000.0 * baker->GetLastMapSeconds());
+  }
+}
+
 double Median(std::vector<double> v)
 {
   if (v.empty())
@@ -335,7 +366,7 @@ void Plot(const std::vector<std::pair<std::string, std::vector<Technique>>>& res
         table->AddColumn(y);
         for (const Technique& t : scene.second)
         {
-          const bool isOurs = t.Label.rfind("ours", 0) == 0;
+          const bool isOurs = t.Label.rfind("ours", 0) == 0 || t.Label == "default";
           const std::string f = t.Label == "vtk" ? "vtk" : isOurs ? "ours" : "baselines";
           if (f != family)
             continue;
@@ -400,14 +431,19 @@ Options Parse(int argc, char** argv)
     const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
     if (f == "--help" || f == "-h")
     {
-      std::printf("usage: csm-bench [--quick] [--out FILE.csv] [--plot FILE.png] [--size WxH]\n"
-                  "                 [--frames N] [--budget TEXELS_SIDE] [--scenes a,b,...]\n"
-                  "scenes: platform, platform-2m, towers, engine. --quick: platform, 640x480,\n"
-                  "6 frames, budget 2048, VTK's pass and ours with the defaults.\n");
+      std::printf("usage: csm-bench [--quick] [--breakdown] [--out FILE.csv] [--plot FILE.png]\n"
+                  "                 [--size WxH] [--frames N] [--budget TEXELS_SIDE] [--scenes a,b,...]\n"
+                  "scenes: platform, platform-2m, towers, engine. --quick: platform (or --scenes),\n"
+                  "640x480, 6 frames a path, budget 2048, VTK's pass and ours with the defaults.\n"
+                  "Timed paths: coarse orbit + fly-through (interleaved), an interactive orbit of\n"
+                  "2 degrees a frame and a still camera. --breakdown: per frame, the planning and\n"
+                  "map times (glFinish around them) and the maps rendered / kept.\n");
       std::exit(0);
     }
     else if (f == "--quick")
       o.Quick = true;
+    else if (f == "--breakdown")
+      o.Breakdown = true;
     else if ((f == "--out" || f == "--plot" || f == "--size" || f == "--frames" ||
                f == "--budget" || f == "--scenes") && !v)
       fail(f + " needs a value");
@@ -465,6 +501,8 @@ Options Parse(int argc, char** argv)
       o.Scenes = { "platform" };
     o.Rounds = 2;
     o.AccuracyEvery = 6;
+    o.InteractiveFrames = 10;
+    o.StillFrames = 4;
   }
   return o;
 }
@@ -479,7 +517,8 @@ int main(int argc, char** argv)
   std::ofstream detail(o.Out + ".views.csv");
   csv << "scene,technique,label,warp,partition,cascades,resolution,pcf,texels,memory_mb,median_ms,"
          "p10_ms,p90_ms,math_us,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m,"
-         "storage,frames,measured_pixels\n";
+         "storage,frames,measured_pixels,interactive_ms,still_ms,plan_ms,map_ms,"
+         "maps_rendered_per_frame,maps_kept_per_frame\n";
   detail << "scene,label,view,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m\n";
   std::vector<std::pair<std::string, std::vector<Technique>>> results;
 
@@ -527,7 +566,11 @@ int main(int argc, char** argv)
 
     std::vector<Technique> techniques = Techniques(o);
     for (Technique& t : techniques)
+    {
       t.Chain = csmScenes::BuildChain(t.Shadow, t.Passes);
+      if (t.Passes.Cascaded)
+        t.Passes.Cascaded->GetShadowMapBakerPass()->SetMeasureTimes(o.Breakdown);
+    }
     const std::vector<View> views = Views(scene, o);
 
     // Timing: rounds of blocks, each technique rendering every Rounds-th frame of the paths,
@@ -555,6 +598,45 @@ int main(int argc, char** argv)
           window->WaitForCompletion(); // glFinish: the frame is done
           timer->StopTimer();
           t.Times.push_back(1000.0 * timer->GetElapsedTime());
+          Account(t);
+        }
+      }
+    }
+
+    // The interactive orbit (2 degrees a frame, the window's desired update rate raised as
+    // vtkRenderWindowInteractor does while the user drags) and the still camera: consecutive
+    // frames for each technique (maps kept across frames are what these measure), the
+    // techniques taking turns over the rounds.
+    for (int round = 0; round < o.Rounds; ++round)
+    {
+      for (Technique& t : techniques)
+      {
+        renderer->SetPass(t.Chain);
+        for (int path = 0; path < 2; ++path)
+        {
+          const bool interactive = path == 0;
+          const int frames = interactive ? o.InteractiveFrames : o.StillFrames;
+          View v = views[0]; // the default view's orbit start
+          Apply(v, renderer, key, scene);
+          window->Render(); // untimed: the first frame of a path renders every map
+          window->WaitForCompletion();
+          window->SetDesiredUpdateRate(interactive ? 15.0 : 0.0001);
+          for (int i = 0; i < frames; ++i)
+          {
+            if (interactive)
+            {
+              renderer->GetActiveCamera()->Azimuth(2.0);
+              if (scene.ClippingRange[1] <= 0)
+                renderer->ResetCameraClippingRange();
+            }
+            timer->StartTimer();
+            window->Render();
+            window->WaitForCompletion();
+            timer->StopTimer();
+            (interactive ? t.InteractiveTimes : t.StillTimes).push_back(1000.0 * timer->GetElapsedTime());
+            Account(t);
+          }
+          window->SetDesiredUpdateRate(0.0001);
         }
       }
     }
@@ -636,6 +718,9 @@ int main(int argc, char** argv)
       measuredPixels += std::count(comparable.begin(), comparable.end(), 1);
     }
 
+    auto timedFrames = [](const Technique& t) {
+      return std::max<double>(1.0, double(t.Times.size() + t.InteractiveTimes.size() + t.StillTimes.size()));
+    };
     for (const Technique& t : techniques)
     {
       const csmTruth::Stats ms = csmTruth::Summarize(t.M);
@@ -649,11 +734,27 @@ int main(int argc, char** argv)
           << t.Errors.MismatchPct() << "," << t.Errors.FalseShadowPct() << ","
           << t.Errors.FalseLightPct() << "," << ms.Max << "," << ms.P95 << "," << ms.Mean << ","
           << (csm ? Median(t.Storage) : NAN) << "," << t.Times.size() << "," << measuredPixels
-          << "\n";
+          << "," << Median(t.InteractiveTimes) << "," << Median(t.StillTimes) << ","
+          << Median(t.PlanMs) << "," << Median(t.MapMs) << ","
+          << (csm ? double(t.MapsRendered) / timedFrames(t) : NAN) << ","
+          << (csm ? double(t.MapsKept) / timedFrames(t) : NAN) << "\n";
       std::printf("  %-16s %8.1f ms  mismatch %6.3f%% (shadow %6.3f%%, light %6.3f%%)  max m %8.2f"
                   "  p95 m %6.2f\n",
         t.Label.c_str(), Median(t.Times), t.Errors.MismatchPct(), t.Errors.FalseShadowPct(),
         t.Errors.FalseLightPct(), ms.Max, ms.P95);
+      if (t.Label != "vtk")
+      {
+        const Technique& vtk = techniques.front();
+        std::printf("  %-16s time / vtk: paths %.2fx  interactive %.2fx  still %.2fx", "",
+          Median(t.Times) / Median(vtk.Times), Median(t.InteractiveTimes) / Median(vtk.InteractiveTimes),
+          Median(t.StillTimes) / Median(vtk.StillTimes));
+        if (csm)
+          std::printf("  maps rendered %.2f kept %.2f per frame", double(t.MapsRendered) / timedFrames(t),
+            double(t.MapsKept) / timedFrames(t));
+        if (!t.PlanMs.empty())
+          std::printf("  plan %.3f ms  maps %.1f ms", Median(t.PlanMs), Median(t.MapMs));
+        std::printf("\n");
+      }
     }
     std::fflush(stdout);
     renderer->SetPass(nullptr);

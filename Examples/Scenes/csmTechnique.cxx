@@ -40,7 +40,10 @@ vtkSmartPointer<vtkRenderPass> BuildChain(const ShadowOptions& o, Installed& ins
   if (o.Technique == "csm")
   {
     auto pass = vtkSmartPointer<vtkCascadedShadowMapPass>::New();
-    Configure(pass, o);
+    if (!o.PassDefaults)
+    {
+      Configure(pass, o);
+    }
     baker = pass->GetShadowMapBakerPass();
     installed.Cascaded = pass;
     shadows = pass;

@@ -30,6 +30,7 @@ struct ShadowOptions
   bool DepthClamp = true;
   double Darkness = 1.0;
   int Debug = 0;
+  bool PassDefaults = false; ///< csm: leave every option at the pass's own default (ignore the above)
 };
 
 struct Installed

@@ -1,0 +1,89 @@
+#include "csmReuse.h"
+
+#include <glm/geometric.hpp>
+#include <glm/vec4.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace csm
+{
+
+glm::dmat4 withBorder(const glm::dmat4& wsToClip, double border)
+{
+  if (!std::isfinite(border) || border <= 0.0)
+  {
+    return wsToClip;
+  }
+  glm::dmat4 shrink(1.0);
+  shrink[0][0] = shrink[1][1] = 1.0 / (1.0 + 2.0 * border);
+  return shrink * wsToClip;
+}
+
+MapReuse compareKeptMap(const glm::dmat4& wsKeptToClip, const Cascade& fresh,
+  const Camera& camera, const glm::dvec3& wsLightDirection, bool directional, double marginNdc)
+{
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  MapReuse reuse;
+  reuse.errorRatio = kInf;
+  if (fresh.wsBody.empty() || !std::isfinite(marginNdc) || marginNdc < 0.0 || marginNdc >= 1.0)
+  {
+    return reuse;
+  }
+  // A freshly planned map has the body on its border: allow for rounding there.
+  constexpr double kRounding = 1e-9;
+  const double limit = 1.0 - marginNdc + kRounding;
+  glm::dvec2 ndcMin(kInf), ndcMax(-kInf);
+  for (const glm::dvec3& wsPoint : fresh.wsBody)
+  {
+    const glm::dvec4 h = wsKeptToClip * glm::dvec4(wsPoint, 1.0);
+    if (!(h.w > 0.0))
+    {
+      return reuse;
+    }
+    const glm::dvec3 ndc = glm::dvec3(h) / h.w;
+    if (!(std::abs(ndc.x) <= limit && std::abs(ndc.y) <= limit && ndc.z <= 1.0 + kRounding))
+    {
+      return reuse;
+    }
+    ndcMin = glm::min(ndcMin, glm::dvec2(ndc));
+    ndcMax = glm::max(ndcMax, glm::dvec2(ndc));
+  }
+  reuse.covers = true;
+  if (directional)
+  {
+    double kept = 0.0, planned = 0.0;
+    for (const glm::dvec3& wsPoint : fresh.wsBody)
+    {
+      const Aliasing a = aliasingAt(wsKeptToClip, camera, wsLightDirection, wsPoint);
+      const Aliasing b = aliasingAt(fresh.wsToClip, camera, wsLightDirection, wsPoint);
+      kept = std::max(kept, std::max(a.mx, a.mz));
+      planned = std::max(planned, std::max(b.mx, b.mz));
+    }
+    reuse.errorRatio = planned > 0.0 && std::isfinite(kept) ? kept / planned : kInf;
+  }
+  else
+  {
+    // One perspective centre: the ratio of the widths the body spans in the two maps.
+    glm::dvec2 freshMin(kInf), freshMax(-kInf);
+    for (const glm::dvec3& wsPoint : fresh.wsBody)
+    {
+      const glm::dvec4 h = fresh.wsToClip * glm::dvec4(wsPoint, 1.0);
+      const glm::dvec2 ndc = glm::dvec2(h) / h.w;
+      freshMin = glm::min(freshMin, ndc);
+      freshMax = glm::max(freshMax, ndc);
+    }
+    const glm::dvec2 kept = ndcMax - ndcMin, planned = freshMax - freshMin;
+    reuse.errorRatio = kept.x > 0.0 && kept.y > 0.0
+      ? std::max(planned.x / kept.x, planned.y / kept.y)
+      : kInf;
+    if (!std::isfinite(reuse.errorRatio))
+    {
+      reuse.errorRatio = kInf;
+    }
+  }
+  return reuse;
+}
+
+} // namespace csm
