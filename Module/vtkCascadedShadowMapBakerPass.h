@@ -20,6 +20,7 @@
 #define vtkCascadedShadowMapBakerPass_h
 
 #include "vtkOpenGLRenderPass.h"
+#include "vtkCascadedShadowsSetMacro.h"     // for vtkSetFiniteClampMacro
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 #include "vtkSmartPointer.h"                   // for members
 
@@ -81,10 +82,10 @@ public:
 
   ///@{
   /// Slope-scaled depth offset applied while rendering the maps (glPolygonOffset factor and
-  /// units). Defaults 1.1 and 2.
-  vtkSetMacro(PolygonOffsetFactor, double);
+  /// units), finite. Defaults 1.1 and 2.
+  vtkSetFiniteClampMacro(PolygonOffsetFactor, double, -VTK_FLOAT_MAX, VTK_FLOAT_MAX);
   vtkGetMacro(PolygonOffsetFactor, double);
-  vtkSetMacro(PolygonOffsetUnits, double);
+  vtkSetFiniteClampMacro(PolygonOffsetUnits, double, -VTK_FLOAT_MAX, VTK_FLOAT_MAX);
   vtkGetMacro(PolygonOffsetUnits, double);
   ///@}
 
