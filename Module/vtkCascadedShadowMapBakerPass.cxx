@@ -22,6 +22,7 @@
 #include "vtkRenderState.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
+#include "vtkTextureUnitManager.h"
 #include "vtk_glew.h"
 
 #include <algorithm>
@@ -36,6 +37,13 @@ namespace
 {
 constexpr int kMaxCascades = 8;
 constexpr size_t kMaxReceiverBoxes = 64;
+// Texture units of the fragment shader left to the mapper's own textures (colour, normal,
+// ORM, emissive and anisotropy maps, and PBR's irradiance, prefiltered and BRDF maps).
+constexpr int kMapperTextureUnits = 8;
+// Fragment uniform components one shadowed light costs: 8 cascades of a mat4, a vec4 and a
+// float (padded to a vec4), and the per-light values.
+constexpr int kUniformComponentsPerLight = 8 * (16 + 4 + 4) + 16;
+constexpr int kMapperUniformComponents = 1024;
 
 /// Bounds of a prop that draws 3D geometry, or false (2D actors, invisible, no bounds).
 bool propBounds(vtkProp* prop, double bounds[6])
@@ -150,6 +158,26 @@ bool vtkCascadedShadowMapBakerPass::NeedsBake(vtkRenderer* renderer)
   this->LastSize[0] = size[0];
   this->LastSize[1] = size[1];
   return changed;
+}
+
+int vtkCascadedShadowMapBakerPass::MaximumShadowedLights(vtkOpenGLRenderWindow* window)
+{
+  GLint units = 16, components = 1024;
+  glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
+  glGetIntegerv(GL_MAX_FRAGMENT_UNIFORM_COMPONENTS, &components);
+  if (vtkTextureUnitManager* manager = window->GetTextureUnitManager())
+  {
+    int free = 0;
+    for (int unit = 0; unit < manager->GetNumberOfTextureUnits(); ++unit)
+    {
+      free += manager->IsAllocated(unit) ? 0 : 1;
+    }
+    units = std::min<GLint>(units, free);
+  }
+  const int byUnits = static_cast<int>(units) - kMapperTextureUnits;
+  const int byUniforms =
+    (static_cast<int>(components) - kMapperUniformComponents) / kUniformComponentsPerLight;
+  return std::max(0, std::min(byUnits, byUniforms));
 }
 
 bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
@@ -305,6 +333,8 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   }
 
   this->Maps.clear();
+  const int maximumLights = this->MaximumShadowedLights(window);
+  int shadowingLights = 0;
   int lightIndex = 0;
   vtkLightCollection* lights = renderer->GetLights();
   vtkCollectionSimpleIterator lit;
@@ -316,7 +346,8 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
       continue; // the mapper numbers switched-on lights only
     }
     const int index = lightIndex++;
-    if (!vtkCascadedShadowMapBakerPass::LightCastsShadows(light))
+    if (!vtkCascadedShadowMapBakerPass::LightCastsShadows(light) ||
+      ++shadowingLights > maximumLights)
     {
       continue;
     }
@@ -344,6 +375,12 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     maps.Atlas = this->AtlasPool[slot];
     this->Maps.push_back(maps);
   }
+  if (shadowingLights > maximumLights && shadowingLights != this->WarnedShadowingLights)
+  {
+    vtkWarningMacro(<< shadowingLights << " lights cast shadows but this GL context has texture "
+                    << "units for " << maximumLights << "; the others are lit without shadows");
+  }
+  this->WarnedShadowingLights = shadowingLights > maximumLights ? shadowingLights : 0;
   // Textures only for the lights that cast shadows now.
   for (size_t i = this->Maps.size(); i < this->AtlasPool.size(); ++i)
   {

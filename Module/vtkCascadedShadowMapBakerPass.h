@@ -7,7 +7,9 @@
  * vtkCascadedShadowMapPlanner (z-partitioned, warped with the generalized LiSPSM parameter of
  * Barroso & Celes; a spot light gets one perspective map) and renders the depth of the props
  * whose bounds reach each cascade's light volume into one tile of a depth-texture atlas per
- * light, cleared to far depth and sampled with hardware depth compare.
+ * light, cleared to far depth and sampled with hardware depth compare. When more lights cast
+ * shadows than the GL context has texture units for (leaving 8 for the mappers' own textures),
+ * the first ones get maps and the others are lit without shadows (one warning).
  *
  * Maps are re-rendered only when the camera, a light, a prop, the window size or an option
  * changed. Used with vtkCascadedShadowMapPass, which reads the maps:
@@ -147,6 +149,9 @@ protected:
   bool Distributed() const;
   void CombineAcrossProcesses(vtkTextureObject* atlas);
   bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles);
+  /// Lights that can get maps in this context: a texture unit each, leaving units and uniforms
+  /// for the mapper's own.
+  int MaximumShadowedLights(vtkOpenGLRenderWindow* window);
 
   int Resolution = 2048;
   double PolygonOffsetFactor = 1.1;
@@ -165,6 +170,7 @@ protected:
   int BakeCount = 0;
   int LastCascadeRenders = 0;
   int LastPropsDrawn = 0;
+  int WarnedShadowingLights = 0; // lights over the limit last warned about: warn once
 
 private:
   vtkCascadedShadowMapBakerPass(const vtkCascadedShadowMapBakerPass&) = delete;

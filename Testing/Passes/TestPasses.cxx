@@ -456,3 +456,47 @@ TEST(Passes, DegenerateLightIsReportedOnce)
   ASSERT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps().size(), 2u);
   EXPECT_GT(pass->GetShadowMapBakerPass()->GetLightMaps()[0].NumberOfCascades, 0);
 }
+
+// Issue 9 (6): more shadowed lights than the fragment shader has texture units (33 on llvmpipe's
+// 32) failed to link the shader and every object disappeared. The first lights keep their
+// shadows, the rest are lit without, and one warning says so.
+TEST(Passes, MoreLightsThanTextureUnits)
+{
+  BoxScene scene;
+  for (int i = 0; i < 32; ++i)
+  {
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    light->SetPositional(false);
+    light->SetPosition(0.1 * (i % 8) - 0.4, 10, 0.1 * (i / 8) - 0.2);
+    light->SetFocalPoint(0, 0, 0);
+    light->SetIntensity(0.01);
+    scene.Renderer->AddLight(light);
+  }
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->SetResolution(256);
+  vtkNew<vtkCallbackCommand> countWarnings;
+  int warnings = 0;
+  countWarnings->SetClientData(&warnings);
+  countWarnings->SetCallback([](vtkObject*, unsigned long, void* n, void*) { ++*static_cast<int*>(n); });
+  baker->AddObserver(vtkCommand::WarningEvent, countWarnings);
+  auto shadowed = scene.Render();
+  scene.Renderer->GetActiveCamera()->Azimuth(5);
+  scene.Render();
+  scene.Renderer->GetActiveCamera()->Azimuth(-5);
+  shadowed = scene.Render();
+  const size_t shadowedLights = baker->GetLightMaps().size();
+  EXPECT_GE(shadowedLights, 8u); // 16 units (the least GL 3.2 allows) - 8 for the mapper
+  EXPECT_LT(shadowedLights, 33u);
+  EXPECT_EQ(warnings, 1);
+  // Objects are drawn (box and ground differ from the background) ...
+  auto* scalars = vtkUnsignedCharArray::SafeDownCast(shadowed->GetPointData()->GetScalars());
+  long drawn = 0;
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+    drawn += std::abs(scalars->GetValue(3 * i) - 51) > 3;
+  EXPECT_GT(drawn, 30000);
+  // ... and the first light's shadow is there.
+  EXPECT_GT(Darkened(shadowed, plain), 800);
+}
