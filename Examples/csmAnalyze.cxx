@@ -40,8 +40,8 @@ void usage()
 {
   std::printf(
     "usage: csm-analyze [options]\n"
-    "  --near N          camera near distance (> 0)            [1]\n"
-    "  --far F           camera far distance (> near)          [100]\n"
+    "  --near N          camera near distance, >= 1e-50        [1]\n"
+    "  --far F           camera far distance, > near, <= 1e50  [100]\n"
     "  --fovy DEG        vertical field of view, (0, 180)      [60]\n"
     "  --aspect A        image width / height (> 0)            [1]\n"
     "  --gamma DEG       angle between light and view, [0, 180]: 0 light from behind,\n"

@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <dlfcn.h>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -53,10 +54,36 @@ struct Options
   double Gamma = 90.0;
 };
 
-[[noreturn]] void fail(const std::string& message)
+/// One error line and exit status 2; option errors point to --help.
+[[noreturn]] void fail(const std::string& message, bool seeHelp = true)
 {
-  std::fprintf(stderr, "csm-demo: error: %s (see --help)\n", message.c_str());
+  std::fprintf(stderr, "csm-demo: error: %s%s\n", message.c_str(), seeHelp ? " (see --help)" : "");
   std::exit(2);
+}
+
+/// VTK here renders through GLX, offscreen too: without an X display it crashes (SIGSEGV or an
+/// abort inside VTK). Say so before VTK touches X.
+void requireDisplay()
+{
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+    fail("no X display (DISPLAY is not set; csm-demo needs one, also with --offscreen): set "
+         "DISPLAY or run it under xvfb-run -a",
+      false);
+  void* x11 = dlopen("libX11.so.6", RTLD_NOW | RTLD_LOCAL);
+  using Open = void* (*)(const char*);
+  using Close = int (*)(void*);
+  auto xOpen = x11 ? reinterpret_cast<Open>(dlsym(x11, "XOpenDisplay")) : nullptr;
+  auto xClose = x11 ? reinterpret_cast<Close>(dlsym(x11, "XCloseDisplay")) : nullptr;
+  if (xOpen && xClose)
+  {
+    void* connection = xOpen(display);
+    if (!connection)
+      fail(std::string("cannot open the X display '") + display +
+          "': start an X server for it, or run csm-demo under xvfb-run -a",
+        false);
+    xClose(connection);
+  }
 }
 
 void usage()
@@ -64,7 +91,7 @@ void usage()
   std::printf(
     "usage: csm-demo [options]\n"
     "  --scene S          platform (default) | towers | FILE (.vtp .vtk .stl .ply .obj .glb .gltf)\n"
-    "  --triangles N      platform size in triangles [250000]\n"
+    "  --triangles N      platform size in triangles, 1000..~11.8 M [250000]\n"
     "  --technique T      csm (ours) | vtk (vtkShadowMapPass) | none [csm]\n"
     "  --warp W           none | psm | lispsm | generalized [generalized]\n"
     "  --partition P      single | uniform | log | practical | adaptive [adaptive]\n"
@@ -214,13 +241,19 @@ Options parse(int argc, char** argv)
       };
       auto range = [&](double lo, double hi) {
         if (value < lo || value > hi)
-          fail(f + " is out of range (see --help)");
+        {
+          std::ostringstream bounds;
+          bounds << f << " must be in [" << lo << ", " << hi << "]";
+          fail(bounds.str());
+        }
         return value;
       };
       if (f == "--triangles")
       {
-        if (value < 1000 || value > 5e7)
-          fail("--triangles must be in [1000, 50000000]");
+        const long long most = csmScenes::PlatformMaxTriangles();
+        if (value < 1000 || value > static_cast<double>(most))
+          fail("--triangles must be in [1000, " + std::to_string(most) +
+            "] (the platform's finest tessellation)");
         o.Triangles = static_cast<long long>(value);
       }
       else if (f == "--cascades")
@@ -376,8 +409,9 @@ int main(int argc, char** argv)
   {
     std::string error;
     if (!csmScenes::FromFile(app.Opt.Scene, scene, error))
-      fail(error);
+      fail(error, false);
   }
+  requireDisplay();
 
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
@@ -454,7 +488,7 @@ int main(int argc, char** argv)
       writer->SetInputConnection(grab->GetOutputPort());
       writer->Write();
       if (writer->GetErrorCode() != 0)
-        fail("cannot write '" + app.Opt.Out + "'");
+        fail("cannot write '" + app.Opt.Out + "'", false);
       std::printf("wrote %s\n", app.Opt.Out.c_str());
     }
     if (app.Opt.Offscreen)

@@ -22,6 +22,7 @@
 #include "vtkRenderState.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
+#include "vtkTextureUnitManager.h"
 #include "vtk_glew.h"
 
 #include <algorithm>
@@ -42,6 +43,13 @@ constexpr double kInteractiveUpdateRate = 1.0;
 // Border a kept map must have around the new body, in texels: none, as a freshly planned map,
 // fitted to the body, has none either (the lookup clamps its taps to the map).
 constexpr double kReuseMarginTexels = 0.0;
+// Texture units of the fragment shader left to the mapper's own textures (colour, normal,
+// ORM, emissive and anisotropy maps, and PBR's irradiance, prefiltered and BRDF maps).
+constexpr int kMapperTextureUnits = 8;
+// Fragment uniform components one shadowed light costs: 8 cascades of a mat4, a vec4 and a
+// float (padded to a vec4), and the per-light values.
+constexpr int kUniformComponentsPerLight = 8 * (16 + 4 + 4) + 16;
+constexpr int kMapperUniformComponents = 1024;
 
 /// Bounds of a prop that draws 3D geometry, or false (2D actors, invisible, no bounds).
 bool propBounds(vtkProp* prop, double bounds[6])
@@ -122,36 +130,6 @@ bool vtkCascadedShadowMapBakerPass::LightCastsShadows(vtkLight* light)
     light->GetShadowAttenuation() > 0.0f; // a shadow of attenuation 0 is invisible: no maps
 }
 
-void vtkCascadedShadowMapBakerPass::SetInteractiveMapBorder(double border)
-{
-  if (!std::isfinite(border))
-  {
-    vtkErrorMacro(<< "InteractiveMapBorder must be finite; keeping " << this->InteractiveMapBorder);
-    return;
-  }
-  border = std::min(std::max(border, 0.0), 0.5);
-  if (border != this->InteractiveMapBorder)
-  {
-    this->InteractiveMapBorder = border;
-    this->Modified();
-  }
-}
-
-void vtkCascadedShadowMapBakerPass::SetMapReuseTolerance(double tolerance)
-{
-  if (!std::isfinite(tolerance))
-  {
-    vtkErrorMacro(<< "MapReuseTolerance must be finite; keeping " << this->MapReuseTolerance);
-    return;
-  }
-  tolerance = std::min(std::max(tolerance, 1.0), 100.0);
-  if (tolerance != this->MapReuseTolerance)
-  {
-    this->MapReuseTolerance = tolerance;
-    this->Modified();
-  }
-}
-
 vtkCascadedShadowMapBakerPass::RendererMaps& vtkCascadedShadowMapBakerPass::MapsOf(
   vtkRenderer* renderer, vtkOpenGLRenderWindow* window)
 {
@@ -227,6 +205,26 @@ bool vtkCascadedShadowMapBakerPass::InputsChanged(vtkRenderer* renderer, Rendere
   state.LastSize[0] = size[0];
   state.LastSize[1] = size[1];
   return changed;
+}
+
+int vtkCascadedShadowMapBakerPass::MaximumShadowedLights(vtkOpenGLRenderWindow* window)
+{
+  GLint units = 16, components = 1024;
+  glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
+  glGetIntegerv(GL_MAX_FRAGMENT_UNIFORM_COMPONENTS, &components);
+  if (vtkTextureUnitManager* manager = window->GetTextureUnitManager())
+  {
+    int free = 0;
+    for (int unit = 0; unit < manager->GetNumberOfTextureUnits(); ++unit)
+    {
+      free += manager->IsAllocated(unit) ? 0 : 1;
+    }
+    units = std::min<GLint>(units, free);
+  }
+  const int byUnits = static_cast<int>(units) - kMapperTextureUnits;
+  const int byUniforms =
+    (static_cast<int>(components) - kMapperUniformComponents) / kUniformComponentsPerLight;
+  return std::max(0, std::min(byUnits, byUniforms));
 }
 
 bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
@@ -447,6 +445,9 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     interacting ? this->MapReuseTolerance * (1.0 + 2.0 * border) : 1.0 + 1e-9;
   std::vector<LightMaps> planned;
   std::vector<int> render; // per light slot and cascade: 1 render, 0 keep
+  this->Maps.clear();
+  const int maximumLights = this->MaximumShadowedLights(window);
+  int shadowingLights = 0;
   int lightIndex = 0;
   vtkLightCollection* lights = renderer->GetLights();
   vtkCollectionSimpleIterator lit;
@@ -458,7 +459,8 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
       continue; // the mapper numbers switched-on lights only
     }
     const int index = lightIndex++;
-    if (!vtkCascadedShadowMapBakerPass::LightCastsShadows(light))
+    if (!vtkCascadedShadowMapBakerPass::LightCastsShadows(light) ||
+      ++shadowingLights > maximumLights)
     {
       continue;
     }
@@ -512,6 +514,12 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
       vtkCommunicator::MAX_OP);
     render = any;
   }
+  if (shadowingLights > maximumLights && shadowingLights != this->WarnedShadowingLights)
+  {
+    vtkWarningMacro(<< shadowingLights << " lights cast shadows but this GL context has texture "
+                    << "units for " << maximumLights << "; the others are lit without shadows");
+  }
+  this->WarnedShadowingLights = shadowingLights > maximumLights ? shadowingLights : 0;
   // Textures only for the lights that cast shadows now.
   for (size_t i = planned.size(); i < state.AtlasPool.size(); ++i)
   {

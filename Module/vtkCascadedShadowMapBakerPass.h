@@ -7,15 +7,17 @@
  * vtkCascadedShadowMapPlanner (z-partitioned, warped with the generalized LiSPSM parameter of
  * Barroso & Celes; a spot light gets one perspective map) and renders the depth of the props
  * whose bounds reach each cascade's light volume into one tile of a depth-texture atlas per
- * light, cleared to far depth and sampled with hardware depth compare.
+ * light, cleared to far depth and sampled with hardware depth compare. When more lights cast
+ * shadows than the GL context has texture units for (leaving 8 for the mappers' own textures),
+ * the first ones get maps and the others are lit without shadows (one warning).
  *
  * The cascades are planned anew every frame (microseconds), but a map is re-rendered only when
  * it must be: every map when a light, a prop, the window size or an option changed; when only
  * the camera moved, a cascade keeps the map it has (with its own world -> map matrix, still a
  * valid shadow map) while that map covers the cascade's part of the visible scene and its
  * aliasing error there (Lloyd et al. 2006) is bounded: equal to a fresh map's in a still frame,
- * within MapReuseTolerance while the user interacts (see SetInteractiveMapBorder()). Maps are kept per renderer (and so per GL context): one pass chain may serve several
- * renderers. Used with vtkCascadedShadowMapPass, which reads the maps:
+ * within MapReuseTolerance while the user interacts (see SetInteractiveMapBorder()). Maps are
+ * kept per renderer (and so per GL context): one pass chain may serve several renderers. Used with vtkCascadedShadowMapPass, which reads the maps:
  * @code
  * camera pass -> sequence{ shadowPass->GetShadowMapBakerPass(), shadowPass }
  * @endcode
@@ -25,6 +27,7 @@
 #define vtkCascadedShadowMapBakerPass_h
 
 #include "vtkOpenGLRenderPass.h"
+#include "vtkCascadedShadowsSetMacro.h"     // for vtkSetFiniteClampMacro
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 #include "vtkSmartPointer.h"                   // for members
 #include "vtkWeakPointer.h"                    // for members
@@ -97,9 +100,9 @@ public:
    * are only kept with DepthClamp on (without it, a kept map's near plane may cut the casters
    * of the new view).
    */
-  virtual void SetInteractiveMapBorder(double border);
+  vtkSetFiniteClampMacro(InteractiveMapBorder, double, 0.0, 0.5);
   vtkGetMacro(InteractiveMapBorder, double);
-  virtual void SetMapReuseTolerance(double tolerance);
+  vtkSetFiniteClampMacro(MapReuseTolerance, double, 1.0, 100.0);
   vtkGetMacro(MapReuseTolerance, double);
   ///@}
 
@@ -111,10 +114,10 @@ public:
 
   ///@{
   /// Slope-scaled depth offset applied while rendering the maps (glPolygonOffset factor and
-  /// units). Defaults 1.1 and 2.
-  vtkSetMacro(PolygonOffsetFactor, double);
+  /// units), finite. Defaults 1.1 and 2.
+  vtkSetFiniteClampMacro(PolygonOffsetFactor, double, -VTK_FLOAT_MAX, VTK_FLOAT_MAX);
   vtkGetMacro(PolygonOffsetFactor, double);
-  vtkSetMacro(PolygonOffsetUnits, double);
+  vtkSetFiniteClampMacro(PolygonOffsetUnits, double, -VTK_FLOAT_MAX, VTK_FLOAT_MAX);
   vtkGetMacro(PolygonOffsetUnits, double);
   ///@}
 
@@ -212,6 +215,9 @@ protected:
   void RenderCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebufferObject* frameBuffer,
     LightMaps& maps, int cascade, const std::vector<vtkProp*>& casters,
     const std::vector<std::array<double, 6>>& casterBounds, bool depthClamp);
+  /// Lights that can get maps in this context: a texture unit each, leaving units and uniforms
+  /// for the mapper's own.
+  int MaximumShadowedLights(vtkOpenGLRenderWindow* window);
 
   int Resolution = 2048;
   double PolygonOffsetFactor = 1.1;
@@ -233,6 +239,7 @@ protected:
   int LastCascadeRenders = 0;
   int LastCascadesKept = 0;
   int LastPropsDrawn = 0;
+  int WarnedShadowingLights = 0; // lights over the limit last warned about: warn once
 
 private:
   vtkCascadedShadowMapBakerPass(const vtkCascadedShadowMapBakerPass&) = delete;

@@ -25,6 +25,7 @@
 #define vtkCascadedShadowMapPass_h
 
 #include "vtkOpenGLRenderPass.h"
+#include "vtkCascadedShadowsSetMacro.h"     // for vtkSetFiniteClampMacro
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 #include "vtkSmartPointer.h"                   // for members
 
@@ -70,27 +71,27 @@ public:
 
   ///@{
   /// Constant depth bias, in the map's [0,1] depth (Barroso & Celes Table 1 (a)). Default 0.002.
-  vtkSetClampMacro(ConstantBias, double, 0.0, 1.0);
+  vtkSetFiniteClampMacro(ConstantBias, double, 0.0, 1.0);
   vtkGetMacro(ConstantBias, double);
   ///@}
 
   ///@{
   /// Slope-scaled bias: times the receiver plane's depth change over one texel. Default 1.5.
-  vtkSetClampMacro(SlopeBias, double, 0.0, 100.0);
+  vtkSetFiniteClampMacro(SlopeBias, double, 0.0, 100.0);
   vtkGetMacro(SlopeBias, double);
   ///@}
 
   ///@{
   /// Share of each cascade's depth range, at its far end, blended into the next cascade so that
   /// no seam shows; 0 switches blending off. Default 0.05.
-  vtkSetClampMacro(BlendBand, double, 0.0, 0.5);
+  vtkSetFiniteClampMacro(BlendBand, double, 0.0, 0.5);
   vtkGetMacro(BlendBand, double);
   ///@}
 
   ///@{
   /// How dark a shadow is, 0 (no shadow) .. 1 (light fully blocked). Used when the light's own
   /// ShadowAttenuation is left at its default of 1. Default 1.
-  vtkSetClampMacro(ShadowDarkness, double, 0.0, 1.0);
+  vtkSetFiniteClampMacro(ShadowDarkness, double, 0.0, 1.0);
   vtkGetMacro(ShadowDarkness, double);
   ///@}
 

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,14 @@ struct vtkCascadedShadowMapPlanner::Internals
 {
   csm::ShadowSetup Setup;
   std::vector<csm::Bounds> Receivers;
-  std::string ReportedMessage; // the last error reported, so that a bad input is reported once
+  /// The error last reported per light (nullptr: plans from a direction) and the light's MTime
+  /// then, so that a bad light is reported once until it changes.
+  struct Reported
+  {
+    vtkMTimeType Time = 0;
+    std::string Message;
+  };
+  std::map<const void*, Reported> ReportedErrors;
   // What the last plan was made for (compares kept maps with it).
   csm::Camera Camera;
   glm::dvec3 wsLightDirection{ 0.0, -1.0, 0.0 };
@@ -79,12 +87,19 @@ csm::Bounds toBounds(const double bounds[6])
 int vtkCascadedShadowMapPlanner::Plan(
   vtkCamera* camera, double aspect, const double lightDirection[3], const double bounds[6])
 {
+  this->PlanDirection(camera, aspect, lightDirection, bounds);
+  return this->Report(nullptr, 0);
+}
+
+void vtkCascadedShadowMapPlanner::PlanDirection(
+  vtkCamera* camera, double aspect, const double lightDirection[3], const double bounds[6])
+{
   csm::Camera cam;
   if (!toCamera(camera, aspect, cam) || !lightDirection)
   {
     this->Internal->Setup = csm::ShadowSetup();
     this->Internal->Setup.message = "no camera or no light direction";
-    return this->Report();
+    return;
   }
   csm::Settings settings;
   settings.warp = static_cast<csm::WarpMode>(this->WarpMode);
@@ -102,7 +117,6 @@ int vtkCascadedShadowMapPlanner::Plan(
   this->Internal->Directional = true;
   this->Internal->Setup =
     csm::computeShadowSetup(cam, light, bounds ? &scene : nullptr, settings, parts);
-  return this->Report();
 }
 
 int vtkCascadedShadowMapPlanner::Plan(
@@ -119,7 +133,8 @@ int vtkCascadedShadowMapPlanner::Plan(
     focal[2] - position[2] };
   if (!light->GetPositional())
   {
-    return this->Plan(camera, aspect, direction, bounds);
+    this->PlanDirection(camera, aspect, direction, bounds);
+    return this->Report(light, light->GetMTime());
   }
   // A spot light: one perspective map fitted to the lit part of the visible scene.
   csm::Camera cam;
@@ -140,7 +155,7 @@ int vtkCascadedShadowMapPlanner::Plan(
       glm::dvec3(direction[0], direction[1], direction[2]), light->GetConeAngle(),
       bounds ? &scene : nullptr, this->DepthClamp);
   }
-  return this->Report();
+  return this->Report(light, light->GetMTime());
 }
 
 void vtkCascadedShadowMapPlanner::ClearReceiverBounds()
@@ -156,20 +171,23 @@ void vtkCascadedShadowMapPlanner::AddReceiverBounds(const double bounds[6])
   }
 }
 
-int vtkCascadedShadowMapPlanner::Report()
+int vtkCascadedShadowMapPlanner::Report(const void* light, vtkMTimeType lightTime)
 {
   const csm::ShadowSetup& setup = this->Internal->Setup;
+  auto& reported = this->Internal->ReportedErrors;
   if (setup.status == csm::Status::InvalidInput)
   {
-    if (setup.message != this->Internal->ReportedMessage)
+    auto last = reported.find(light);
+    if (last == reported.end() || last->second.Time != lightTime ||
+      last->second.Message != setup.message)
     {
       vtkErrorMacro(<< "No shadows: " << setup.message);
-      this->Internal->ReportedMessage = setup.message;
+      reported[light] = { lightTime, setup.message };
     }
   }
   else
   {
-    this->Internal->ReportedMessage.clear();
+    reported.erase(light);
   }
   return this->GetNumberOfPlannedCascades();
 }

@@ -9,12 +9,14 @@
  * 2 adaptive partitions and alpha = 2, as in their §4), its split depths and its aliasing error
  * (Lloyd et al. 2006). The render passes use it once per light and frame.
  *
- * Bad input (NaN light direction, degenerate camera) gives one error message and no cascades.
+ * Bad input (NaN light direction, degenerate camera) gives one error message and no cascades;
+ * a bad vtkLight is reported once, again only when the light or the message changes.
  */
 #ifndef vtkCascadedShadowMapPlanner_h
 #define vtkCascadedShadowMapPlanner_h
 
 #include "vtkObject.h"
+#include "vtkCascadedShadowsSetMacro.h"     // for vtkSetFiniteClampMacro
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 
 #include <memory> // for std::unique_ptr
@@ -66,14 +68,14 @@ public:
 
   ///@{
   /// Weight of the log splits in the practical scheme, [0, 1]. Default 0.5.
-  vtkSetClampMacro(Lambda, double, 0.0, 1.0);
+  vtkSetFiniteClampMacro(Lambda, double, 0.0, 1.0);
   vtkGetMacro(Lambda, double);
   ///@}
 
   ///@{
   /// Adaptive scheme: f_i/n_i of the far partitions when light and view are parallel (> 1).
   /// Default 2 (Barroso & Celes recommend <= 2 with PCF).
-  vtkSetClampMacro(Alpha, double, 1.000001, 1.0e6);
+  vtkSetFiniteClampMacro(Alpha, double, 1.000001, 1.0e6);
   vtkGetMacro(Alpha, double);
   ///@}
 
@@ -170,7 +172,10 @@ private:
   vtkCascadedShadowMapPlanner(const vtkCascadedShadowMapPlanner&) = delete;
   void operator=(const vtkCascadedShadowMapPlanner&) = delete;
 
-  int Report();
+  void PlanDirection(
+    vtkCamera* camera, double aspect, const double lightDirection[3], const double bounds[6]);
+  /// Reports an invalid plan once per light (null: a direction) until the light or message changes.
+  int Report(const void* light, vtkMTimeType lightTime);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

@@ -1,4 +1,5 @@
 #include "csmScenes.h"
+#include "csmFileChecks.h"
 
 #include "vtkActor.h"
 #include "vtkAppendPolyData.h"
@@ -14,6 +15,7 @@
 #include "vtkPLYReader.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataAlgorithm.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkPolyDataNormals.h"
 #include "vtkProperty.h"
@@ -21,12 +23,20 @@
 #include "vtkSTLReader.h"
 #include "vtkTriangleFilter.h"
 #include "vtkXMLPolyDataReader.h"
+#include "vtkXMLPolyDataWriter.h"
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
 #include <fstream>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace csmScenes
 {
@@ -184,11 +194,11 @@ vtkSmartPointer<vtkActor> MakeActor(vtkPolyData* data, double r, double g, doubl
   return actor;
 }
 
-vtkSmartPointer<vtkPolyData> Ground(
-  double x0, double x1, double z0, double z1, double y, double offset = 0.0)
+vtkSmartPointer<vtkPolyData> Ground(double x0, double x1, double z0, double z1, double y,
+  double offset = 0.0, double thickness = 0.5)
 {
   Builder builder(offset);
-  builder.AddBox({ x0, y - 0.5, z0 }, { x1, y, z1 });
+  builder.AddBox({ x0, y - thickness, z0 }, { x1, y, z1 });
   return builder.Finish(true);
 }
 
@@ -228,12 +238,18 @@ long long CountTriangles(vtkPolyData* data)
   return count;
 }
 
-Scene Platform(long long targetTriangles, double offset)
+namespace
 {
-  std::vector<Bar> heavy; // legs, main braces, deck columns
-  std::vector<Bar> thin;  // handrails, lattices, gratings
+constexpr int kMaxBarSides = 4096; // the finest tessellation of a bar
+constexpr long long kPlatformBoxTriangles = 5 * 12; // the sea and four deck boxes
+constexpr double deck1 = 28.0, deck2 = 38.0;        // heights of the platform's decks
+
+/// The platform's bars: heavy (legs, main braces, deck columns) and thin (handrails, lattices,
+/// gratings).
+void PlatformBars(std::vector<Bar>& heavy, std::vector<Bar>& thin)
+{
   // Jacket: four battered legs from the sea bed to the lower deck.
-  const double legBase = 14.0, legTop = 10.0, deck1 = 28.0, deck2 = 38.0;
+  const double legBase = 14.0, legTop = 10.0;
   Vec legB[4], legT[4];
   for (int i = 0; i < 4; ++i)
   {
@@ -318,10 +334,25 @@ Scene Platform(long long targetTriangles, double offset)
       thin.push_back({ { -16.0, y, z - 0.6 }, { 14.0, y, z - 0.6 }, 0.25 });
   }
 
+}
+} // namespace
+
+long long PlatformMaxTriangles()
+{
+  std::vector<Bar> heavy, thin;
+  PlatformBars(heavy, thin);
+  return 2LL * kMaxBarSides * static_cast<long long>(heavy.size() + thin.size()) +
+    kPlatformBoxTriangles;
+}
+
+Scene Platform(long long targetTriangles, double offset)
+{
+  std::vector<Bar> heavy, thin;
+  PlatformBars(heavy, thin);
   // Tessellation from the triangle budget: 2 * sides triangles per bar.
   const long long bars = static_cast<long long>(heavy.size() + thin.size());
   const int sides =
-    static_cast<int>(std::max<long long>(4, std::min<long long>(4096, targetTriangles / (2 * bars))));
+    static_cast<int>(std::max<long long>(4, std::min<long long>(kMaxBarSides, targetTriangles / (2 * bars))));
   Builder steel(offset), light(offset), decks(offset);
   for (const Bar& bar : heavy)
     steel.AddBar(bar, sides);
@@ -370,74 +401,189 @@ Scene Towers(int count)
   return scene;
 }
 
+namespace
+{
+/// Reads a file's surface in this process: the reader, then the checks of its output, then the
+/// surface filter. Returns null with a message when the file cannot be used.
+vtkSmartPointer<vtkPolyData> ReadSurfaceHere(
+  const std::string& path, const std::string& ext, std::string& error)
+{
+  vtkSmartPointer<vtkAlgorithm> reader;
+  if (ext == ".glb" || ext == ".gltf")
+  {
+    auto r = vtkSmartPointer<vtkGLTFReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (ext == ".vtp")
+  {
+    auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (ext == ".vtk")
+  {
+    auto r = vtkSmartPointer<vtkGenericDataObjectReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (ext == ".stl")
+  {
+    auto r = vtkSmartPointer<vtkSTLReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (ext == ".ply")
+  {
+    auto r = vtkSmartPointer<vtkPLYReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (ext == ".obj")
+  {
+    auto r = vtkSmartPointer<vtkOBJReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  reader->Update();
+  error = CheckReaderOutput(reader->GetOutputDataObject(0));
+  if (!error.empty())
+    return nullptr;
+  vtkSmartPointer<vtkPolyDataAlgorithm> surface;
+  if (ext == ".glb" || ext == ".gltf")
+    surface = vtkSmartPointer<vtkCompositeDataGeometryFilter>::New();
+  else
+    surface = vtkSmartPointer<vtkDataSetSurfaceFilter>::New();
+  surface->SetInputConnection(reader->GetOutputPort());
+  surface->Update();
+  vtkSmartPointer<vtkPolyData> output = surface->GetOutput();
+  if (!output || output->GetNumberOfPolys() + output->GetNumberOfStrips() == 0)
+  {
+    error = "no surface in the file";
+    return nullptr;
+  }
+  return output;
+}
+
+/// Runs ReadSurfaceHere in a child process, so that a reader that crashes or hangs on a damaged
+/// file gives a message, not a dead or stuck demo. The child hands the surface back as a .vtp.
+vtkSmartPointer<vtkPolyData> ReadSurface(
+  const std::string& path, const std::string& ext, std::string& error)
+{
+  const char* tmp = std::getenv("TMPDIR");
+  std::string name = std::string(tmp && *tmp ? tmp : "/tmp") + "/csm-scene-XXXXXX";
+  const int fd = mkstemp(&name[0]);
+  int channel[2];
+  if (fd < 0 || pipe(channel) != 0)
+  {
+    error = "cannot create a temporary file in " + name.substr(0, name.rfind('/'));
+    return nullptr;
+  }
+  close(fd);
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const pid_t child = fork();
+  if (child == 0)
+  {
+    close(channel[0]);
+    const int null = open("/dev/null", O_WRONLY); // readers' own chatter (up to gigabytes)
+    dup2(null, 1);
+    dup2(null, 2);
+    std::string message;
+    vtkSmartPointer<vtkPolyData> surface = ReadSurfaceHere(path, ext, message);
+    if (surface)
+    {
+      vtkNew<vtkXMLPolyDataWriter> writer;
+      writer->SetFileName(name.c_str());
+      writer->SetInputData(surface);
+      writer->SetDataModeToAppended();
+      writer->EncodeAppendedDataOff();
+      if (!writer->Write())
+        message = "cannot write the temporary file " + name;
+    }
+    if (!message.empty() && write(channel[1], message.data(), message.size()) < 0)
+      _exit(3);
+    _exit(message.empty() ? 0 : 1);
+  }
+  close(channel[1]);
+  int status = 0;
+  bool done = false;
+  const int timeoutSeconds = 60;
+  for (int waited = 0; child > 0 && waited < 100 * timeoutSeconds; ++waited)
+  {
+    if (waitpid(child, &status, WNOHANG) == child)
+    {
+      done = true;
+      break;
+    }
+    usleep(10000);
+  }
+  if (child > 0 && !done)
+  {
+    kill(child, SIGKILL);
+    waitpid(child, &status, 0);
+  }
+  std::string message;
+  char buffer[512];
+  for (ssize_t n; (n = read(channel[0], buffer, sizeof(buffer))) > 0;)
+    message.append(buffer, static_cast<size_t>(n));
+  close(channel[0]);
+  vtkSmartPointer<vtkPolyData> surface;
+  if (child < 0)
+    error = "cannot start a process to read the file";
+  else if (!done)
+    error = "reading took longer than " + std::to_string(timeoutSeconds) +
+      " s; the file is damaged or too large";
+  else if (WIFSIGNALED(status))
+    error = std::string("the reader crashed (") + strsignal(WTERMSIG(status)) +
+      "); the file is damaged or not a valid " + ext.substr(1) + " file";
+  else if (!message.empty())
+    error = message;
+  else if (WEXITSTATUS(status) != 0)
+    error = "the reader failed";
+  else
+  {
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->SetFileName(name.c_str());
+    reader->Update();
+    surface = reader->GetOutput();
+  }
+  std::remove(name.c_str());
+  return error.empty() ? surface : nullptr;
+}
+} // namespace
+
 bool FromFile(const std::string& path, Scene& scene, std::string& error)
 {
+  if (vtksys::SystemTools::FileIsDirectory(path))
+  {
+    error = "cannot read '" + path + "': it is a directory, not a file";
+    return false;
+  }
   if (!vtksys::SystemTools::FileExists(path, true))
   {
     error = "cannot read '" + path + "': no such file";
     return false;
   }
   const std::string ext = vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));
-  vtkSmartPointer<vtkPolyData> surface;
+  const char* const formats[] = { ".vtp", ".vtk", ".stl", ".ply", ".obj", ".glb", ".gltf" };
+  if (std::find(std::begin(formats), std::end(formats), ext) == std::end(formats))
+  {
+    error = "cannot read '" + path + "': unknown format (use .vtp .vtk .stl .ply .obj .glb .gltf)";
+    return false;
+  }
+  error = CheckFileStructure(path, ext);
+  if (!error.empty())
+  {
+    error = "cannot read '" + path + "': " + error;
+    return false;
+  }
   vtkObject::GlobalWarningDisplayOff(); // readers report through the error below
-  if (ext == ".glb" || ext == ".gltf")
-  {
-    vtkNew<vtkGLTFReader> reader;
-    reader->SetFileName(path.c_str());
-    reader->Update();
-    vtkNew<vtkCompositeDataGeometryFilter> merge;
-    merge->SetInputConnection(reader->GetOutputPort());
-    merge->Update();
-    surface = merge->GetOutput();
-  }
-  else
-  {
-    vtkSmartPointer<vtkAlgorithm> reader;
-    if (ext == ".vtp")
-    {
-      auto r = vtkSmartPointer<vtkXMLPolyDataReader>::New();
-      r->SetFileName(path.c_str());
-      reader = r;
-    }
-    else if (ext == ".vtk")
-    {
-      auto r = vtkSmartPointer<vtkGenericDataObjectReader>::New();
-      r->SetFileName(path.c_str());
-      reader = r;
-    }
-    else if (ext == ".stl")
-    {
-      auto r = vtkSmartPointer<vtkSTLReader>::New();
-      r->SetFileName(path.c_str());
-      reader = r;
-    }
-    else if (ext == ".ply")
-    {
-      auto r = vtkSmartPointer<vtkPLYReader>::New();
-      r->SetFileName(path.c_str());
-      reader = r;
-    }
-    else if (ext == ".obj")
-    {
-      auto r = vtkSmartPointer<vtkOBJReader>::New();
-      r->SetFileName(path.c_str());
-      reader = r;
-    }
-    else
-    {
-      vtkObject::GlobalWarningDisplayOn();
-      error = "cannot read '" + path + "': unknown format (use .vtp .vtk .stl .ply .obj .glb .gltf)";
-      return false;
-    }
-    vtkNew<vtkDataSetSurfaceFilter> surfaceFilter;
-    surfaceFilter->SetInputConnection(reader->GetOutputPort());
-    surfaceFilter->Update();
-    surface = surfaceFilter->GetOutput();
-  }
+  vtkSmartPointer<vtkPolyData> surface = ReadSurface(path, ext, error);
   vtkObject::GlobalWarningDisplayOn();
-  if (!surface || surface->GetNumberOfPolys() + surface->GetNumberOfStrips() == 0)
+  if (!surface)
   {
-    error = "cannot read '" + path + "': no surface in the file";
+    error = "cannot read '" + path + "': " + error;
     return false;
   }
   vtkNew<vtkTriangleFilter> triangles;
@@ -459,8 +605,9 @@ bool FromFile(const std::string& path, Scene& scene, std::string& error)
   scene.Name = vtksys::SystemTools::GetFilenameWithoutLastExtension(path);
   const double cx = 0.5 * (b[0] + b[1]), cz = 0.5 * (b[4] + b[5]);
   scene.Actors.push_back(MakeActor(
-    Ground(cx - 2 * size, cx + 2 * size, cz - 2 * size, cz + 2 * size, b[2] - 0.02 * size), 0.6,
-    0.6, 0.62, 0.1));
+    Ground(cx - 2 * size, cx + 2 * size, cz - 2 * size, cz + 2 * size, b[2] - 0.02 * size, 0.0,
+      std::min(0.5, 0.05 * size)), // a slab to the model's scale: tiny models stay in view
+    0.6, 0.6, 0.62, 0.1));
   scene.Actors.push_back(MakeActor(model, 0.8, 0.8, 0.82, 0.4));
   Finish(scene);
   const double cy = 0.5 * (b[2] + b[3]);

@@ -33,6 +33,9 @@ struct Scene
 /// offset moves the whole scene (points stored in double precision) far from the origin.
 Scene Platform(long long targetTriangles = 250000, double offset = 0.0);
 
+/// The most triangles Platform() builds (its bars' finest tessellation).
+long long PlatformMaxTriangles();
+
 /// A row of lattice towers along -z every 40 m to the horizon, over a long ground strip; the
 /// default view starts next to the first tower with near 0.25 and far 6000 (f/n > 10^4).
 Scene Towers(int count = 125);

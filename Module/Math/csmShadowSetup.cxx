@@ -20,6 +20,8 @@ constexpr double kDegree = kPi / 180.0;
 /// by < 0.2% in storage but costs precision (t = A - B/z' cancels): use the orthographic map.
 constexpr double kOrthoRatio = 1.0e3;
 constexpr int kMaxCascades = 64;
+constexpr double kMinDistance = 1e-50; // camera near and far distances a double handles
+constexpr double kMaxDistance = 1e50;
 
 bool finite(const glm::dvec3& v)
 {
@@ -154,6 +156,11 @@ std::string validateCamera(const Camera& camera, const Bounds* bounds)
   {
     return "camera far distance must be greater than near";
   }
+  // Beyond these the squared distances of the body's points over- or underflow a double.
+  if (camera.vsNear < kMinDistance || camera.vsFar > kMaxDistance)
+  {
+    return "camera near and far distances must be within [1e-50, 1e50]";
+  }
   if (!(camera.aspect > 0.0) || !std::isfinite(camera.aspect))
   {
     return "aspect ratio must be finite and > 0";
@@ -245,7 +252,6 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
   // Size of the partitions, for clipping tolerances.
   const glm::dvec2 farHalf = halfSize(camera, frame, camera.vsFar);
   const double extent = camera.vsFar + farHalf.x + farHalf.y;
-  const double epsilon = 1e-12 * extent;
 
   // The scene box, camera-centred and inflated a little so that flat or point scenes keep a body.
   const bool clipToScene = sceneBounds != nullptr;
@@ -286,6 +292,10 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
   }
   auto receiverBody = [&](double d0, double d1) {
     const ConvexBody partition = ConvexBody::hexahedron(partitionCorners(camera, frame, d0, d1));
+    // Tolerance relative to this partition, not to the whole view: a near partition may be
+    // 1e-20 of the far distance.
+    const glm::dvec2 half1 = halfSize(camera, frame, d1);
+    const double epsilon = std::min(extent, d1 + half1.x + half1.y) * 1e-12;
     if (!clipToScene)
     {
       return partition.vertices(epsilon);
@@ -459,7 +469,7 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
 
   setup.storageOptimal = camera.parallel
     ? std::numeric_limits<double>::quiet_NaN()
-    : std::log(f / n) / (2.0 * frame.tanY); // 003 App. C
+    : (std::log(f) - std::log(n)) / (2.0 * frame.tanY); // 003 App. C
   if (setup.cascades.empty())
   {
     setup.status = Status::NothingToShadow;

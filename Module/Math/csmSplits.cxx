@@ -12,7 +12,8 @@ constexpr double kHalfPi = 1.57079632679489661923;
 
 double logSplit(double n, double f, int i, int k)
 {
-  return n * std::pow(f / n, double(i) / double(k)); // 000 Eq. 5, 003 Eq. 15-16
+  // 000 Eq. 5, 003 Eq. 15-16: n (f/n)^(i/k), in log space so that f/n may exceed a double.
+  return std::exp(std::log(n) + (std::log(f) - std::log(n)) * double(i) / double(k));
 }
 }
 
@@ -57,7 +58,7 @@ std::vector<double> splitDepths(const SplitParameters& params, double n, double 
       for (int i = k; i >= 2; --i)
       {
         const double fi = s[i];
-        const double logI = n * std::pow(fi / n, double(i - 1) / double(i));
+        const double logI = logSplit(n, fi, i - 1, i);
         const double eq19 = lambda * logI + (1.0 - lambda) * fi / params.alpha;
         s[i - 1] = std::max(eq19, logI);
       }

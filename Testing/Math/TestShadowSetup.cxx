@@ -511,3 +511,42 @@ TEST(Body, PartsFitTighterThanTheirUnion)
   for (const auto& c : tight.cascades)
     EXPECT_TRUE(std::isfinite(c.storage));
 }
+
+// Issue 9 (7): near 1e-10, far 1e10 gave storage 3e-12 .. 3e-22 for the first log cascades (a
+// clipping tolerance relative to the far distance swallowed them); near 1e-300, far 1e300 gave
+// "ok" with null split depths. Log cascades are self-similar: every one has the same storage.
+TEST(Stability, ExtremeDepthRanges)
+{
+  const csm::Camera c = camera(1e-10, 1e10, 60.0);
+  const auto s = csm::computeShadowSetup(
+    c, lightAt(c, 90.0), nullptr, settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 8));
+  ASSERT_EQ(s.status, csm::Status::Ok);
+  ASSERT_EQ(s.cascades.size(), 8u);
+  const double expected = s.cascades[4].storage; // the cascade [1, 316]
+  EXPECT_NEAR(expected, 273.0, 1.0);
+  for (const csm::Cascade& cascade : s.cascades)
+  {
+    EXPECT_NEAR(cascade.storage / expected, 1.0, 1e-6) << "cascade from " << cascade.vsNear;
+    EXPECT_TRUE(std::isfinite(cascade.nPrime));
+  }
+  // The widest range a double handles: everything finite, for every scheme.
+  for (auto scheme : { csm::SplitScheme::Single, csm::SplitScheme::Log, csm::SplitScheme::Adaptive,
+         csm::SplitScheme::Practical })
+  {
+    const csm::Camera wide = camera(1e-50, 1e50, 60.0);
+    const auto w = csm::computeShadowSetup(
+      wide, lightAt(wide, 30.0), nullptr, settings(csm::WarpMode::Generalized, scheme, 8));
+    ASSERT_EQ(w.status, csm::Status::Ok);
+    for (double split : w.splits)
+      EXPECT_TRUE(std::isfinite(split) && split > 0.0);
+    EXPECT_TRUE(std::isfinite(w.storageTotal));
+    EXPECT_TRUE(std::isfinite(w.storageOptimal));
+  }
+  // Beyond it: refused with a message, no cascades.
+  const csm::Camera huge = camera(1e-300, 1e300, 60.0);
+  const auto h = csm::computeShadowSetup(
+    huge, lightAt(huge, 90.0), nullptr, settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 8));
+  EXPECT_EQ(h.status, csm::Status::InvalidInput);
+  EXPECT_TRUE(h.cascades.empty());
+  EXPECT_NE(h.message.find("1e50"), std::string::npos) << h.message;
+}

@@ -113,3 +113,16 @@ TEST(Splits, ParsesAndPrintsSchemes)
   }
   EXPECT_FALSE(csm::parseSplitScheme("logarithmic", scheme));
 }
+
+// Issue 9 (7): f/n beyond a double (1e600) still gives finite, increasing log splits.
+TEST(Splits, LogSplitsInLogSpace)
+{
+  const auto l = csm::splitDepths(params(csm::SplitScheme::Log, 4), 1e-300, 1e300, 0.0);
+  ASSERT_EQ(l.size(), 5u);
+  EXPECT_NEAR(std::log10(l[1]), -150.0, 1e-9);
+  EXPECT_NEAR(std::log10(l[2]), 0.0, 1e-9);
+  EXPECT_NEAR(std::log10(l[3]), 150.0, 1e-9);
+  const auto a = csm::splitDepths(params(csm::SplitScheme::Adaptive, 3), 1e-300, 1e300, kHalfPi);
+  for (size_t i = 1; i < a.size(); ++i)
+    EXPECT_TRUE(std::isfinite(a[i]) && a[i] > a[i - 1]);
+}

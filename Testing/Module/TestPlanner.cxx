@@ -1,6 +1,7 @@
 // vtkCascadedShadowMapPlanner: VTK camera and light in, the math's cascades out.
 #include "vtkCascadedShadowMapPlanner.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkLight.h"
 #include "vtkMatrix4x4.h"
@@ -13,6 +14,20 @@
 
 namespace
 {
+/// Counts the ErrorEvents of an object (vtkErrorMacro invokes one per message).
+struct ErrorCounter
+{
+  int Count = 0;
+  vtkNew<vtkCallbackCommand> Command;
+  explicit ErrorCounter(vtkObject* object)
+  {
+    this->Command->SetClientData(this);
+    this->Command->SetCallback(
+      [](vtkObject*, unsigned long, void* self, void*) { ++static_cast<ErrorCounter*>(self)->Count; });
+    object->AddObserver(vtkCommand::ErrorEvent, this->Command);
+  }
+};
+
 void project(vtkMatrix4x4* m, const double p[3], double ndc[3])
 {
   const double h[4] = { p[0], p[1], p[2], 1.0 };
@@ -119,4 +134,56 @@ TEST(Planner, BadInputGivesNoCascadesAndAMessage)
   planner->GetCascadeMatrix(0, m); // out of range: identity, not garbage
   EXPECT_TRUE(m->IsIdentity());
   vtkObject::GlobalWarningDisplayOn();
+}
+
+// Issue 9 (5): vtkSetClampMacro let NaN through; the planner's Lambda and Alpha took it.
+TEST(Planner, NonFiniteOptionsAreRefused)
+{
+  vtkNew<vtkCascadedShadowMapPlanner> planner;
+  ErrorCounter errors(planner);
+  planner->SetLambda(0.25);
+  planner->SetAlpha(3.0);
+  const vtkMTimeType time = planner->GetMTime();
+  planner->SetLambda(NAN);
+  planner->SetAlpha(NAN);
+  planner->SetAlpha(INFINITY);
+  EXPECT_DOUBLE_EQ(planner->GetLambda(), 0.25);
+  EXPECT_DOUBLE_EQ(planner->GetAlpha(), 3.0);
+  EXPECT_EQ(errors.Count, 3);
+  EXPECT_EQ(planner->GetMTime(), time);
+  planner->SetLambda(7.0); // finite values are still clamped, without a message
+  EXPECT_DOUBLE_EQ(planner->GetLambda(), 1.0);
+  EXPECT_EQ(errors.Count, 3);
+}
+
+// Issue 9 (12): a degenerate light beside a good one was reported on every plan.
+TEST(Planner, BadLightIsReportedOncePerChange)
+{
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0, 5, 10);
+  camera->SetFocalPoint(0, 0, 0);
+  vtkNew<vtkLight> good, bad;
+  good->SetPositional(false);
+  good->SetPosition(0, 10, 0);
+  good->SetFocalPoint(0, 0, 0);
+  bad->SetPositional(false);
+  bad->SetPosition(1, 1, 1);
+  bad->SetFocalPoint(1, 1, 1); // no direction
+  const double bounds[6] = { -5, 5, 0, 2, -5, 5 };
+  vtkNew<vtkCascadedShadowMapPlanner> planner;
+  ErrorCounter errors(planner);
+  for (int frame = 0; frame < 20; ++frame)
+  {
+    EXPECT_GT(planner->Plan(camera, 1.0, good.Get(), bounds), 0);
+    EXPECT_EQ(planner->Plan(camera, 1.0, bad.Get(), bounds), 0);
+  }
+  EXPECT_EQ(errors.Count, 1);
+  bad->SetFocalPoint(1, 1, 1); // unchanged: no MTime change
+  planner->Plan(camera, 1.0, bad.Get(), bounds);
+  EXPECT_EQ(errors.Count, 1);
+  bad->SetPosition(2, 2, 2); // changed, still bad: reported again, once
+  bad->SetFocalPoint(2, 2, 2);
+  planner->Plan(camera, 1.0, bad.Get(), bounds);
+  planner->Plan(camera, 1.0, bad.Get(), bounds);
+  EXPECT_EQ(errors.Count, 2);
 }

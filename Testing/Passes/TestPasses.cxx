@@ -1,9 +1,11 @@
 // Behaviour of the passes in a real GL context (Mesa under Xvfb in CI): what VTK's shadow pass
 // gets wrong or does not do, each checked with numbers.
 #include "vtkActor.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
+#include "vtkCascadedShadowMapPlanner.h"
 #include "vtkCubeSource.h"
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
@@ -105,6 +107,20 @@ long Darkened(vtkImageData* a, vtkImageData* b)
   }
   return count;
 }
+
+/// Counts the ErrorEvents of an object (vtkErrorMacro invokes one per message).
+struct ErrorCounter
+{
+  int Count = 0;
+  vtkNew<vtkCallbackCommand> Command;
+  explicit ErrorCounter(vtkObject* object)
+  {
+    this->Command->SetClientData(this);
+    this->Command->SetCallback(
+      [](vtkObject*, unsigned long, void* self, void*) { ++static_cast<ErrorCounter*>(self)->Count; });
+    object->AddObserver(vtkCommand::ErrorEvent, this->Command);
+  }
+};
 
 long Differing(vtkImageData* a, vtkImageData* b)
 {
@@ -389,4 +405,98 @@ TEST(Passes, FourDirectionalLightsAndPBR)
       light->SwitchOff();
   scene.Render();
   EXPECT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps().size(), 1u);
+}
+
+// Issue 9 (5): NaN through the clamped setters turned the whole view black (darkness, biases)
+// or silently broke the blend band and the polygon offset.
+TEST(Passes, NonFiniteOptionsAreRefused)
+{
+  BoxScene scene;
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  auto before = scene.Render();
+  ErrorCounter passErrors(pass), bakerErrors(baker);
+  pass->SetShadowDarkness(NAN);
+  pass->SetConstantBias(NAN);
+  pass->SetSlopeBias(NAN);
+  pass->SetBlendBand(NAN);
+  pass->SetShadowDarkness(-INFINITY);
+  baker->SetPolygonOffsetFactor(NAN);
+  baker->SetPolygonOffsetUnits(INFINITY);
+  EXPECT_EQ(passErrors.Count, 5);
+  EXPECT_EQ(bakerErrors.Count, 2);
+  EXPECT_DOUBLE_EQ(pass->GetShadowDarkness(), 1.0);
+  EXPECT_DOUBLE_EQ(pass->GetConstantBias(), 0.002);
+  EXPECT_DOUBLE_EQ(pass->GetSlopeBias(), 1.5);
+  EXPECT_DOUBLE_EQ(pass->GetBlendBand(), 0.05);
+  EXPECT_DOUBLE_EQ(baker->GetPolygonOffsetFactor(), 1.1);
+  EXPECT_DOUBLE_EQ(baker->GetPolygonOffsetUnits(), 2.0);
+  EXPECT_EQ(Differing(scene.Render(), before), 0);
+}
+
+// Issue 9 (12): one degenerate light beside a good one was reported on every frame.
+TEST(Passes, DegenerateLightIsReportedOnce)
+{
+  BoxScene scene;
+  vtkNew<vtkLight> bad;
+  bad->SetLightTypeToSceneLight();
+  bad->SetPositional(false);
+  bad->SetPosition(1, 1, 1);
+  bad->SetFocalPoint(1, 1, 1); // no direction
+  scene.Renderer->AddLight(bad);
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  ErrorCounter errors(pass->GetShadowMapBakerPass()->GetPlanner());
+  for (int frame = 0; frame < 20; ++frame)
+  {
+    scene.Renderer->GetActiveCamera()->Azimuth(2); // a new bake every frame
+    scene.Window->Render();
+  }
+  EXPECT_EQ(pass->GetShadowMapBakerPass()->GetBakeCount(), 20);
+  EXPECT_EQ(errors.Count, 1);
+  ASSERT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps().size(), 2u);
+  EXPECT_GT(pass->GetShadowMapBakerPass()->GetLightMaps()[0].NumberOfCascades, 0);
+}
+
+// Issue 9 (6): more shadowed lights than the fragment shader has texture units (33 on llvmpipe's
+// 32) failed to link the shader and every object disappeared. The first lights keep their
+// shadows, the rest are lit without, and one warning says so.
+TEST(Passes, MoreLightsThanTextureUnits)
+{
+  BoxScene scene;
+  for (int i = 0; i < 32; ++i)
+  {
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    light->SetPositional(false);
+    light->SetPosition(0.1 * (i % 8) - 0.4, 10, 0.1 * (i / 8) - 0.2);
+    light->SetFocalPoint(0, 0, 0);
+    light->SetIntensity(0.01);
+    scene.Renderer->AddLight(light);
+  }
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->SetResolution(256);
+  vtkNew<vtkCallbackCommand> countWarnings;
+  int warnings = 0;
+  countWarnings->SetClientData(&warnings);
+  countWarnings->SetCallback([](vtkObject*, unsigned long, void* n, void*) { ++*static_cast<int*>(n); });
+  baker->AddObserver(vtkCommand::WarningEvent, countWarnings);
+  auto shadowed = scene.Render();
+  scene.Renderer->GetActiveCamera()->Azimuth(5);
+  scene.Render();
+  scene.Renderer->GetActiveCamera()->Azimuth(-5);
+  shadowed = scene.Render();
+  const size_t shadowedLights = baker->GetLightMaps().size();
+  EXPECT_GE(shadowedLights, 8u); // 16 units (the least GL 3.2 allows) - 8 for the mapper
+  EXPECT_LT(shadowedLights, 33u);
+  EXPECT_EQ(warnings, 1);
+  // Objects are drawn (box and ground differ from the background) ...
+  auto* scalars = vtkUnsignedCharArray::SafeDownCast(shadowed->GetPointData()->GetScalars());
+  long drawn = 0;
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+    drawn += std::abs(scalars->GetValue(3 * i) - 51) > 3;
+  EXPECT_GT(drawn, 30000);
+  // ... and the first light's shadow is there.
+  EXPECT_GT(Darkened(shadowed, plain), 800);
 }

@@ -1,0 +1,21 @@
+// Checks of scene files before and after VTK's readers see them: a damaged or hostile file gets
+// one clear message instead of a crash, a hang or a blank image.
+#pragma once
+
+#include <string>
+
+class vtkDataObject;
+
+namespace csmScenes
+{
+
+/// Structure of the risky formats against the file size, before any reader runs: the counts
+/// in .ply and legacy .vtk headers, a binary .stl's triangle count, a .gltf's JSON and the
+/// buffers it refers to. Returns an empty string when the file may be read, else why not.
+std::string CheckFileStructure(const std::string& path, const std::string& extension);
+
+/// What a reader produced, before any filter runs: every cell's point indices within the point
+/// count, every point finite. Composite data is checked leaf by leaf. Empty when valid.
+std::string CheckReaderOutput(vtkDataObject* data);
+
+} // namespace csmScenes

@@ -1,0 +1,168 @@
+"""csm-demo against damaged and hostile input (issue 9, items 8-11 and 14).
+
+    python3 csmDemoRobustness.py <csm-demo> <temp dir> <case>
+
+Each broken case writes its file into <temp dir>, runs csm-demo on it with a timeout and
+checks: exit status 2 (not a crash signal, not a timeout), exactly one line on stderr, starting
+with "csm-demo: error:" and naming what is wrong. The "tiny" case checks a model of half-size
+1e-6 is drawn. Prints "FAIL: ..." and exits 1 on failure.
+"""
+import os
+import struct
+import subprocess
+import sys
+import zlib
+
+demo, tmp, case = sys.argv[1], sys.argv[2], sys.argv[3]
+os.makedirs(tmp, exist_ok=True)
+TIMEOUT = 60
+
+
+def path(name):
+    return os.path.join(tmp, name)
+
+
+def write(name, data):
+    with open(path(name), "wb") as f:
+        f.write(data if isinstance(data, bytes) else data.encode())
+    return path(name)
+
+
+def binary_ply(points, faces):
+    header = ("ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\n"
+              "property float y\nproperty float z\nelement face %d\n"
+              "property list uchar int vertex_indices\nend_header\n" % (len(points), len(faces)))
+    body = b"".join(struct.pack("<3f", *p) for p in points)
+    body += b"".join(struct.pack("<B3i", 3, *f) for f in faces)
+    return header.encode() + body
+
+
+def run(args, env=None):
+    try:
+        p = subprocess.run([demo] + args, capture_output=True, timeout=TIMEOUT, env=env)
+    except subprocess.TimeoutExpired:
+        return None, "", ""
+    return p.returncode, p.stdout.decode(errors="replace"), p.stderr.decode(errors="replace")
+
+
+def expect_error(args, words, env=None):
+    rc, out, err = run(args, env)
+    lines = [l for l in err.splitlines() if l.strip()]
+    if rc is None:
+        return "timed out after %d s" % TIMEOUT
+    if rc < 0 or rc >= 128:
+        return "killed by signal (status %d); stderr: %s" % (rc, err[:300])
+    if rc == 0:
+        return "exit status 0; stdout: %s" % out[:300]
+    if len(lines) != 1 or not lines[0].startswith("csm-demo: error: "):
+        return "expected one error line, got %d: %s" % (len(lines), err[:300])
+    for w in words:
+        if w not in lines[0]:
+            return "the message does not say '%s': %s" % (w, lines[0])
+    print("ok: status %d: %s" % (rc, lines[0]))
+    return None
+
+
+def read_png(file):
+    """8-bit RGB(A) PNG (what vtkPNGWriter writes) -> rows of pixel tuples."""
+    data = open(file, "rb").read()
+    pos, idat, width, height, channels = 8, b"", 0, 0, 3
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        chunk = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", chunk[:10])
+            channels = {2: 3, 6: 4}[colour]
+        elif kind == b"IDAT":
+            idat += chunk
+        pos += 12 + length
+    raw, stride, rows, prev = zlib.decompress(idat), width * channels, [], bytearray(width * channels)
+    for y in range(height):
+        kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - channels] if i >= channels else 0
+            b, c = prev[i], prev[i - channels] if i >= channels else 0
+            if kind == 1: line[i] = (line[i] + a) & 255
+            elif kind == 2: line[i] = (line[i] + b) & 255
+            elif kind == 3: line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append([tuple(line[x * channels:x * channels + 3]) for x in range(width)])
+        prev = line
+    return rows
+
+
+def tiny():
+    # A tetrahedron of half-size 5e-7 on the demo's ground slab: it was drawn blank.
+    s = 1e-6
+    f = write("tiny.obj", "v 0 0 0\nv %g 0 0\nv 0 %g 0\nv 0 0 %g\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n"
+              % (s, s, s))
+    for technique in ("none", "csm"):
+        out = path("tiny-%s.png" % technique)
+        rc, _, err = run(["--scene", f, "--offscreen", "--out", out, "--size", "160x120",
+                          "--technique", technique])
+        if rc != 0:
+            return "tiny model, --technique %s: status %s: %s" % (technique, rc, err[:300])
+        background = (191, 209, 229)  # the demo's background (0.75, 0.82, 0.9)
+        pixels = [p for row in read_png(out) for p in row]
+        drawn = sum(1 for p in pixels if max(abs(x - y) for x, y in zip(p, background)) > 12)
+        if drawn < 0.2 * len(pixels):
+            return "tiny model, --technique %s: only %d of %d pixels drawn" % (technique, drawn, len(pixels))
+        print("ok: tiny model, --technique %s: %d of %d pixels drawn" % (technique, drawn, len(pixels)))
+    return None
+
+
+tri = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+cases = {
+    "obj_bad_index": lambda: expect_error(
+        ["--scene", write("bad-index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999\n"), "--offscreen",
+         "--out", path("x.png")], ["bad-index.obj", "point", "3 points"]),
+    "vtk_bad_index": lambda: expect_error(
+        ["--scene", write("bad-index.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\n"
+                          "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 1 4\n3 0 1 99999\n"),
+         "--offscreen", "--out", path("x.png")], ["point 99999", "3 points"]),
+    "ply_binary_cut": lambda: expect_error(
+        ["--scene", write("cut.ply", binary_ply([(i, i % 7, i % 3) for i in range(1000)],
+                                                [(i, i + 1, i + 2) for i in range(998)])[:14000]),
+         "--offscreen", "--out", path("x.png")], ["cut.ply"]),
+    "gltf_no_bin": lambda: expect_error(
+        ["--scene", write("no-bin.gltf", '{"asset":{"version":"2.0"},"buffers":[{"uri":"no-bin.bin",'
+                          '"byteLength":36}],"meshes":[]}'), "--offscreen", "--out", path("x.png")],
+        ["no-bin.bin", "does not exist"]),
+    "gltf_bad_json": lambda: expect_error(
+        ["--scene", write("bad.gltf", '{"asset": {"version": "2.0"}, "meshes": [ {'), "--offscreen",
+         "--out", path("x.png")], ["JSON"]),
+    "vtk_huge_points": lambda: expect_error(
+        ["--scene", write("huge.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\n"
+                          "POINTS 2000000000 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 1 4\n3 0 1 2\n"),
+         "--offscreen", "--out", path("x.png")], ["2000000000 points"]),
+    "ply_ascii_huge": lambda: expect_error(
+        ["--scene", write("huge.ply", "ply\nformat ascii 1.0\nelement vertex 2000000000\n"
+                          "property float x\nproperty float y\nproperty float z\nelement face 1\n"
+                          "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+                          "3 0 1 2\n"), "--offscreen", "--out", path("x.png")], ["2000000000 vertex"]),
+    "stl_random": lambda: expect_error(
+        ["--scene", write("random.stl", bytes((i * 7919 + 13) * 104729 % 251 for i in range(3000))),
+         "--offscreen", "--out", path("x.png")], ["random.stl", "triangles"]),
+    "ply_nan_points": lambda: expect_error(
+        ["--scene", write("nan.ply", binary_ply(tri + [(float("nan"), 1, 0)], [(0, 1, 2), (0, 1, 3)])),
+         "--offscreen", "--out", path("x.png")], ["not finite"]),
+    "directory": lambda: expect_error(["--scene", tmp, "--offscreen", "--out", path("x.png")],
+                                      ["is a directory"]),
+    "range_message": lambda: expect_error(["--darkness", "2"], ["--darkness must be in [0, 1] (see --help)"]),
+    "triangles_cap": lambda: expect_error(["--triangles", "5e7"], ["--triangles must be in [1000, "]),
+    "no_display": lambda: expect_error(
+        ["--offscreen", "--out", path("x.png")], ["DISPLAY", "xvfb-run -a"],
+        env={k: v for k, v in os.environ.items() if k != "DISPLAY"}),
+    "tiny": tiny,
+}
+problem = cases[case]()
+if problem is None and case in ("range_message",):
+    _, _, err = run(["--darkness", "2"])
+    if err.count("(see --help)") != 1:
+        problem = "'(see --help)' printed %d times: %s" % (err.count("(see --help)"), err)
+if problem:
+    print("FAIL: %s: %s" % (case, problem))
+    sys.exit(1)
