@@ -445,7 +445,6 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     interacting ? this->MapReuseTolerance * (1.0 + 2.0 * border) : 1.0 + 1e-9;
   std::vector<LightMaps> planned;
   std::vector<int> render; // per light slot and cascade: 1 render, 0 keep
-  this->Maps.clear();
   const int maximumLights = this->MaximumShadowedLights(window);
   int shadowingLights = 0;
   int lightIndex = 0;
