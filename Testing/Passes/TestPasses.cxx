@@ -86,6 +86,20 @@ struct BoxScene
     image->DeepCopy(grab->GetOutput());
     return image;
   }
+
+  /// One frame, and the image of exactly that frame (Render() renders again to grab it).
+  vtkSmartPointer<vtkImageData> Frame()
+  {
+    this->Window->Render();
+    vtkNew<vtkWindowToImageFilter> grab;
+    grab->SetInput(this->Window);
+    grab->ReadFrontBufferOff();
+    grab->ShouldRerenderOff();
+    grab->Update();
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->DeepCopy(grab->GetOutput());
+    return image;
+  }
 };
 
 // Pixels whose brightness dropped by more than 15% from b to a.
@@ -499,4 +513,162 @@ TEST(Passes, MoreLightsThanTextureUnits)
   EXPECT_GT(drawn, 30000);
   // ... and the first light's shadow is there.
   EXPECT_GT(Darkened(shadowed, plain), 800);
+}
+
+// Maps kept across frames while the user drags (issue: speed). A pass that keeps maps and one
+// that re-renders them every frame must shade a short interactive orbit alike.
+TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
+{
+  BoxScene keep, fresh;
+  vtkCascadedShadowMapPass* a = vtkCascadedShadowMapPass::UseShadowsOn(keep.Renderer);
+  vtkCascadedShadowMapPass* b = vtkCascadedShadowMapPass::UseShadowsOn(fresh.Renderer);
+  b->GetShadowMapBakerPass()->SetInteractiveMapBorder(0.0);
+  b->GetShadowMapBakerPass()->SetMapReuseTolerance(1.0); // re-render whenever the camera moves
+  keep.Frame();
+  fresh.Frame();
+  keep.Window->SetDesiredUpdateRate(15.0); // as vtkRenderWindowInteractor while dragging
+  fresh.Window->SetDesiredUpdateRate(15.0);
+  int kept = 0, rendered = 0;
+  for (int frame = 0; frame < 8; ++frame)
+  {
+    keep.Renderer->GetActiveCamera()->Azimuth(1.5);
+    fresh.Renderer->GetActiveCamera()->Azimuth(1.5);
+    auto ia = keep.Frame();
+    auto ib = fresh.Frame();
+    kept += a->GetShadowMapBakerPass()->GetLastCascadesKept();
+    rendered += b->GetShadowMapBakerPass()->GetLastCascadeRenders();
+    // <= 0.5 % of the pixels differ by more than 0.1 of the range (26 levels).
+    long differing = 0;
+    auto* pa = vtkUnsignedCharArray::SafeDownCast(ia->GetPointData()->GetScalars());
+    auto* pb = vtkUnsignedCharArray::SafeDownCast(ib->GetPointData()->GetScalars());
+    for (vtkIdType i = 0; i < pa->GetNumberOfTuples(); ++i)
+    {
+      bool off = false;
+      for (int c = 0; c < 3; ++c)
+        off = off || std::abs(int(pa->GetComponent(i, c)) - int(pb->GetComponent(i, c))) > 26;
+      differing += off;
+    }
+    EXPECT_LE(differing, pa->GetNumberOfTuples() / 200) << "frame " << frame;
+  }
+  EXPECT_GT(kept, 0);         // the point of it: maps were kept
+  EXPECT_EQ(rendered, 8 * 2); // the reference re-rendered both cascades every frame
+  // The still frame after dragging returns to tight maps (full quality): identical images.
+  keep.Window->SetDesiredUpdateRate(0.0001);
+  fresh.Window->SetDesiredUpdateRate(0.0001);
+  EXPECT_EQ(Differing(keep.Frame(), fresh.Frame()), 0);
+}
+
+TEST(Passes, PropLightOrOptionChangesReRenderEveryMap)
+{
+  BoxScene scene;
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  scene.Window->SetDesiredUpdateRate(15.0);
+  scene.Frame(); // (the first frame creates the ground's property: a change)
+  scene.Frame();
+  scene.Frame();
+  EXPECT_EQ(baker->GetLastCascadeRenders(), 0);
+  EXPECT_EQ(baker->GetLastCascadesKept(), 2);
+  scene.Box->SetPosition(0.3, 0, 0);
+  scene.Frame();
+  EXPECT_EQ(baker->GetLastCascadeRenders(), 2);
+  scene.Light->SetPosition(1, 10, 0);
+  scene.Frame();
+  EXPECT_EQ(baker->GetLastCascadeRenders(), 2);
+  baker->SetPolygonOffsetUnits(3.0);
+  scene.Frame();
+  EXPECT_EQ(baker->GetLastCascadeRenders(), 2);
+  scene.Frame();
+  EXPECT_EQ(baker->GetLastCascadeRenders(), 0);
+}
+
+TEST(Passes, LeavingAKeptMapReRendersItInThatFrame)
+{
+  BoxScene scene, reference;
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapPass::UseShadowsOn(reference.Renderer);
+  scene.Window->SetDesiredUpdateRate(15.0);
+  reference.Window->SetDesiredUpdateRate(15.0);
+  scene.Frame();
+  // A jump no kept map covers: re-rendered at once, the same image as a fresh pass's.
+  scene.Renderer->GetActiveCamera()->Azimuth(70);
+  scene.Renderer->GetActiveCamera()->Elevation(-20);
+  scene.Renderer->GetActiveCamera()->OrthogonalizeViewUp();
+  reference.Renderer->GetActiveCamera()->DeepCopy(scene.Renderer->GetActiveCamera());
+  auto moved = scene.Frame();
+  EXPECT_GE(pass->GetShadowMapBakerPass()->GetLastCascadeRenders(), 1);
+  EXPECT_EQ(Differing(moved, reference.Frame()), 0);
+}
+
+// Wrong images of the hostile user's report (issue: wrong images), items 1, 3 and 4.
+TEST(Passes, BlendBandDoesNotLightAStripeThroughTheShadow)
+{
+  BoxScene scene;
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->SetPosition(10, 6, 12);
+  scene.Renderer->ResetCameraClippingRange();
+  scene.Light->SetPosition(-0.3, 1, -0.2); // travelling (0.3, -1, 0.2)
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  pass->SetBlendBand(0.0);
+  const long hard = Darkened(scene.Render(), plain);
+  pass->SetBlendBand(0.05);
+  const long blended = Darkened(scene.Render(), plain);
+  EXPECT_GT(hard, 500);
+  EXPECT_GE(blended, hard - 10); // before the fix: 30-210 shadow pixels lit by the band
+}
+
+TEST(Passes, SwitchingBackToAnEarlierCameraReRendersItsMaps)
+{
+  BoxScene scene;
+  auto plain = scene.Render();
+  vtkNew<vtkCamera> other;
+  other->SetPosition(0, 4, -30);
+  other->SetFocalPoint(0, 0, -40);
+  vtkSmartPointer<vtkCamera> first = scene.Renderer->GetActiveCamera();
+  vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  const long before = Darkened(scene.Render(), plain);
+  scene.Renderer->SetActiveCamera(other);
+  scene.Render();
+  scene.Renderer->SetActiveCamera(first);
+  const long after = Darkened(scene.Render(), plain);
+  EXPECT_GT(before, 800);
+  EXPECT_EQ(after, before);
+}
+
+TEST(Passes, OnePassChainServesTwoViewports)
+{
+  // Side by side: each viewport must get its own maps (before: the left showed the right's).
+  BoxScene solo(320, 240);
+  vtkCascadedShadowMapPass::UseShadowsOn(solo.Renderer);
+  auto alone = solo.Render();
+
+  BoxScene pair(640, 240);
+  pair.Renderer->SetViewport(0, 0, 0.5, 1);
+  vtkNew<vtkRenderer> right;
+  right->SetViewport(0.5, 0, 1, 1);
+  right->SetBackground(0.2, 0.3, 0.4);
+  right->AutomaticLightCreationOff();
+  right->AddLight(pair.Light);
+  right->AddActor(pair.Box);
+  right->AddActor(pair.Ground);
+  right->GetActiveCamera()->SetPosition(12, 10, -6);
+  right->GetActiveCamera()->SetFocalPoint(0, 0, 0);
+  right->ResetCameraClippingRange();
+  pair.Window->AddRenderer(right);
+  vtkCascadedShadowMapPass* shared = vtkCascadedShadowMapPass::UseShadowsOn(pair.Renderer);
+  right->SetPass(pair.Renderer->GetPass());
+  auto both = pair.Render();
+  pair.Render();
+  both = pair.Render();
+  // The left half equals the same view rendered alone.
+  long differing = 0;
+  for (int y = 0; y < 240; ++y)
+    for (int x = 0; x < 320; ++x)
+      for (int c = 0; c < 3; ++c)
+        differing += std::abs(both->GetScalarComponentAsDouble(x, y, 0, c) -
+                       alone->GetScalarComponentAsDouble(x, y, 0, c)) > 2;
+  EXPECT_LE(differing, 20);
+  EXPECT_EQ(shared->GetShadowMapBakerPass()->GetLightMaps(right).size(), 1u);
+  EXPECT_EQ(shared->GetShadowMapBakerPass()->GetLightMaps(pair.Renderer).size(), 1u);
 }
