@@ -147,10 +147,10 @@ public:
     vtkLight* Light = nullptr;
     int LightIndex = -1;          ///< index among the renderer's switched-on lights
     int NumberOfCascades = 0;     ///< 0: nothing to shadow for this light this frame
-    double WorldToMap[8][16];     ///< world -> light clip, row-major, per cascade
+    double WorldToMap[8][16] = {};     ///< world -> light clip, row-major, per cascade
     double SplitNear = 0.0;       ///< view depth where the first cascade begins
-    double SplitFar[8];           ///< view depth where each cascade ends
-    double Tile[8][4];            ///< atlas tile: offset x, y and scale x, y in [0, 1]
+    double SplitFar[8] = {};           ///< view depth where each cascade ends
+    double Tile[8][4] = {};            ///< atlas tile: offset x, y and scale x, y in [0, 1]
     int Resolution = 0;           ///< texels per cascade side (Resolution, or less if GL limits)
     double LightGeometry[7] = { 0, 0, 0, 0, 0, 0, 0 }; ///< position, focal point, cone angle (-1: directional) the maps were rendered for
     vtkSmartPointer<vtkTextureObject> Atlas;
