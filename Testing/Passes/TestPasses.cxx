@@ -75,26 +75,19 @@ struct BoxScene
     this->Renderer->ResetCameraClippingRange();
   }
 
-  vtkSmartPointer<vtkImageData> Render()
-  {
-    this->Window->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(this->Window);
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    auto image = vtkSmartPointer<vtkImageData>::New();
-    image->DeepCopy(grab->GetOutput());
-    return image;
-  }
+  /// A frame and its image (the grab renders it again, as vtkWindowToImageFilter does).
+  vtkSmartPointer<vtkImageData> Render() { return this->Grab(true); }
 
-  /// One frame, and the image of exactly that frame (Render() renders again to grab it).
-  vtkSmartPointer<vtkImageData> Frame()
+  /// One frame, and the image of exactly that frame.
+  vtkSmartPointer<vtkImageData> Frame() { return this->Grab(false); }
+
+  vtkSmartPointer<vtkImageData> Grab(bool rerender)
   {
     this->Window->Render();
     vtkNew<vtkWindowToImageFilter> grab;
     grab->SetInput(this->Window);
     grab->ReadFrontBufferOff();
-    grab->ShouldRerenderOff();
+    grab->SetShouldRerender(rerender);
     grab->Update();
     auto image = vtkSmartPointer<vtkImageData>::New();
     image->DeepCopy(grab->GetOutput());
