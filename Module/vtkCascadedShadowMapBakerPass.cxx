@@ -2,11 +2,16 @@
 
 #include "csmShadowSetup.h" // the shadow math: culling test
 
+#include "csmCaster.h"       // the GLSL of Module/glsl/csmCaster.glsl
+#include "csmCasterLineGS.h" // the GLSL of Module/glsl/csmCasterLineGS.glsl
+
+#include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapPlanner.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMath.h"
 #include "vtkCommunicator.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiProcessController.h"
@@ -19,6 +24,7 @@
 #include "vtkOpenGLState.h"
 #include "vtkProp.h"
 #include "vtkPropCollection.h"
+#include "vtkProperty.h"
 #include "vtkRenderState.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
@@ -65,6 +71,58 @@ bool propBounds(vtkProp* prop, double bounds[6])
   }
   std::copy(b, b + 6, bounds);
   return true;
+}
+
+/// The main view that screen-sized casters are sized for (VTK draws tubes and spheres with a
+/// width in the renderer's pixels): world -> view (row-major) in [0, 16), and the world size
+/// of one pixel at view depth d, [16] + [17] d, from the camera's projection.
+void casterView(vtkRenderer* renderer, vtkCamera* camera, double key[18])
+{
+  int width = 0, height = 0, x = 0, y = 0;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  vtkMatrix4x4* worldToView = camera->GetModelViewTransformMatrix();
+  std::copy(worldToView->GetData(), worldToView->GetData() + 16, key);
+  vtkMatrix4x4* projection =
+    camera->GetProjectionTransformMatrix(double(std::max(width, 1)) / std::max(height, 1), -1, 1);
+  const double p11 = projection->GetElement(1, 1);
+  const double pixel = height > 0 && std::isfinite(p11) && p11 != 0.0 ? 2.0 / (height * p11) : 0.0;
+  key[16] = pixel * projection->GetElement(3, 3);  // parallel: constant
+  key[17] = -pixel * projection->GetElement(3, 2); // perspective: grows with depth
+}
+
+/// Does any caster draw lines wider or points bigger than one pixel (its map then depends on
+/// the main view)?
+bool hasScreenSizedCasters(const std::vector<vtkProp*>& casters)
+{
+  vtkNew<vtkPropCollection> actors;
+  for (vtkProp* prop : casters)
+  {
+    prop->GetActors(actors);
+  }
+  vtkCollectionSimpleIterator it;
+  actors->InitTraversal(it);
+  while (vtkProp* prop = actors->GetNextProp(it))
+  {
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    vtkProperty* property = actor ? actor->GetProperty() : nullptr;
+    if (property && (property->GetLineWidth() > 1.0f || property->GetPointSize() > 1.0f))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+/// Row-major double -> column-major float (GLSL's mat4).
+void toColumnMajor(const double m[16], float out[16])
+{
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int column = 0; column < 4; ++column)
+    {
+      out[4 * column + row] = static_cast<float>(m[4 * row + column]);
+    }
+  }
 }
 
 /// Does any part of the box reach the light volume of a cascade (row-major world -> clip)?
@@ -293,6 +351,7 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   ostate->vtkglScissor(x, y, w, h);
   // Far depth where nothing casts (the scissor keeps the other cascades' tiles).
   ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+  casterView(renderer, renderer->GetActiveCamera(), maps.CasterView[c]);
 
   // Only the casters whose bounds reach this cascade's light volume.
   std::vector<vtkProp*> drawn;
@@ -310,8 +369,8 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
     return;
   }
   vtkSmartPointer<vtkCamera> realCamera = renderer->GetActiveCamera();
-  this->Projection->DeepCopy(maps.WorldToMap[c]);
-  this->LightCamera->Modified();
+  this->SetUpLightCamera(maps, c);
+  this->SetUpCasterUniforms(renderer, realCamera, maps, c, x, y, w, h);
   renderer->SetActiveCamera(this->LightCamera);
   vtkRenderState casterState(renderer);
   casterState.SetPropArrayAndCount(drawn.data(), static_cast<int>(drawn.size()));
@@ -323,6 +382,77 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   }
   this->PostRender(&casterState);
   renderer->SetActiveCamera(realCamera);
+}
+
+void vtkCascadedShadowMapBakerPass::SetUpLightCamera(const LightMaps& maps, int c)
+{
+  // The camera's view is the light's rotation (so that what VTK's shaders offset in view space,
+  // such as vtkPointGaussianMapper's splats, faces the light); its projection the rest of the
+  // cascade's world -> light clip matrix.
+  double travel[3] = { maps.LightGeometry[3] - maps.LightGeometry[0],
+    maps.LightGeometry[4] - maps.LightGeometry[1], maps.LightGeometry[5] - maps.LightGeometry[2] };
+  const double length = vtkMath::Norm(travel);
+  this->LightCamera->SetPosition(0.0, 0.0, 0.0);
+  if (length > 0.0 && std::isfinite(length))
+  {
+    vtkMath::MultiplyScalar(travel, 1.0 / length);
+    this->LightCamera->SetFocalPoint(travel);
+    this->LightCamera->SetViewUp(std::abs(travel[1]) < 0.9 ? 0.0 : 1.0,
+      std::abs(travel[1]) < 0.9 ? 1.0 : 0.0, 0.0);
+  }
+  else
+  {
+    this->LightCamera->SetFocalPoint(0.0, 0.0, -1.0);
+    this->LightCamera->SetViewUp(0.0, 1.0, 0.0);
+  }
+  vtkNew<vtkMatrix4x4> viewToWorld;
+  vtkMatrix4x4::Invert(this->LightCamera->GetModelViewTransformMatrix(), viewToWorld);
+  vtkMatrix4x4::Multiply4x4(
+    maps.WorldToMap[c], viewToWorld->GetData(), this->Projection->GetData());
+  this->Projection->Modified();
+  this->LightCamera->Modified();
+}
+
+void vtkCascadedShadowMapBakerPass::SetUpCasterUniforms(vtkRenderer* renderer,
+  vtkCamera* camera, LightMaps& maps, int c, int x, int y, int w, int h)
+{
+  double* key = maps.CasterView[c];
+  casterView(renderer, camera, key);
+  vtkNew<vtkMatrix4x4> worldToView, viewToWorld, worldToMap, mapToWorld;
+  worldToView->DeepCopy(key);
+  vtkMatrix4x4::Invert(worldToView, viewToWorld);
+  worldToMap->DeepCopy(maps.WorldToMap[c]);
+  vtkMatrix4x4::Invert(worldToMap, mapToWorld);
+  double mapToView[16], viewToMap[16];
+  vtkMatrix4x4::Multiply4x4(key, mapToWorld->GetData(), mapToView);
+  vtkMatrix4x4::Multiply4x4(maps.WorldToMap[c], viewToWorld->GetData(), viewToMap);
+  CasterUniforms& u = this->Caster;
+  toColumnMajor(mapToView, u.MapToView);
+  toColumnMajor(viewToMap, u.ViewToMap);
+  const double* position = maps.LightGeometry;
+  const double* focal = maps.LightGeometry + 3;
+  double light[4];
+  if (maps.LightGeometry[6] < 0.0)
+  {
+    const double toward[4] = { position[0] - focal[0], position[1] - focal[1],
+      position[2] - focal[2], 0.0 };
+    worldToView->MultiplyPoint(toward, light);
+  }
+  else
+  {
+    const double at[4] = { position[0], position[1], position[2], 1.0 };
+    worldToView->MultiplyPoint(at, light);
+  }
+  for (int i = 0; i < 4; ++i)
+  {
+    u.LightView[i] = static_cast<float>(light[i]);
+  }
+  u.PixelWorld[0] = static_cast<float>(key[16]);
+  u.PixelWorld[1] = static_cast<float>(key[17]);
+  u.Viewport[0] = static_cast<float>(x);
+  u.Viewport[1] = static_cast<float>(y);
+  u.Viewport[2] = static_cast<float>(w);
+  u.Viewport[3] = static_cast<float>(h);
 }
 
 void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
@@ -443,6 +573,11 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   // times a tight one's.)
   const double tolerance =
     interacting ? this->MapReuseTolerance * (1.0 + 2.0 * border) : 1.0 + 1e-9;
+  // Tubes, spheres, wide lines and big points are drawn into the maps as wide as the main view
+  // draws them: a still frame keeps such a map only for the view it was sized for.
+  const bool screenSized = hasScreenSizedCasters(casters);
+  double viewKey[18];
+  casterView(renderer, camera, viewKey);
   std::vector<LightMaps> planned;
   std::vector<int> render; // per light slot and cascade: 1 render, 0 keep
   const int maximumLights = this->MaximumShadowedLights(window);
@@ -485,11 +620,14 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
       std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
       maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
       const bool keep = kept &&
+        (interacting || !screenSized ||
+          std::equal(viewKey, viewKey + 18, kept->CasterView[c])) &&
         this->Planner->CompareKeptMap(c, kept->WorldToMap[c], kReuseMarginTexels,
           kept->Resolution) <= tolerance;
       if (keep)
       {
         std::copy(kept->WorldToMap[c], kept->WorldToMap[c] + 16, maps.WorldToMap[c]);
+        std::copy(kept->CasterView[c], kept->CasterView[c] + 18, maps.CasterView[c]);
       }
       render.push_back(keep ? 0 : 1);
     }
@@ -608,6 +746,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     glPolygonOffset(static_cast<GLfloat>(this->PolygonOffsetFactor),
       static_cast<GLfloat>(this->PolygonOffsetUnits));
     ostate->vtkglEnable(GL_SCISSOR_TEST);
+    glEnable(GL_PROGRAM_POINT_SIZE); // points sized as the main view draws them
     for (int c = 0; c < maps.NumberOfCascades; ++c)
     {
       if (renderCascade[c])
@@ -616,6 +755,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
         this->RenderCascade(renderer, state.FrameBuffer, maps, c, casters, casterBounds, depthClamp);
       }
     }
+    glDisable(GL_PROGRAM_POINT_SIZE);
     state.FrameBuffer->RemoveDepthAttachment();
     if (this->Distributed())
     {
@@ -637,13 +777,88 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   vtkOpenGLCheckErrorMacro("failed after rendering the cascaded shadow maps");
 }
 
-bool vtkCascadedShadowMapBakerPass::PreReplaceShaderValues(std::string&, std::string&,
-  std::string& fragmentShader, vtkAbstractMapper*, vtkProp*)
+bool vtkCascadedShadowMapBakerPass::PreReplaceShaderValues(std::string&,
+  std::string& geometryShader, std::string& fragmentShader, vtkAbstractMapper*, vtkProp*)
 {
   // Depth only: no lighting in the maps' fragment shader (the mapper finds no tag to expand).
   // This also keeps the depth program apart from the main pass's in the shader cache.
   vtkShaderProgram::Substitute(fragmentShader, "//VTK::Light::Impl",
     "gl_FragData[0] = vec4(1.0); // cascaded shadow map: depth pass\n", false);
+  // Lines VTK widens in a geometry shader (tubes; wide lines the GL cannot draw): our template,
+  // which widens them as the main view does, with the same tags for the mapper to fill.
+  if (geometryShader.find("uniform vec2 lineWidthNVC") != std::string::npos)
+  {
+    geometryShader = csmCasterLineGS;
+    if (!vtkShaderProgram::Substitute(geometryShader, "//CSM::Caster::Dec", csmCaster, false))
+    {
+      vtkErrorMacro(<< "the caster line template lost its declaration tag");
+      return false;
+    }
+  }
+  return true;
+}
+
+bool vtkCascadedShadowMapBakerPass::PostReplaceShaderValues(std::string& vertexShader,
+  std::string&, std::string& fragmentShader, vtkAbstractMapper*, vtkProp*)
+{
+  // Points: sized per vertex as the main view draws them (gl_PointSize, GL_PROGRAM_POINT_SIZE
+  // is on while the maps render); spheres keep only their silhouette; impostors (tubes,
+  // spheres) write the depth of their centre, not the one VTK computes for a view camera.
+  const size_t vertexMain = vertexShader.find("void main");
+  const size_t vertexEnd = vertexShader.rfind('}');
+  const size_t fragmentMain = fragmentShader.find("void main");
+  const size_t fragmentEnd = fragmentShader.rfind('}');
+  if (vertexMain == std::string::npos || vertexEnd == std::string::npos || vertexEnd < vertexMain ||
+    fragmentMain == std::string::npos || fragmentEnd == std::string::npos ||
+    fragmentEnd < fragmentMain)
+  {
+    if (!this->ShaderWarned)
+    {
+      vtkWarningMacro(<< "a mapper's shaders have no main(): its lines and points cast "
+                         "shadows one texel wide");
+      this->ShaderWarned = true;
+    }
+    return true;
+  }
+  vertexShader.insert(vertexEnd, "  csmSizePoint(gl_Position);\n");
+  vertexShader.insert(vertexMain, std::string("#define CSM_CASTER_VERTEX\n") + csmCaster + "\n");
+  std::string fragmentEndCode;
+  const bool sphere = fragmentShader.find("gl_PointCoord") != std::string::npos;
+  if (sphere)
+  {
+    fragmentEndCode += "  if (csmOutsideSphere()) { discard; }\n";
+  }
+  if (fragmentShader.find("ZCalcR") != std::string::npos)
+  {
+    fragmentEndCode += "  gl_FragDepth = gl_FragCoord.z;\n";
+  }
+  fragmentShader.insert(fragmentEnd, fragmentEndCode);
+  if (sphere)
+  {
+    fragmentShader.insert(
+      fragmentMain, std::string("#define CSM_CASTER_SPHERE_FRAGMENT\n") + csmCaster + "\n");
+  }
+  return true;
+}
+
+bool vtkCascadedShadowMapBakerPass::SetShaderParameters(
+  vtkShaderProgram* program, vtkAbstractMapper*, vtkProp* prop, vtkOpenGLVertexArrayObject*)
+{
+  if (!program->IsUniformUsed("csmCasterWidth"))
+  {
+    return true;
+  }
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkProperty* property = actor ? actor->GetProperty() : nullptr;
+  const float width[2] = { property ? property->GetLineWidth() : 1.0f,
+    property ? property->GetPointSize() : 1.0f };
+  CasterUniforms& u = this->Caster;
+  program->SetUniform2f("csmCasterWidth", width);
+  program->SetUniformMatrix4x4("csmMapToView", u.MapToView);
+  program->SetUniformMatrix4x4("csmViewToMap", u.ViewToMap);
+  program->SetUniform4f("csmLightView", u.LightView);
+  program->SetUniform2f("csmPixelWorld", u.PixelWorld);
+  program->SetUniform4f("csmMapViewport", u.Viewport);
   return true;
 }
 

@@ -153,6 +153,9 @@ public:
     double Tile[8][4] = {};            ///< atlas tile: offset x, y and scale x, y in [0, 1]
     int Resolution = 0;           ///< texels per cascade side (Resolution, or less if GL limits)
     double LightGeometry[7] = { 0, 0, 0, 0, 0, 0, 0 }; ///< position, focal point, cone angle (-1: directional) the maps were rendered for
+    /// Per cascade: the main view its screen-sized casters (tubes, spheres, wide lines, big
+    /// points) were sized for: world -> view (row-major) and the pixel size (see CasterView()).
+    double CasterView[8][18] = {};
     vtkSmartPointer<vtkTextureObject> Atlas;
   };
 
@@ -192,6 +195,22 @@ protected:
 
   bool PreReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
     std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
+  bool PostReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
+    std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
+  bool SetShaderParameters(vtkShaderProgram* program, vtkAbstractMapper* mapper, vtkProp* prop,
+    vtkOpenGLVertexArrayObject* vao) override;
+
+  /// What the map pass's shaders need to draw screen-sized casters with the main view's size
+  /// (Module/glsl/csmCaster.glsl), for the cascade being rendered; float, as uploaded.
+  struct CasterUniforms
+  {
+    float MapToView[16] = {}; ///< light clip -> main view, column-major
+    float ViewToMap[16] = {}; ///< main view -> light clip, column-major
+    float LightView[4] = {};  ///< toward a directional light (w = 0) or its position (w = 1)
+    float PixelWorld[2] = {}; ///< world size of a main-view pixel at view depth d: [0] + [1] d
+    float Viewport[4] = {};   ///< the cascade's tile, in texels
+  };
+  CasterUniforms Caster;
 
   /// The maps of one renderer and the GL objects (of its window's context) that hold them.
   struct RendererMaps
@@ -215,6 +234,11 @@ protected:
   void RenderCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebufferObject* frameBuffer,
     LightMaps& maps, int cascade, const std::vector<vtkProp*>& casters,
     const std::vector<std::array<double, 6>>& casterBounds, bool depthClamp);
+  /// The light camera for a cascade: the light's rotation as view, the rest as projection.
+  void SetUpLightCamera(const LightMaps& maps, int cascade);
+  /// The caster uniforms for a cascade, and its CasterView.
+  void SetUpCasterUniforms(vtkRenderer* renderer, vtkCamera* camera, LightMaps& maps, int cascade,
+    int x, int y, int width, int height);
   /// Lights that can get maps in this context: a texture unit each, leaving units and uniforms
   /// for the mapper's own.
   int MaximumShadowedLights(vtkOpenGLRenderWindow* window);
@@ -240,6 +264,7 @@ protected:
   int LastCascadesKept = 0;
   int LastPropsDrawn = 0;
   int WarnedShadowingLights = 0; // lights over the limit last warned about: warn once
+  bool ShaderWarned = false;      // a VTK shader template we could not adapt: warn once
 
 private:
   vtkCascadedShadowMapBakerPass(const vtkCascadedShadowMapBakerPass&) = delete;

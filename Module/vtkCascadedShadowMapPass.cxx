@@ -140,8 +140,18 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   {
     return true; // unlit: no view-space position, no lights to shadow
   }
+  // Tubes and spheres (VTK's impostors) receive on the surface they show, not on their quad.
+  const bool impostor = fragmentShader.find("uniform float ZCalcR") != std::string::npos &&
+    fragmentShader.find("normalVCVSOutput") != std::string::npos;
+  const std::string receiver =
+    impostor ? "csmImpostorSurface(vertexVC, normalVCVSOutput)" : "vertexVC";
   std::ostringstream decl;
-  decl << "#define CSM_LIGHTS " << this->Uniforms.Lights() << "\n" << csmShadowFS << "\n";
+  decl << "#define CSM_LIGHTS " << this->Uniforms.Lights() << "\n";
+  if (impostor)
+  {
+    decl << "#define CSM_IMPOSTOR\n";
+  }
+  decl << csmShadowFS << "\n";
   // Screen derivatives where control flow is still uniform; the lookup itself only where the
   // light reaches the surface (df > 0: behind it, diffuse and specular are 0 anyway), or always
   // for the debug views.
@@ -159,7 +169,7 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
     const std::string k = std::to_string(this->Uniforms.LightIndex[j]);
     const std::string result = "csmResult" + std::to_string(j);
     const std::string lookup = result + " = csmShadow(csmMap" + std::to_string(j) + ", " +
-      std::to_string(j) + ", vertexVC, csmDVCdx, csmDVCdy);";
+      std::to_string(j) + ", " + receiver + ", csmDVCdx, csmDVCdy);";
     const std::string factor = result + ".x * ";
     vtkShaderProgram::Substitute(fragmentShader, "diffuse += (df * lightColor" + k + ");",
       "if (df > 0.0 || csmDebug != 0) { " + lookup + " }\n  diffuse += (df * " + factor +

@@ -32,6 +32,20 @@ void csmDerivatives(mat4 vcToMap, vec4 vc, vec4 dvcdx, vec4 dvcdy, out vec3 dx, 
   dy = (hy.xyz - p * hy.w) / h.w;
 }
 
+#ifdef CSM_IMPOSTOR
+// Receivers drawn as impostors (VTK's tubes and spheres) are flat quads through their axis or
+// centre, facing the camera; the surface the viewer sees lies r n.z toward the camera (r: the
+// radius VTK draws, from its ZCalcR: the radius itself for a parallel camera, per unit of depth
+// for a perspective one). The maps hold the casters' centre depth, which this surface's lit
+// side lies in front of.
+vec4 csmImpostorSurface(vec4 vc, vec3 normalVC)
+{
+  float r = ZCalcR * (cameraParallel == 1 ? 1.0 : -vc.z);
+  vec3 toCamera = cameraParallel == 1 ? vec3(0.0, 0.0, 1.0) : normalize(-vc.xyz);
+  return vec4(vc.xyz + toCamera * (r * max(dot(normalize(normalVC), toCamera), 0.0)), vc.w);
+}
+#endif
+
 float csmHash(vec2 p)
 {
   return fract(sin(dot(p, vec2(12.9898, 78.233))) * 43758.5453);

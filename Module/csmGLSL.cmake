@@ -1,0 +1,19 @@
+# GLSL lives in its own files and is embedded at build time; one list for the VTK module
+# (Module/CMakeLists.txt) and the ParaView plugin that compiles the same sources.
+set(csm_glsl_files csmShadowFS csmCaster csmCasterLineGS)
+
+# csm_encode_glsl(<Module dir> <sources var> <headers var>)
+function(csm_encode_glsl module_dir sources_var headers_var)
+  set(sources)
+  set(headers)
+  foreach(glsl IN LISTS csm_glsl_files)
+    vtk_encode_string(
+      INPUT "${module_dir}/glsl/${glsl}.glsl"
+      HEADER_OUTPUT glsl_header
+      SOURCE_OUTPUT glsl_source)
+    list(APPEND sources ${glsl_source})
+    list(APPEND headers ${glsl_header})
+  endforeach()
+  set(${sources_var} ${sources} PARENT_SCOPE)
+  set(${headers_var} ${headers} PARENT_SCOPE)
+endfunction()
