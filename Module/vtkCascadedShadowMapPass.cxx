@@ -1,5 +1,6 @@
 #include "vtkCascadedShadowMapPass.h"
 
+#include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCameraPass.h"
 #include "vtkCascadedShadowMapBakerPass.h"
@@ -7,6 +8,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderer.h"
+#include "vtkProperty.h"
 #include "vtkRenderPassCollection.h"
 #include "vtkRenderState.h"
 #include "vtkSequencePass.h"
@@ -143,13 +145,15 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   // Tubes and spheres (VTK's impostors) receive on the surface they show, not on their quad.
   const bool impostor = fragmentShader.find("uniform float ZCalcR") != std::string::npos &&
     fragmentShader.find("normalVCVSOutput") != std::string::npos;
-  const std::string receiver =
-    impostor ? "csmImpostorSurface(vertexVC, normalVCVSOutput)" : "vertexVC";
   std::ostringstream decl;
   decl << "#define CSM_LIGHTS " << this->Uniforms.Lights() << "\n";
   if (impostor)
   {
     decl << "#define CSM_IMPOSTOR\n";
+    if (fragmentShader.find("gl_PointCoord") != std::string::npos)
+    {
+      decl << "#define CSM_IMPOSTOR_SPHERE\n";
+    }
   }
   decl << csmShadowFS << "\n";
   // Screen derivatives where control flow is still uniform; the lookup itself only where the
@@ -168,8 +172,10 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   {
     const std::string k = std::to_string(this->Uniforms.LightIndex[j]);
     const std::string result = "csmResult" + std::to_string(j);
-    const std::string lookup = result + " = csmShadow(csmMap" + std::to_string(j) + ", " +
-      std::to_string(j) + ", " + receiver + ", csmDVCdx, csmDVCdy);";
+    const std::string map = "csmMap" + std::to_string(j) + ", " + std::to_string(j);
+    const std::string lookup = result +
+      (impostor ? " = csmImpostorShadow(" + map + ", vertexVC, normalVCVSOutput);"
+                : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
     const std::string factor = result + ".x * ";
     vtkShaderProgram::Substitute(fragmentShader, "diffuse += (df * lightColor" + k + ");",
       "if (df > 0.0 || csmDebug != 0) { " + lookup + " }\n  diffuse += (df * " + factor +
@@ -190,11 +196,19 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
 }
 
 bool vtkCascadedShadowMapPass::SetShaderParameters(
-  vtkShaderProgram* program, vtkAbstractMapper*, vtkProp*, vtkOpenGLVertexArrayObject*)
+  vtkShaderProgram* program, vtkAbstractMapper*, vtkProp* prop, vtkOpenGLVertexArrayObject*)
 {
   if (this->Uniforms.Lights() == 0 || !program->IsUniformUsed("csmPCFSize"))
   {
     return true;
+  }
+  if (program->IsUniformUsed("csmImpostorPixels"))
+  {
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    vtkProperty* property = actor ? actor->GetProperty() : nullptr;
+    const float pixels[2] = { property ? property->GetLineWidth() : 1.0f,
+      property ? property->GetPointSize() : 1.0f };
+    program->SetUniform2f("csmImpostorPixels", pixels);
   }
   program->SetUniformf("csmTileTexel", this->Uniforms.TileTexel);
   program->SetUniformi("csmPCFSize", this->PCFSize);

@@ -32,19 +32,7 @@ void csmDerivatives(mat4 vcToMap, vec4 vc, vec4 dvcdx, vec4 dvcdy, out vec3 dx, 
   dy = (hy.xyz - p * hy.w) / h.w;
 }
 
-#ifdef CSM_IMPOSTOR
-// Receivers drawn as impostors (VTK's tubes and spheres) are flat quads through their axis or
-// centre, facing the camera; the surface the viewer sees lies r n.z toward the camera (r: the
-// radius VTK draws, from its ZCalcR: the radius itself for a parallel camera, per unit of depth
-// for a perspective one). The maps hold the casters' centre depth, which this surface's lit
-// side lies in front of.
-vec4 csmImpostorSurface(vec4 vc, vec3 normalVC)
-{
-  float r = ZCalcR * (cameraParallel == 1 ? 1.0 : -vc.z);
-  vec3 toCamera = cameraParallel == 1 ? vec3(0.0, 0.0, 1.0) : normalize(-vc.xyz);
-  return vec4(vc.xyz + toCamera * (r * max(dot(normalize(normalVC), toCamera), 0.0)), vc.w);
-}
-#endif
+
 
 float csmHash(vec2 p)
 {
@@ -203,6 +191,30 @@ vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
   }
   return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), float(c), m, visibility);
 }
+
+#ifdef CSM_IMPOSTOR
+// Receivers drawn as impostors (VTK's tubes and spheres): the fragment's vertexVC is the point on
+// the tube's axis (or the sphere's centre), its normal the impostor's. The surface the viewer
+// sees is r along that normal (r: the radius VTK draws, from its ZCalcR: the radius itself for a
+// parallel camera, per unit of depth for a perspective one), and its tangent plane is the
+// receiver plane (screen derivatives of the axis point say nothing across the tube). The maps
+// hold the casters' centre depth, which the lit side of this surface lies in front of.
+uniform vec2 csmImpostorPixels; // the diameters VTK draws, in pixels: line width, point size
+vec4 csmImpostorShadow(sampler2DShadow map, int j, vec4 vc, vec3 normalVC)
+{
+  float r = ZCalcR * (cameraParallel == 1 ? 1.0 : -vc.z);
+  vec3 n = normalize(normalVC);
+  vec3 t1 = normalize(cross(n, abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0)));
+  vec3 t2 = cross(n, t1);
+#ifdef CSM_IMPOSTOR_SPHERE
+  float pixel = 2.0 * r / max(csmImpostorPixels.y, 1.0); // one pixel, in view units
+#else
+  float pixel = 2.0 * r / max(csmImpostorPixels.x, 1.0);
+#endif
+  return csmShadow(map, j, vec4(vc.xyz + r * n, vc.w), vec4(t1 * pixel, 0.0),
+    vec4(t2 * pixel, 0.0));
+}
+#endif
 
 vec3 csmCascadeColor(float c)
 {

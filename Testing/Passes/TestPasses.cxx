@@ -6,14 +6,22 @@
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
 #include "vtkCascadedShadowMapPlanner.h"
+#include "vtkCellArray.h"
+#include "vtkCompositePolyDataMapper2.h"
 #include "vtkCubeSource.h"
+#include "vtkGlyph3DMapper.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkNew.h"
+#include "vtkPNGWriter.h"
 #include "vtkPlaneSource.h"
+#include "vtkPointGaussianMapper.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
@@ -28,6 +36,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
 
 namespace
 {
@@ -664,4 +676,207 @@ TEST(Passes, OnePassChainServesTwoViewports)
   EXPECT_LE(differing, 20);
   EXPECT_EQ(shared->GetShadowMapBakerPass()->GetLightMaps(right).size(), 1u);
   EXPECT_EQ(shared->GetShadowMapBakerPass()->GetLightMaps(pair.Renderer).size(), 1u);
+}
+
+namespace
+{
+/// Lines along z drawn as tubes (LineWidth pixels) at height y, from z0 to z1.
+vtkSmartPointer<vtkActor> TubeRow(double y, double z0, double z1, float pixels)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> lines;
+  for (int i = 0; i < 5; ++i)
+  {
+    const double x = -4.0 + 2.0 * i;
+    const vtkIdType ids[2] = { points->InsertNextPoint(x, y, z0), points->InsertNextPoint(x, y, z1) };
+    lines->InsertNextCell(2, ids);
+  }
+  vtkNew<vtkPolyData> data;
+  data->SetPoints(points);
+  data->SetLines(lines);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(data);
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.9, 0.9, 0.9);
+  actor->GetProperty()->SetLineWidth(pixels);
+  actor->GetProperty()->RenderLinesAsTubesOn();
+  return actor;
+}
+
+/// Pixels that differ from the background colour (0.2, 0.3, 0.4).
+std::vector<char> Covered(vtkImageData* image)
+{
+  auto* p = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+  const int nc = p->GetNumberOfComponents();
+  std::vector<char> mask(p->GetNumberOfTuples());
+  const int background[3] = { 51, 76, 102 };
+  for (vtkIdType i = 0; i < p->GetNumberOfTuples(); ++i)
+  {
+    int off = 0;
+    for (int c = 0; c < 3; ++c)
+      off += std::abs(int(p->GetValue(nc * i + c)) - background[c]);
+    mask[i] = off > 6;
+  }
+  return mask;
+}
+
+/// Pixels of the mask at least 15% darker in a than in b.
+long DarkenedIn(vtkImageData* a, vtkImageData* b, const std::vector<char>& mask, long& inMask)
+{
+  auto* pa = vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetScalars());
+  auto* pb = vtkUnsignedCharArray::SafeDownCast(b->GetPointData()->GetScalars());
+  const int nc = pa->GetNumberOfComponents();
+  long count = 0;
+  inMask = 0;
+  for (vtkIdType i = 0; i < pa->GetNumberOfTuples(); ++i)
+  {
+    if (!mask[i])
+      continue;
+    ++inMask;
+    double la = 0, lb = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      la += pa->GetValue(nc * i + c);
+      lb += pb->GetValue(nc * i + c);
+    }
+    count += la < 0.85 * lb - 6.0;
+  }
+  return count;
+}
+}
+
+// Tubes receive shadows on the surface VTK draws: under a deck their lit side is dark; in the
+// open they do not shadow themselves (the maps hold their centre line, their lit side is in
+// front of it).
+TEST(Passes, TubesUnderADeckAreDarkAndTubesInTheOpenAreNot)
+{
+  BoxScene scene(640, 480);
+  scene.Box->SetVisibility(false);
+  vtkNew<vtkCubeSource> deckSource;
+  deckSource->SetBounds(-6, 6, 4.5, 5, -6, 0);
+  vtkNew<vtkPolyDataMapper> deckMapper;
+  deckMapper->SetInputConnection(deckSource->GetOutputPort());
+  vtkNew<vtkActor> deck;
+  deck->SetMapper(deckMapper);
+  vtkSmartPointer<vtkActor> covered = TubeRow(2.0, -5.0, -0.5, 10.0f);
+  vtkSmartPointer<vtkActor> open = TubeRow(2.0, 0.5, 5.0, 10.0f);
+  scene.Renderer->AddActor(deck);
+  scene.Renderer->AddActor(covered);
+  scene.Renderer->AddActor(open);
+  scene.Renderer->AddLight(scene.Light);
+  scene.Light->SetPosition(0.5, 10, 0.3); // from above, a little oblique
+  vtkNew<vtkLight> fill;
+  fill->SetLightTypeToHeadlight();
+  fill->SetIntensity(0.2);
+  scene.Renderer->AddLight(fill);
+
+  // The screen pixels of each row of tubes, each drawn alone.
+  scene.Ground->SetVisibility(false);
+  deck->SetVisibility(false);
+  open->SetVisibility(false);
+  const std::vector<char> coveredMask = Covered(scene.Render());
+  covered->SetVisibility(false);
+  open->SetVisibility(true);
+  const std::vector<char> openMask = Covered(scene.Render());
+  scene.Ground->SetVisibility(true);
+  deck->SetVisibility(true);
+  covered->SetVisibility(true);
+
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* tubePass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  if (const char* debug = std::getenv("CSM_TEST_DEBUG_VIEW"))
+    tubePass->SetDebugMode(std::atoi(debug));
+  auto shadowed = scene.Render();
+  long coveredPixels = 0, openPixels = 0;
+  const long coveredDark = DarkenedIn(shadowed, plain, coveredMask, coveredPixels);
+  const long openDark = DarkenedIn(shadowed, plain, openMask, openPixels);
+  if (const char* dir = std::getenv("CSM_TEST_IMAGES")) // to look at
+  {
+    vtkNew<vtkImageData> marked;
+    marked->DeepCopy(shadowed);
+    auto* m = vtkUnsignedCharArray::SafeDownCast(marked->GetPointData()->GetScalars());
+    auto* pa = vtkUnsignedCharArray::SafeDownCast(shadowed->GetPointData()->GetScalars());
+    auto* pb = vtkUnsignedCharArray::SafeDownCast(plain->GetPointData()->GetScalars());
+    const int nc = m->GetNumberOfComponents();
+    for (vtkIdType i = 0; i < m->GetNumberOfTuples(); ++i)
+    {
+      double la = 0, lb = 0;
+      for (int c = 0; c < 3; ++c)
+      {
+        la += pa->GetValue(nc * i + c);
+        lb += pb->GetValue(nc * i + c);
+      }
+      if (openMask[i] && la < 0.85 * lb - 6.0)
+      {
+        m->SetValue(nc * i, 255);
+        m->SetValue(nc * i + 1, 0);
+        m->SetValue(nc * i + 2, 0);
+      }
+    }
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetInputData(marked);
+    writer->SetFileName((std::string(dir) + "/tubes-deck.png").c_str());
+    writer->Write();
+  }
+  std::printf("tube pixels under the deck: %ld, darkened %ld; in the open: %ld, darkened %ld\n",
+    coveredPixels, coveredDark, openPixels, openDark);
+  ASSERT_GT(coveredPixels, 4000);
+  ASSERT_GT(openPixels, 4000);
+  EXPECT_GE(coveredDark, coveredPixels * 7 / 10);
+  EXPECT_LE(openDark, openPixels / 100);
+}
+
+// Other mappers VTK draws with still cast shadows through the maps: opaque point-Gaussian
+// splats (which VTK offsets in view space: the light camera's view faces the light), glyphs,
+// and composite data.
+TEST(Passes, SplatsGlyphsAndCompositeDataCastShadows)
+{
+  vtkNew<vtkPoints> points;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k)
+      points->InsertNextPoint(-4.5 + 3.0 * i, 3.0, -3.0 + 3.0 * k);
+  vtkNew<vtkPolyData> centres;
+  centres->SetPoints(points);
+
+  vtkNew<vtkPointGaussianMapper> splats;
+  splats->SetInputData(centres);
+  splats->SetScaleFactor(0.8);
+  splats->EmissiveOff();
+  splats->SetSplatShaderCode("//VTK::Color::Impl\n"
+                             "float dist = dot(offsetVCVSOutput.xy, offsetVCVSOutput.xy);\n"
+                             "if (dist > 1.0) { discard; }\n");
+  vtkNew<vtkSphereSource> ball;
+  ball->SetRadius(0.8);
+  vtkNew<vtkGlyph3DMapper> glyphs;
+  glyphs->SetInputData(centres);
+  glyphs->SetSourceConnection(ball->GetOutputPort());
+  glyphs->ScalingOff();
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  blocks->SetBlock(0, ball->GetOutput());
+  ball->Update();
+  vtkNew<vtkSphereSource> second;
+  second->SetCenter(2.5, 0, 0);
+  second->SetRadius(1.0);
+  second->Update();
+  blocks->SetBlock(0, ball->GetOutput());
+  blocks->SetBlock(1, second->GetOutput());
+  vtkNew<vtkCompositePolyDataMapper2> composite;
+  composite->SetInputDataObject(blocks);
+
+  const std::pair<const char*, vtkMapper*> mappers[] = { { "splats", splats },
+    { "glyphs", glyphs }, { "composite", composite } };
+  for (const auto& named : mappers)
+  {
+    BoxScene scene;
+    scene.Box->SetMapper(named.second);
+    scene.Box->SetPosition(0, named.second == composite ? 3.0 : 0.0, 0);
+    auto plain = scene.Render();
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+    auto shadowed = scene.Render();
+    const long darkened = Darkened(shadowed, plain);
+    std::printf("%s: %ld pixels darkened\n", named.first, darkened);
+    EXPECT_GT(darkened, 500) << named.first;
+  }
 }
