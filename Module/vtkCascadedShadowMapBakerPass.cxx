@@ -17,6 +17,8 @@
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -777,16 +779,42 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   vtkOpenGLCheckErrorMacro("failed after rendering the cascaded shadow maps");
 }
 
+namespace
+{
+/// Does the mapper draw nothing but lines for the prop, wider than one pixel (a polydata of
+/// lines, or any surface as wireframe; no vertices or points)? The GL draws such lines itself
+/// (in texels of the map); the map pass widens them in its geometry shader instead.
+bool drawsOnlyWideLines(vtkAbstractMapper* mapper, vtkProp* prop)
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkProperty* property = actor ? actor->GetProperty() : nullptr;
+  vtkPolyDataMapper* polyMapper = vtkPolyDataMapper::SafeDownCast(mapper);
+  vtkPolyData* data = polyMapper ? polyMapper->GetInput() : nullptr;
+  if (!property || !data || property->GetLineWidth() <= 1.0f ||
+    property->GetRepresentation() == VTK_POINTS || property->GetVertexVisibility() ||
+    data->GetNumberOfVerts() > 0)
+  {
+    return false;
+  }
+  return property->GetRepresentation() == VTK_WIREFRAME ||
+    (data->GetNumberOfLines() > 0 && data->GetNumberOfPolys() == 0 &&
+      data->GetNumberOfStrips() == 0);
+}
+}
+
 bool vtkCascadedShadowMapBakerPass::PreReplaceShaderValues(std::string&,
-  std::string& geometryShader, std::string& fragmentShader, vtkAbstractMapper*, vtkProp*)
+  std::string& geometryShader, std::string& fragmentShader, vtkAbstractMapper* mapper,
+  vtkProp* prop)
 {
   // Depth only: no lighting in the maps' fragment shader (the mapper finds no tag to expand).
   // This also keeps the depth program apart from the main pass's in the shader cache.
   vtkShaderProgram::Substitute(fragmentShader, "//VTK::Light::Impl",
     "gl_FragData[0] = vec4(1.0); // cascaded shadow map: depth pass\n", false);
-  // Lines VTK widens in a geometry shader (tubes; wide lines the GL cannot draw): our template,
-  // which widens them as the main view does, with the same tags for the mapper to fill.
-  if (geometryShader.find("uniform vec2 lineWidthNVC") != std::string::npos)
+  // Lines VTK widens in a geometry shader (tubes; wide lines the GL cannot draw), and wide lines
+  // the GL would draw: our template, which widens them as the main view does (wide lines as
+  // tubes of their width), with the same tags for the mapper to fill.
+  if (geometryShader.find("uniform vec2 lineWidthNVC") != std::string::npos ||
+    (geometryShader.empty() && drawsOnlyWideLines(mapper, prop)))
   {
     geometryShader = csmCasterLineGS;
     if (!vtkShaderProgram::Substitute(geometryShader, "//CSM::Caster::Dec", csmCaster, false))

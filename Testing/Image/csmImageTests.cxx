@@ -288,8 +288,9 @@ std::vector<char> ImpostorShadowPixels(Test& t, const Impostors& scene)
   return mask;
 }
 
-/// A lattice of lines drawn as tubes (LineWidth pixels) 3 units above the ground.
-void TubeLattice(Test& t, double pixels)
+/// A lattice of lines drawn as tubes (LineWidth pixels) 3 units above the ground (or as wide
+/// lines, flat ribbons facing the camera).
+void TubeLattice(Test& t, double pixels, bool tubes = true)
 {
   auto scene = std::make_shared<Impostors>();
   scene->Pixels = pixels;
@@ -321,7 +322,7 @@ void TubeLattice(Test& t, double pixels)
   actor->SetMapper(mapper);
   actor->GetProperty()->SetColor(0.9, 0.45, 0.2);
   actor->GetProperty()->SetLineWidth(static_cast<float>(pixels));
-  actor->GetProperty()->RenderLinesAsTubesOn();
+  actor->GetProperty()->SetRenderLinesAsTubes(tubes);
   t.Renderer->AddActor(actor);
   t.Renderer->AddActor(GroundPlane());
   ImpostorView(t);
@@ -450,6 +451,10 @@ std::map<std::string, std::function<void(Test&)>> Cases()
   };
   cases["TestTubeLattice"] = [](Test& t) {
     TubeLattice(t, 12.0);
+    t.MinShadowPixels = 3000;
+  };
+  cases["TestWideLineLattice"] = [](Test& t) {
+    TubeLattice(t, 12.0, false);
     t.MinShadowPixels = 3000;
   };
   cases["TestSphereField"] = [](Test& t) {
