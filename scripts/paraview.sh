@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The ParaView 5.11 plugin (ParaView/): install what it needs, build it against ParaView's own
 # VTK, and run its pvbatch tests: one process (image against the baseline, shadow pixel count,
-# selection, properties) and 2 MPI ranks (shadows cast across the ranks' pieces).
+# selection, properties, tube shadows), 2 MPI ranks (shadows cast across the ranks' pieces),
+# and the pvpython snippets of README.md and ParaView/README.md run as written (a shadow shows).
 #
 # Debian's ParaView CMake config refers to files of python3-paraview, which conflicts with
 # python3-vtk9 (needed by libvtk9-dev, the main build). So paraview and paraview-dev come from
@@ -9,11 +10,15 @@
 # same version are unpacked into $BUILD/prefix (dpkg -x): the plugin is configured against that
 # prefix and the test runs its pvbatch. Nothing of the libvtk9 build is used.
 #
-#   bash scripts/paraview.sh [all|single|mpi]   build dir: build-paraview/ (or $CSM_PV_BUILD_DIR)
-#   (CTest runs "single" as paraview.View and "mpi" as paraview.ViewMPI)
+#   bash scripts/paraview.sh [all|single|mpi|readme]   build dir: build-paraview/ (or $CSM_PV_BUILD_DIR)
+#   (CTest runs "single" as paraview.View, "mpi" as paraview.ViewMPI, "readme" as
+#   paraview.Readme). "readme" installs and unpacks nothing: it needs the prefix an earlier run
+#   unpacked and exits with status 77 (skipped) without it.
 set -euo pipefail
 MODE="${1:-all}"
-case "$MODE" in all|single|mpi) ;; *) echo "error: unknown mode '$MODE' (all, single or mpi)" >&2; exit 2 ;; esac
+case "$MODE" in all|single|mpi|readme) ;;
+  *) echo "error: unknown mode '$MODE' (all, single, mpi or readme)" >&2; exit 2 ;;
+esac
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 source "$ROOT/scripts/common.sh"
@@ -65,8 +70,15 @@ configure_and_build() {
   fi
 }
 
-install_missing_packages
-unpack_paraview_prefix
+if [ "$MODE" = readme ]; then
+  if [ ! -f "$PREFIX/.version" ] || ! command -v xvfb-run >/dev/null; then
+    echo "SKIP: no ParaView prefix in $PREFIX (or no xvfb-run); run bash scripts/paraview.sh first"
+    exit 77
+  fi
+else
+  install_missing_packages
+  unpack_paraview_prefix
+fi
 configure_and_build
 
 PLUGIN="$BUILD/lib/paraview-5.11/plugins/CascadedShadows/CascadedShadows.so"
@@ -80,19 +92,29 @@ unset PYTHONPATH
 export LD_LIBRARY_PATH="$PV_LIB${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 failed=()
 
-if [ "$MODE" != mpi ]; then
+if [ "$MODE" = all ] || [ "$MODE" = single ]; then
   echo "== pvbatch test, 1 process (Xvfb, Mesa llvmpipe): $PLUGIN"
   "${XVFB[@]}" "$PREFIX/usr/bin/pvbatch" "$TESTING/TestCascadedShadowsView.py" "$PLUGIN" \
     "$TESTING/Baseline/CascadedShadowsView.png" "$BUILD/Testing" 2>&1 | tee "$LOGS/test.log" ||
     failed+=("1 process (log: $LOGS/test.log)")
 fi
 
-if [ "$MODE" != single ]; then
+if [ "$MODE" = all ] || [ "$MODE" = mpi ]; then
   echo "== pvbatch test, 2 MPI ranks (IceT)"
   timeout 600 "${XVFB[@]}" "${MPIEXEC[@]}" "$PREFIX/usr/bin/pvbatch" --mpi \
     "$TESTING/TestCascadedShadowsViewMPI.py" "$PLUGIN" "$BUILD/Testing" 2>&1 |
     tee "$LOGS/test-mpi.log" | { grep -v "WARN|" || true; } ||
     failed+=("2 MPI ranks (log: $LOGS/test-mpi.log)")
+fi
+
+if [ "$MODE" = all ] || [ "$MODE" = readme ]; then
+  : >"$LOGS/test-readme.log"
+  for readme in README.md ParaView/README.md; do
+    echo "== pvbatch: the pvpython snippet of $readme, run as written"
+    "${XVFB[@]}" "$PREFIX/usr/bin/pvbatch" "$TESTING/TestReadmeSnippet.py" "$ROOT/$readme" \
+      "$BUILD" "$BUILD/Testing/readme" 2>&1 | tee -a "$LOGS/test-readme.log" ||
+      failed+=("snippet of $readme (log: $LOGS/test-readme.log)")
+  done
 fi
 
 [ ${#failed[@]} -eq 0 ] || die "ParaView plugin test failed: ${failed[*]}; images in $BUILD/Testing"

@@ -11,7 +11,12 @@ Renders boxes over a plane in "Render View (Cascaded Shadows)" and checks, with 
      and the image is unchanged after it;
   5. ShadowedLights = All Lights adds the shadows of the light kit's fill and back lights;
   6. the view properties reach the passes (read back from the passes' PrintSelf), and setting
-     them back to their defaults gives the first image again.
+     them back to their defaults gives the first image again;
+  7. lines shown with "Render Lines As Tubes" cast shadows as wide as the view draws the tubes:
+     three lines 3 units over a plane, LineWidth 12, one oblique directional scene light, seen
+     from straight above (parallel projection): the darkened pixels number about as many as
+     the tubes' own pixels, lie in the analytic footprint of 12-pixel cylinders, and the same
+     lines as 1-pixel hairlines darken far fewer.
 A missing baseline is written to <output dir> and the test fails: look at it, then copy it.
 Exit status 0 on success; every failure prints one line starting with "FAIL".
 """
@@ -32,6 +37,17 @@ DARKEN_LEVELS = 40  # luminance drop that counts a pixel as shadowed
 MIN_DARKENED = 4000  # the key light's shadows darken about 5600 pixels at 640x480
 MAX_BRIGHTENED = 50  # shadows never brighten (a few edge pixels may differ)
 MIN_MORE_WITH_ALL_LIGHTS = 6000  # fill and back lights darken about 12700 more pixels (box faces)
+# 7. Tubes: 3 lines of 320 x 12 pixels (11520 tube pixels, measured) cast 13479 darkened pixels
+# (the analytic footprint of the cylinders is 1.12 x the tubes' pixels at the light's 63.4 deg
+# across the lines); as 1-pixel lines without tubes they darken 614 (0.05 x).
+TUBE_WIDTH = 12  # LineWidth, pixels
+TUBE_HEIGHT = 3.0  # lines over the plane, world units
+MIN_TUBE_SHADOW = 0.8  # darkened pixels / tube pixels, at least (measured 1.17)
+MAX_TUBE_SHADOW = 1.5  # and at most
+MIN_IN_FOOTPRINT = 0.95  # share of the darkened pixels within FOOTPRINT_SLACK of the footprint
+MIN_FOOTPRINT_DARK = 0.9  # share of the footprint's pixels darkened
+FOOTPRINT_SLACK = 3  # pixels
+MAX_HAIRLINE_SHADOW = 0.25  # 1-pixel lines: darkened pixels / tube pixels, at most (0.05)
 
 plugin, baseline, outdir = sys.argv[1], sys.argv[2], sys.argv[3]
 os.makedirs(outdir, exist_ok=True)
@@ -206,6 +222,121 @@ for group in (("WarpMode", "SplitScheme", "PCFSize", "ShadowDarkness", "ShadowDe
     changes = ", ".join("%s %s" % (name, settings[name][1]) for name in group)
     compare_to_first(view, "restored-" + group[0], "after %s and back" % changes)
 
+
+
+# 7. Lines drawn as tubes cast shadows as wide as the tubes.
+def tube_footprint(lines, light, ppu, focal):
+    """Pixels (rows from the top) of the ground whose ray toward the light meets a tube."""
+    rows, cols = numpy.mgrid[0:SIZE[1], 0:SIZE[0]] + 0.5
+    gx = focal[0] + (cols - SIZE[0] / 2) / ppu  # screen right is +x, screen down is +z
+    gz = focal[2] + (rows - SIZE[1] / 2) / ppu
+    radius = TUBE_WIDTH / 2 / ppu
+    direction = numpy.array(light, dtype=float) / numpy.linalg.norm(light)
+    inside = numpy.zeros(gx.shape, dtype=bool)
+    for (x0, y0, z0), (x1, _, _) in lines:
+        # The ray g + t * direction meets the axis (parallel to x at height y0, depth z0) closest
+        # where its (y, z) comes nearest (y0, z0); a capped cylinder: x there within the ends.
+        t = (y0 * direction[1] + (z0 - gz) * direction[2]) / (direction[1] ** 2 + direction[2] ** 2)
+        dy, dz = t * direction[1] - y0, gz + t * direction[2] - z0
+        x = gx + t * direction[0]
+        inside |= (dy * dy + dz * dz <= radius * radius) & (x >= x0 - radius) & (x <= x1 + radius)
+    return inside
+
+
+def dilate(mask, steps):
+    out = mask.copy()
+    for _ in range(steps):
+        grown = out.copy()
+        grown[1:, :] |= out[:-1, :]
+        grown[:-1, :] |= out[1:, :]
+        grown[:, 1:] |= out[:, :-1]
+        grown[:, :-1] |= out[:, 1:]
+        out = grown
+    return out
+
+
+tube_view = CreateView("CascadedShadowsView")
+tube_view.ViewSize = SIZE
+tube_view.OrientationAxesVisibility = 0
+tube_view.UseColorPaletteForBackground = 0
+tube_view.Background = [0.32, 0.34, 0.43]
+tube_view.UseLight = 0  # no light kit: one directional scene light, 63.4 deg over the ground
+tube_light = [0.3, 2.0, -1.0]  # towards the light; shadows fall 1.5 units to +z, 0.45 to -x
+light = AddLight(view=tube_view)
+light.Coords = "Scene"
+light.Type = "Directional"
+light.Position = tube_light
+light.FocalPoint = [0.0, 0.0, 0.0]
+light.Intensity = 1.0
+focal = [0.0, 0.0, 0.5]
+tube_view.CameraPosition = [0.0, 20.0, 0.5]  # straight down, screen up = -z, right = +x
+tube_view.CameraFocalPoint = focal
+tube_view.CameraViewUp = [0.0, 0.0, -1.0]
+tube_view.CameraParallelProjection = 1
+tube_view.CameraParallelScale = 6.0  # 40 pixels a unit at 640x480
+pixels_per_unit = SIZE[1] / (2 * 6.0)
+ground = Plane(Origin=[-7, 0, -7], Point1=[7, 0, -7], Point2=[-7, 0, 7])
+Show(ground, tube_view)
+line_ends = [((-4.0, TUBE_HEIGHT, z), (4.0, TUBE_HEIGHT, z)) for z in (-3.0, 0.0, 3.0)]
+line_sources = [Line(Point1=list(a), Point2=list(b)) for a, b in line_ends]
+tubes = [Show(source, tube_view) for source in line_sources]
+for tube in tubes:
+    tube.RenderLinesAsTubes = 1
+    tube.LineWidth = TUBE_WIDTH
+    tube.AmbientColor = tube.DiffuseColor = [0.9, 0.5, 0.2]
+
+
+def tube_shots(tag):
+    tube_view.CascadedShadows = 1
+    on = screenshot(tube_view, "Tubes%s.png" % tag)
+    tube_view.CascadedShadows = 0
+    off = screenshot(tube_view, "Tubes%s-off.png" % tag)
+    return on, off
+
+
+tubes_on, tubes_off = tube_shots("")
+for tube in tubes:
+    tube.Visibility = 0
+bare = screenshot(tube_view, "Tubes-bare-off.png")
+for tube in tubes:
+    tube.Visibility = 1
+tube_pixels = int((numpy.abs(tubes_off - bare).max(axis=2) > PIXEL_TOLERANCE).sum())
+dark = (luminance(tubes_off) - luminance(tubes_on) > DARKEN_LEVELS)[::-1]  # rows from the top
+darkened = int(dark.sum())
+footprint = tube_footprint(line_ends, tube_light, pixels_per_unit, focal)
+in_footprint = int((dark & dilate(footprint, FOOTPRINT_SLACK)).sum())
+footprint_dark = int((dark & footprint).sum())
+columns = dark[:, SIZE[0] // 2]
+runs = numpy.diff(numpy.flatnonzero(numpy.diff(numpy.r_[0, columns.astype(int), 0])))[::2]
+print("tubes: %d tube pixels (LineWidth %d); shadows darken %d pixels = %.2f x (need %.2f-%.2f); "
+      "shadow widths in the middle column %s pixels"
+      % (tube_pixels, TUBE_WIDTH, darkened, darkened / max(tube_pixels, 1), MIN_TUBE_SHADOW,
+         MAX_TUBE_SHADOW, runs.tolist()))
+print("tubes: analytic footprint %d pixels; %.3f of the darkened pixels within %d pixels of it "
+      "(need >= %.2f), %.3f of it darkened (need >= %.2f)"
+      % (footprint.sum(), in_footprint / max(darkened, 1), FOOTPRINT_SLACK, MIN_IN_FOOTPRINT,
+         footprint_dark / max(footprint.sum(), 1), MIN_FOOTPRINT_DARK))
+if tube_pixels < 3 * 300 * TUBE_WIDTH * 0.9:
+    fail("the tubes cover only %d pixels" % tube_pixels)
+elif not MIN_TUBE_SHADOW * tube_pixels <= darkened <= MAX_TUBE_SHADOW * tube_pixels:
+    fail("tube shadows darken %d pixels, %.2f x the tubes' %d (need %.2f-%.2f)"
+         % (darkened, darkened / tube_pixels, tube_pixels, MIN_TUBE_SHADOW, MAX_TUBE_SHADOW))
+if in_footprint < MIN_IN_FOOTPRINT * darkened:
+    fail("only %d of %d darkened pixels lie in the tubes' shadow footprint" % (in_footprint, darkened))
+if footprint_dark < MIN_FOOTPRINT_DARK * footprint.sum():
+    fail("only %d of the footprint's %d pixels are darkened" % (footprint_dark, footprint.sum()))
+
+for tube in tubes:
+    tube.RenderLinesAsTubes = 0
+    tube.LineWidth = 1
+lines_on, lines_off = tube_shots("-hairlines")
+hairline = int((luminance(lines_off) - luminance(lines_on) > DARKEN_LEVELS).sum())
+print("hairlines (LineWidth 1, no tubes): %d pixels darkened = %.2f x the tubes' pixels "
+      "(allowed <= %.2f)" % (hairline, hairline / max(tube_pixels, 1), MAX_HAIRLINE_SHADOW))
+if hairline > MAX_HAIRLINE_SHADOW * tube_pixels:
+    fail("1-pixel lines darken %d pixels, as if they were tubes" % hairline)
+
+Delete(tube_view)
 Delete(plain)
 Delete(view)
 if failures:
