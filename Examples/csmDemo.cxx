@@ -90,7 +90,8 @@ void usage()
 {
   std::printf(
     "usage: csm-demo [options]\n"
-    "  --scene S          platform (default) | towers | FILE (.vtp .vtk .stl .ply .obj .glb .gltf)\n"
+    "  --scene S          platform (default) | platform-beams (its bars as lines drawn as\n"
+    "                     tubes) | towers | FILE (.vtp .vtk .stl .ply .obj .glb .gltf)\n"
     "  --triangles N      platform size in triangles, 1000..~11.8 M [250000]\n"
     "  --technique T      csm (ours) | vtk (vtkShadowMapPass) | none [csm]\n"
     "  --warp W           none | psm | lispsm | generalized [generalized]\n"
@@ -403,6 +404,8 @@ int main(int argc, char** argv)
   csmScenes::Scene scene;
   if (app.Opt.Scene == "platform")
     scene = csmScenes::Platform(app.Opt.Triangles);
+  else if (app.Opt.Scene == "platform-beams")
+    scene = csmScenes::PlatformBeams();
   else if (app.Opt.Scene == "towers")
     scene = csmScenes::Towers();
   else
@@ -439,8 +442,10 @@ int main(int argc, char** argv)
   app.PlaceLight();
   app.Apply();
 
-  std::printf("scene %s: %lld triangles, %zu actors\n", scene.Name.c_str(), scene.Triangles,
-    scene.Actors.size());
+  std::printf("scene %s: %lld triangles, ", scene.Name.c_str(), scene.Triangles);
+  if (scene.Lines > 0)
+    std::printf("%lld lines, ", scene.Lines);
+  std::printf("%zu actors\n", scene.Actors.size());
 
   if (app.Opt.Frames > 0)
   {

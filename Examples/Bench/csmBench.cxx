@@ -66,7 +66,8 @@ struct Options
   int InteractiveFrames = 30; // interactive orbit: 2 degrees a frame, as a user drags
   int StillFrames = 8;        // the default view, camera still
   bool Breakdown = false;     // per frame: planning and map times, maps rendered
-  std::vector<std::string> Scenes = { "platform", "platform-2m", "towers", "engine" };
+  std::vector<std::string> Scenes = { "platform", "platform-beams", "platform-2m", "towers",
+    "engine" };
 };
 
 [[noreturn]] void fail(const std::string& message)
@@ -433,7 +434,8 @@ Options Parse(int argc, char** argv)
     {
       std::printf("usage: csm-bench [--quick] [--breakdown] [--out FILE.csv] [--plot FILE.png]\n"
                   "                 [--size WxH] [--frames N] [--budget TEXELS_SIDE] [--scenes a,b,...]\n"
-                  "scenes: platform, platform-2m, towers, engine. --quick: platform (or --scenes),\n"
+                  "scenes: platform, platform-beams (its bars as lines drawn as tubes), platform-2m,\n"
+                  "towers, engine. --quick: platform (or --scenes),\n"
                   "640x480, 6 frames a path, budget 2048, VTK's pass and ours with the defaults.\n"
                   "Timed paths: coarse orbit + fly-through (interleaved), an interactive orbit of\n"
                   "2 degrees a frame and a still camera. --breakdown: per frame, the planning and\n"
@@ -480,7 +482,8 @@ Options Parse(int argc, char** argv)
       std::string name;
       while (std::getline(list, name, ','))
       {
-        if (name != "platform" && name != "platform-2m" && name != "towers" && name != "engine")
+        if (name != "platform" && name != "platform-beams" && name != "platform-2m" &&
+          name != "towers" && name != "engine")
           fail("unknown scene '" + name + "'");
         o.Scenes.push_back(name);
       }
@@ -527,6 +530,8 @@ int main(int argc, char** argv)
     csmScenes::Scene scene;
     if (sceneName == "platform")
       scene = csmScenes::Platform(250000);
+    else if (sceneName == "platform-beams")
+      scene = csmScenes::PlatformBeams();
     else if (sceneName == "platform-2m")
       scene = csmScenes::Platform(2100000); // >= 2M triangles
     else if (sceneName == "towers")
@@ -542,7 +547,10 @@ int main(int argc, char** argv)
         continue;
       }
     }
-    std::printf("scene %s: %lld triangles\n", sceneName.c_str(), scene.Triangles);
+    std::printf("scene %s: %lld triangles", sceneName.c_str(), scene.Triangles);
+    if (scene.Lines > 0)
+      std::printf(", %lld lines drawn as tubes", scene.Lines);
+    std::printf("\n");
     std::fflush(stdout);
 
     vtkNew<vtkRenderer> renderer;
@@ -644,7 +652,7 @@ int main(int argc, char** argv)
     // Accuracy: white, diffuse-only materials and the key light alone, so that the render with
     // shadows over the render without is the shadow factor.
     csmTruth::RayScene rays;
-    rays.Build(renderer);
+    rays.Build(renderer, o.Height);
     for (const auto& actor : scene.Actors)
     {
       actor->GetProperty()->SetColor(1, 1, 1);
@@ -662,6 +670,8 @@ int main(int argc, char** argv)
       if (!v.Measured)
         continue;
       Apply(v, renderer, key, scene);
+      if (rays.TubesFollowCamera())
+        rays.Build(renderer, o.Height); // tubes as wide as this view draws them
       renderer->SetPass(nullptr);
       window->Render();
       auto plain = Grab(window);

@@ -10,6 +10,7 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkTriangleFilter.h"
 #include "vtkUnsignedCharArray.h"
@@ -19,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace csmTruth
 {
@@ -29,6 +31,7 @@ struct RayScene::Internals
   RTCScene Scene = nullptr;
   double Origin[3] = { 0, 0, 0 }; // world position of the Embree origin
   double Scale = 1.0;             // size of the scene, for ray offsets
+  bool Tubes = false;             // the scene holds tubes sized for one camera
   ~Internals()
   {
     if (this->Scene)
@@ -45,12 +48,102 @@ RayScene::RayScene()
 
 RayScene::~RayScene() = default;
 
-long long RayScene::Build(vtkRenderer* renderer)
+namespace
+{
+/// The world size of one pixel of the main view at a view depth d: pixel[0] + pixel[1] d (as the
+/// mapper widens lines: a width in pixels of the viewport's height).
+void PixelWorld(vtkRenderer* renderer, int height, double pixel[2])
+{
+  int w = 0, h = 0, x = 0, y = 0;
+  renderer->GetTiledSizeAndOrigin(&w, &h, &x, &y);
+  if (height > 0 && h > 0)
+    w = static_cast<int>(std::lround(double(w) * height / h));
+  h = height > 0 ? height : h;
+  vtkMatrix4x4* projection = renderer->GetActiveCamera()->GetProjectionTransformMatrix(
+    double(std::max(w, 1)) / std::max(h, 1), -1, 1);
+  const double p11 = projection->GetElement(1, 1);
+  const double size = h > 0 && std::isfinite(p11) && p11 != 0.0 ? 2.0 / (h * p11) : 0.0;
+  pixel[0] = size * projection->GetElement(3, 3);  // parallel: constant
+  pixel[1] = -size * projection->GetElement(3, 2); // perspective: grows with depth
+}
+
+/// The lines of an actor drawn as tubes, as Embree cone linear curves (flat caps where a
+/// polyline ends), radius from each vertex's depth in the main view. Returns the segments.
+long long AddTubes(RTCDevice device, RTCScene scene, vtkActor* actor, vtkPolyData* data,
+  vtkRenderer* renderer, const double pixel[2], const double origin[3])
+{
+  vtkProperty* property = actor->GetProperty();
+  vtkCellArray* lines = data->GetLines();
+  if (!property->GetRenderLinesAsTubes() || property->GetLineWidth() <= 1.0f || !lines ||
+    lines->GetNumberOfCells() == 0)
+    return 0;
+  vtkNew<vtkMatrix4x4> matrix;
+  actor->GetMatrix(matrix);
+  vtkMatrix4x4* worldToView = renderer->GetActiveCamera()->GetModelViewTransformMatrix();
+  const double halfWidth = 0.5 * property->GetLineWidth();
+  // Each polyline's points in order (a vertex per point of the cell), one segment per pair.
+  std::vector<float> vertices;
+  std::vector<unsigned> segments;
+  std::vector<unsigned char> flags;
+  vtkIdType n;
+  const vtkIdType* ids;
+  for (lines->InitTraversal(); lines->GetNextCell(n, ids);)
+  {
+    if (n < 2)
+      continue;
+    const unsigned first = static_cast<unsigned>(vertices.size() / 4);
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      double p[4] = { 0, 0, 0, 1 }, w[4], v[4];
+      data->GetPoint(ids[k], p);
+      matrix->MultiplyPoint(p, w);
+      for (int c = 0; c < 3; ++c)
+        w[c] /= w[3];
+      w[3] = 1.0;
+      worldToView->MultiplyPoint(w, v);
+      const double depth = std::max(0.0, -v[2] / v[3]);
+      for (int c = 0; c < 3; ++c)
+        vertices.push_back(static_cast<float>(w[c] - origin[c]));
+      vertices.push_back(static_cast<float>(halfWidth * (pixel[0] + pixel[1] * depth)));
+    }
+    for (vtkIdType k = 0; k + 1 < n; ++k)
+    {
+      segments.push_back(first + static_cast<unsigned>(k));
+      flags.push_back(static_cast<unsigned char>((k > 0 ? RTC_CURVE_FLAG_NEIGHBOR_LEFT : 0) |
+        (k + 2 < n ? RTC_CURVE_FLAG_NEIGHBOR_RIGHT : 0)));
+    }
+  }
+  if (segments.empty())
+    return 0;
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_CONE_LINEAR_CURVE);
+  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+    RTC_FORMAT_FLOAT4, 4 * sizeof(float), vertices.size() / 4));
+  std::copy(vertices.begin(), vertices.end(), vb);
+  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+    geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(unsigned), segments.size()));
+  std::copy(segments.begin(), segments.end(), ib);
+  auto* fb = static_cast<unsigned char*>(rtcSetNewGeometryBuffer(
+    geometry, RTC_BUFFER_TYPE_FLAGS, 0, RTC_FORMAT_UCHAR, sizeof(unsigned char), flags.size()));
+  std::copy(flags.begin(), flags.end(), fb);
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(scene, geometry);
+  rtcReleaseGeometry(geometry);
+  return static_cast<long long>(segments.size());
+}
+} // namespace
+
+bool RayScene::TubesFollowCamera() const
+{
+  return this->Internal->Tubes;
+}
+
+long long RayScene::Build(vtkRenderer* renderer, int height)
 {
   auto& in = *this->Internal;
   if (in.Scene)
     rtcReleaseScene(in.Scene);
   in.Scene = nullptr;
+  in.Tubes = false;
   if (!in.Device)
     in.Device = rtcNewDevice(nullptr);
   if (!in.Device)
@@ -64,6 +157,8 @@ long long RayScene::Build(vtkRenderer* renderer)
   in.Scale = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-9 });
   in.Scene = rtcNewScene(in.Device);
   long long triangles = 0;
+  double pixel[2];
+  PixelWorld(renderer, height, pixel);
   vtkActorCollection* actors = renderer->GetActors();
   vtkCollectionSimpleIterator it;
   actors->InitTraversal(it);
@@ -74,6 +169,9 @@ long long RayScene::Build(vtkRenderer* renderer)
     auto* data = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0));
     if (!data)
       continue;
+    const long long tubes = AddTubes(in.Device, in.Scene, actor, data, renderer, pixel, in.Origin);
+    in.Tubes = in.Tubes || tubes > 0;
+    triangles += tubes;
     vtkNew<vtkTriangleFilter> triangulate;
     triangulate->SetInputData(data);
     triangulate->PassVertsOff();

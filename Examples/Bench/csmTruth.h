@@ -22,8 +22,13 @@ struct Surface
 };
 
 /// The triangles of a renderer's visible actors (world space, actor matrices applied) in an
-/// Embree scene. Coordinates are stored relative to the scene's centre, so scenes far from the
-/// origin keep their precision in Embree's single-precision vertices.
+/// Embree scene, and their lines drawn as tubes (vtkProperty RenderLinesAsTubes, LineWidth > 1)
+/// as the main view draws them: cones with flat caps (Embree's cone linear curves) whose radius
+/// at each vertex is 0.5 * LineWidth * the world size of one pixel of the active camera there
+/// (2 d tan(angle / 2) / height at view depth d; 2 parallelScale / height). Those depend on the
+/// camera: build again for each view (TubesFollowCamera()). Coordinates are stored relative to
+/// the scene's centre, so scenes far from the origin keep their precision in Embree's
+/// single-precision vertices.
 class RayScene
 {
 public:
@@ -32,8 +37,13 @@ public:
   RayScene(const RayScene&) = delete;
   RayScene& operator=(const RayScene&) = delete;
 
-  /// Returns the number of triangles, 0 when there is nothing to cast against.
-  long long Build(vtkRenderer* renderer);
+  /// Returns the number of triangles and tube segments, 0 when there is nothing to cast
+  /// against. Tubes are sized for the renderer's active camera in a viewport of height pixels
+  /// (0: the renderer's own size).
+  long long Build(vtkRenderer* renderer, int height = 0);
+
+  /// Did the last Build() add tubes (whose size depends on the camera)?
+  bool TubesFollowCamera() const;
 
   /// Visible surface of every pixel (row 0 at the bottom, as VTK images), for the camera seen
   /// in a width x height viewport.

@@ -207,6 +207,7 @@ void Finish(Scene& scene)
   double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
     VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   scene.Triangles = 0;
+  scene.Lines = 0;
   for (const auto& actor : scene.Actors)
   {
     const double* a = actor->GetBounds();
@@ -215,8 +216,9 @@ void Finish(Scene& scene)
       b[2 * i] = std::min(b[2 * i], a[2 * i]);
       b[2 * i + 1] = std::max(b[2 * i + 1], a[2 * i + 1]);
     }
-    scene.Triangles +=
-      CountTriangles(vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0)));
+    auto* data = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0));
+    scene.Triangles += CountTriangles(data);
+    scene.Lines += data ? data->GetNumberOfLines() : 0;
   }
   std::copy(b, b + 6, scene.Bounds);
 }
@@ -345,6 +347,53 @@ long long PlatformMaxTriangles()
     kPlatformBoxTriangles;
 }
 
+namespace
+{
+/// The platform's parts that stay triangles (sea, decks, modules), its default view and bounds,
+/// around the bar actors of Platform() or PlatformBeams().
+Scene PlatformAround(const std::string& name, std::vector<vtkSmartPointer<vtkActor>> bars,
+  double offset)
+{
+  Builder decks(offset);
+  decks.AddBox({ -20.0, deck1, -20.0 }, { 20.0, deck1 + 1.5, 20.0 });
+  decks.AddBox({ -18.0, deck2, -18.0 }, { 18.0, deck2 + 1.0, 18.0 });
+  decks.AddBox({ -8.0, deck2 + 1.0, -12.0 }, { 0.0, deck2 + 6.0, -4.0 }); // a module
+  decks.AddBox({ 10.0, deck1 + 1.5, 8.0 }, { 18.0, deck1 + 8.0, 18.0 });  // a module
+
+  Scene scene;
+  scene.Name = name;
+  scene.Actors.push_back(
+    MakeActor(Ground(-150, 150, -150, 150, 0.0, offset), 0.35, 0.45, 0.55, 0.1));
+  for (auto& actor : bars)
+    scene.Actors.push_back(actor);
+  scene.Actors.push_back(MakeActor(decks.Finish(true), 0.7, 0.7, 0.72));
+  Finish(scene);
+  const double eye[3] = { 95.0 + offset, 75.0, 120.0 + offset };
+  const double focal[3] = { 0.0 + offset, 32.0, 0.0 + offset };
+  std::copy(eye, eye + 3, scene.CameraPosition);
+  std::copy(focal, focal + 3, scene.FocalPoint);
+  return scene;
+}
+
+/// Bars as line cells (one segment each), for lines drawn as tubes.
+vtkSmartPointer<vtkPolyData> BarLines(const std::vector<Bar>& bars, double offset)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> lines;
+  for (const Bar& bar : bars)
+  {
+    const vtkIdType ids[2] = { points->InsertNextPoint(bar.a[0] + offset, bar.a[1], bar.a[2] + offset),
+      points->InsertNextPoint(bar.b[0] + offset, bar.b[1], bar.b[2] + offset) };
+    lines->InsertNextCell(2, ids);
+  }
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  data->SetPoints(points);
+  data->SetLines(lines);
+  return data;
+}
+} // namespace
+
 Scene Platform(long long targetTriangles, double offset)
 {
   std::vector<Bar> heavy, thin;
@@ -353,29 +402,28 @@ Scene Platform(long long targetTriangles, double offset)
   const long long bars = static_cast<long long>(heavy.size() + thin.size());
   const int sides =
     static_cast<int>(std::max<long long>(4, std::min<long long>(kMaxBarSides, targetTriangles / (2 * bars))));
-  Builder steel(offset), light(offset), decks(offset);
+  Builder steel(offset), light(offset);
   for (const Bar& bar : heavy)
     steel.AddBar(bar, sides);
   for (const Bar& bar : thin)
     light.AddBar(bar, std::max(4, sides / 2 * 2));
-  decks.AddBox({ -20.0, deck1, -20.0 }, { 20.0, deck1 + 1.5, 20.0 });
-  decks.AddBox({ -18.0, deck2, -18.0 }, { 18.0, deck2 + 1.0, 18.0 });
-  decks.AddBox({ -8.0, deck2 + 1.0, -12.0 }, { 0.0, deck2 + 6.0, -4.0 }); // a module
-  decks.AddBox({ 10.0, deck1 + 1.5, 8.0 }, { 18.0, deck1 + 8.0, 18.0 });  // a module
+  return PlatformAround("platform",
+    { MakeActor(steel.Finish(false), 0.85, 0.75, 0.35),
+      MakeActor(light.Finish(false), 0.9, 0.5, 0.2) },
+    offset);
+}
 
-  Scene scene;
-  scene.Name = "platform";
-  scene.Actors.push_back(
-    MakeActor(Ground(-150, 150, -150, 150, 0.0, offset), 0.35, 0.45, 0.55, 0.1));
-  scene.Actors.push_back(MakeActor(steel.Finish(false), 0.85, 0.75, 0.35));
-  scene.Actors.push_back(MakeActor(light.Finish(false), 0.9, 0.5, 0.2));
-  scene.Actors.push_back(MakeActor(decks.Finish(true), 0.7, 0.7, 0.72));
-  Finish(scene);
-  const double eye[3] = { 95.0 + offset, 75.0, 120.0 + offset };
-  const double focal[3] = { 0.0 + offset, 32.0, 0.0 + offset };
-  std::copy(eye, eye + 3, scene.CameraPosition);
-  std::copy(focal, focal + 3, scene.FocalPoint);
-  return scene;
+Scene PlatformBeams(double offset, double heavyPixels, double thinPixels)
+{
+  std::vector<Bar> heavy, thin;
+  PlatformBars(heavy, thin);
+  auto steel = MakeActor(BarLines(heavy, offset), 0.85, 0.75, 0.35);
+  auto light = MakeActor(BarLines(thin, offset), 0.9, 0.5, 0.2);
+  steel->GetProperty()->SetRenderLinesAsTubes(true);
+  steel->GetProperty()->SetLineWidth(static_cast<float>(heavyPixels));
+  light->GetProperty()->SetRenderLinesAsTubes(true);
+  light->GetProperty()->SetLineWidth(static_cast<float>(thinPixels));
+  return PlatformAround("platform-beams", { steel, light }, offset);
 }
 
 Scene Towers(int count)

@@ -19,6 +19,7 @@ struct Scene
   std::vector<vtkSmartPointer<vtkActor>> Actors;
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
   long long Triangles = 0;
+  long long Lines = 0; ///< line cells (drawn as tubes where the actor says so)
   // A default view: camera position, focal point, view-up, and a clipping range (0: automatic).
   double CameraPosition[3] = { 0, 0, 1 };
   double FocalPoint[3] = { 0, 0, 0 };
@@ -32,6 +33,12 @@ struct Scene
 /// targetTriangles triangles (the bar tessellation scales with it), at least ~40k.
 /// offset moves the whole scene (points stored in double precision) far from the origin.
 Scene Platform(long long targetTriangles = 250000, double offset = 0.0);
+
+/// The same platform as a beam model: its bars (the same list) are line cells drawn as tubes
+/// (vtkProperty RenderLinesAsTubes) of a width in pixels, heavy and thin bars in two actors;
+/// sea, decks and modules stay triangles. The default widths look like the solid platform's
+/// bars at its default view in 800x600. Named "platform-beams".
+Scene PlatformBeams(double offset = 0.0, double heavyPixels = 7.0, double thinPixels = 2.0);
 
 /// The most triangles Platform() builds (its bars' finest tessellation).
 long long PlatformMaxTriangles();
