@@ -104,8 +104,8 @@ Options parse(int argc, char** argv)
     else if (flag == "--cascades")
     {
       const double k = number(argv[i++], value);
-      if (k != std::floor(k) || k < 1 || k > 64)
-        fail("--cascades needs a whole number in [1, 64]");
+      if (k != std::floor(k) || k < 1 || k > csm::kMaxSplits)
+        fail("--cascades needs a whole number in [1, " + std::to_string(csm::kMaxSplits) + "]");
       o.settings.split.k = static_cast<int>(k);
     }
     else if (flag == "--warp")

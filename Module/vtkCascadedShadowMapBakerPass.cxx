@@ -43,7 +43,7 @@ vtkCxxSetObjectMacro(vtkCascadedShadowMapBakerPass, Controller, vtkMultiProcessC
 
 namespace
 {
-constexpr int kMaxCascades = 8;
+constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES;
 constexpr size_t kMaxReceiverBoxes = 64;
 // Frames per second from which the window's desired update rate means "interacting" (the
 // interactor's default is 15, its still rate 0.0001).
@@ -54,9 +54,9 @@ constexpr double kReuseMarginTexels = 0.0;
 // Texture units of the fragment shader left to the mapper's own textures (colour, normal,
 // ORM, emissive and anisotropy maps, and PBR's irradiance, prefiltered and BRDF maps).
 constexpr int kMapperTextureUnits = 8;
-// Fragment uniform components one shadowed light costs: 8 cascades of a mat4, a vec4 and a
+// Fragment uniform components one shadowed light costs: per cascade a mat4, a vec4 and a
 // float (padded to a vec4), and the per-light values.
-constexpr int kUniformComponentsPerLight = 8 * (16 + 4 + 4) + 16;
+constexpr int kUniformComponentsPerLight = kMaxCascades * (16 + 4 + 4) + 16;
 constexpr int kMapperUniformComponents = 1024;
 
 /// Bounds of a prop that draws 3D geometry, or false (2D actors, invisible, no bounds).

@@ -27,6 +27,7 @@
 #define vtkCascadedShadowMapBakerPass_h
 
 #include "vtkOpenGLRenderPass.h"
+#include "vtkCascadedShadowMapPlanner.h"      // for MAXIMUM_NUMBER_OF_CASCADES
 #include "vtkCascadedShadowsSetMacro.h"     // for vtkSetFiniteClampMacro
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 #include "vtkSmartPointer.h"                   // for members
@@ -36,7 +37,6 @@
 #include <vector> // for members
 
 class vtkCamera;
-class vtkCascadedShadowMapPlanner;
 class vtkLight;
 class vtkMatrix4x4;
 class vtkMultiProcessController;
@@ -66,7 +66,7 @@ public:
   ///@{
   /**
    * How the cascades are planned; these forward to GetPlanner(), which documents them:
-   * number of cascades (1..8, default 2, Barroso & Celes §4), warp mode and split scheme
+   * number of cascades (1..MAXIMUM_NUMBER_OF_CASCADES, default 2, Barroso & Celes §4), warp mode and split scheme
    * (vtkCascadedShadowMapPlanner::WarpModes / SplitSchemes; defaults generalized LiSPSM and
    * adaptive), lambda (practical splits, 0.5), alpha (adaptive splits, 2) and depth clamping
    * (Lloyd et al. §6.4, on).
@@ -147,15 +147,15 @@ public:
     vtkLight* Light = nullptr;
     int LightIndex = -1;          ///< index among the renderer's switched-on lights
     int NumberOfCascades = 0;     ///< 0: nothing to shadow for this light this frame
-    double WorldToMap[8][16] = {};     ///< world -> light clip, row-major, per cascade
+    double WorldToMap[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][16] = {};     ///< world -> light clip, row-major, per cascade
     double SplitNear = 0.0;       ///< view depth where the first cascade begins
-    double SplitFar[8] = {};           ///< view depth where each cascade ends
-    double Tile[8][4] = {};            ///< atlas tile: offset x, y and scale x, y in [0, 1]
+    double SplitFar[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};           ///< view depth where each cascade ends
+    double Tile[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][4] = {};            ///< atlas tile: offset x, y and scale x, y in [0, 1]
     int Resolution = 0;           ///< texels per cascade side (Resolution, or less if GL limits)
     double LightGeometry[7] = { 0, 0, 0, 0, 0, 0, 0 }; ///< position, focal point, cone angle (-1: directional) the maps were rendered for
     /// Per cascade: the main view its screen-sized casters (tubes, spheres, wide lines, big
     /// points) were sized for: world -> view (row-major) and the pixel size (see CasterView()).
-    double CasterView[8][18] = {};
+    double CasterView[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][18] = {};
     vtkSmartPointer<vtkTextureObject> Atlas;
   };
 

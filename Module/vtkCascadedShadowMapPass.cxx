@@ -4,6 +4,7 @@
 #include "vtkCamera.h"
 #include "vtkCameraPass.h"
 #include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkCascadedShadowMapPlanner.h"
 #include "vtkLight.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
@@ -26,6 +27,7 @@ vtkCxxSetObjectMacro(vtkCascadedShadowMapPass, ShadowMapBakerPass, vtkCascadedSh
 namespace
 {
 const char* const kVertexVC = "vec4 vertexVC = vertexVCVSOutput;";
+constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES;
 
 std::string indexed(const char* name, size_t j)
 {
@@ -89,7 +91,7 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
     u.Attenuation.push_back(
       static_cast<float>(this->ShadowDarkness * maps.Light->GetShadowAttenuation()));
     u.TileTexel = 1.0f / static_cast<float>(std::max(1, maps.Resolution));
-    for (int c = 0; c < 8; ++c)
+    for (int c = 0; c < kMaxCascades; ++c)
     {
       double clipFromView[16], mapFromView[16];
       if (c < maps.NumberOfCascades)
@@ -146,7 +148,13 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   const bool impostor = fragmentShader.find("uniform float ZCalcR") != std::string::npos &&
     fragmentShader.find("normalVCVSOutput") != std::string::npos;
   std::ostringstream decl;
-  decl << "#define CSM_LIGHTS " << this->Uniforms.Lights() << "\n";
+  // The limits and option values the GLSL uses, from their one definition here.
+  decl << "#define CSM_LIGHTS " << this->Uniforms.Lights() << "\n"
+       << "#define CSM_MAX_CASCADES " << kMaxCascades << "\n"
+       << "#define CSM_KERNEL_GRID " << KERNEL_GRID << "\n"
+       << "#define CSM_DEBUG_CASCADES " << DEBUG_CASCADES << "\n"
+       << "#define CSM_DEBUG_ERROR " << DEBUG_ERROR << "\n"
+       << "#define CSM_DEBUG_FACTOR " << DEBUG_FACTOR << "\n";
   if (impostor)
   {
     decl << "#define CSM_IMPOSTOR\n";
@@ -223,9 +231,10 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   {
     program->SetUniformi(indexed("csmMap", j).c_str(), u.TextureUnit[j]);
   }
-  program->SetUniformMatrix4x4v("csmToMap", lights * 8, const_cast<float*>(u.ToMap.data()));
-  program->SetUniform4fv("csmTile", lights * 8, u.Tile.data());
-  program->SetUniform1fv("csmSplitFar", lights * 8, u.SplitFar.data());
+  program->SetUniformMatrix4x4v(
+    "csmToMap", lights * kMaxCascades, const_cast<float*>(u.ToMap.data()));
+  program->SetUniform4fv("csmTile", lights * kMaxCascades, u.Tile.data());
+  program->SetUniform1fv("csmSplitFar", lights * kMaxCascades, u.SplitFar.data());
   program->SetUniform1fv("csmSplitNear", lights, u.SplitNear.data());
   program->SetUniform1iv("csmCount", lights, u.Count.data());
   program->SetUniform1fv("csmAttenuation", lights, u.Attenuation.data());

@@ -15,6 +15,21 @@
 #include <string>
 #include <vector>
 
+// The planner's option values are the math's enums, in the same order.
+static_assert(vtkCascadedShadowMapPlanner::WARP_NONE == int(csm::WarpMode::None) &&
+    vtkCascadedShadowMapPlanner::WARP_PSM == int(csm::WarpMode::PSM) &&
+    vtkCascadedShadowMapPlanner::WARP_LISPSM == int(csm::WarpMode::LiSPSM) &&
+    vtkCascadedShadowMapPlanner::WARP_GENERALIZED == int(csm::WarpMode::Generalized),
+  "WarpModes must match csm::WarpMode");
+static_assert(vtkCascadedShadowMapPlanner::SPLIT_SINGLE == int(csm::SplitScheme::Single) &&
+    vtkCascadedShadowMapPlanner::SPLIT_UNIFORM == int(csm::SplitScheme::Uniform) &&
+    vtkCascadedShadowMapPlanner::SPLIT_LOG == int(csm::SplitScheme::Log) &&
+    vtkCascadedShadowMapPlanner::SPLIT_PRACTICAL == int(csm::SplitScheme::Practical) &&
+    vtkCascadedShadowMapPlanner::SPLIT_ADAPTIVE == int(csm::SplitScheme::Adaptive),
+  "SplitSchemes must match csm::SplitScheme");
+static_assert(vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES <= csm::kMaxSplits,
+  "the passes cannot use more cascades than the math plans");
+
 vtkStandardNewMacro(vtkCascadedShadowMapPlanner);
 
 struct vtkCascadedShadowMapPlanner::Internals

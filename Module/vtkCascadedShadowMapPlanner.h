@@ -48,9 +48,12 @@ public:
     SPLIT_ADAPTIVE
   };
 
+  /// The most cascades a light gets (the shaders hold them in uniform arrays).
+  static constexpr int MAXIMUM_NUMBER_OF_CASCADES = 8;
+
   ///@{
-  /// Number of z-partitions (cascades), 1..8. Default 2.
-  vtkSetClampMacro(NumberOfCascades, int, 1, 8);
+  /// Number of z-partitions (cascades), 1..MAXIMUM_NUMBER_OF_CASCADES. Default 2.
+  vtkSetClampMacro(NumberOfCascades, int, 1, MAXIMUM_NUMBER_OF_CASCADES);
   vtkGetMacro(NumberOfCascades, int);
   ///@}
 

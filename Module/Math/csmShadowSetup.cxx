@@ -19,7 +19,6 @@ constexpr double kDegree = kPi / 180.0;
 /// Beyond n' = kOrthoRatio * (light-space depth of the body) the warp differs from orthographic
 /// by < 0.2% in storage but costs precision (t = A - B/z' cancels): use the orthographic map.
 constexpr double kOrthoRatio = 1.0e3;
-constexpr int kMaxCascades = 64;
 constexpr double kMinDistance = 1e-50; // camera near and far distances a double handles
 constexpr double kMaxDistance = 1e50;
 
@@ -193,7 +192,7 @@ std::string validate(const Camera& camera, const glm::dvec3& light, const Bounds
     return "light direction must be finite and non-zero";
   }
   const SplitParameters& split = settings.split;
-  if (split.k < 1 || split.k > kMaxCascades)
+  if (split.k < 1 || split.k > kMaxSplits)
   {
     return "number of cascades must be in [1, 64]";
   }

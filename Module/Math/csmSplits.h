@@ -15,6 +15,10 @@ enum class SplitScheme
   Adaptive   ///< Barroso & Celes, 000 Eq. 19
 };
 
+/// The most partitions the math plans (the render passes use fewer: see
+/// vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES).
+constexpr int kMaxSplits = 64;
+
 struct SplitParameters
 {
   SplitScheme scheme = SplitScheme::Adaptive;

@@ -3,15 +3,13 @@
 // texel-space PCF whose taps are virtual samples on the receiver's tangent plane
 // (Barroso & Celes 2007, §2.2); the per-pixel aliasing error m (Lloyd et al., Eq. 1).
 
-#define CSM_MAX_CASCADES 8
-
 uniform float csmTileTexel;    // one texel of a cascade, in the cascade's [0,1] coordinates
 uniform int csmPCFSize;        // kernel width in texels: 1, 3, 5 or 7
-uniform int csmKernel;         // 0: regular grid, 1: jittered circular
+uniform int csmKernel;         // CSM_KERNEL_GRID: regular grid; otherwise jittered circular
 uniform float csmConstantBias; // in the map's [0,1] depth
 uniform float csmSlopeBias;    // times the receiver-plane depth change over one texel
 uniform float csmBlendBand;    // share of a cascade's depth range blended into the next
-uniform int csmDebug;          // 0 off, 1 cascades, 2 aliasing error, 3 shadow factor
+uniform int csmDebug;          // 0 off, or CSM_DEBUG_CASCADES, _ERROR, _FACTOR
 
 // Map coordinates ([0,1]^3 inside the cascade) of a view-space point.
 vec3 csmProject(mat4 vcToMap, vec4 vc)
@@ -119,7 +117,7 @@ float csmVisibility(sampler2DShadow map, mat4 vcToMap, vec4 tile, vec4 vc, vec4 
   vec3 p = csmProject(vcToMap, vc);
   vec3 dx, dy;
   csmDerivatives(vcToMap, vc, dvcdx, dvcdy, dx, dy);
-  if (csmDebug == 2)
+  if (csmDebug == CSM_DEBUG_ERROR)
   {
     // Lloyd Eq. 1: a texel's footprint in pixels, 1 / smallest singular value of d(texel)/d(pixel).
     mat2 j = mat2(dx.xy, dy.xy) / csmTileTexel;
@@ -136,7 +134,7 @@ float csmVisibility(sampler2DShadow map, mat4 vcToMap, vec4 tile, vec4 vc, vec4 
   float zSlopePerTexel = min((abs(dz.x) + abs(dz.y)) * csmTileTexel, 0.05);
   float zRef = p.z - csmConstantBias - csmSlopeBias * zSlopePerTexel;
   int r = csmPCFSize / 2;
-  return csmKernel == 0 || r == 0 ? csmGridPCF(map, tile, p.xy, zRef, dz, r)
+  return csmKernel == CSM_KERNEL_GRID || r == 0 ? csmGridPCF(map, tile, p.xy, zRef, dz, r)
                                   : csmJitteredPCF(map, tile, p.xy, zRef, dz, r);
 }
 
@@ -241,8 +239,8 @@ vec3 csmErrorColor(float m)
 // Debug output for a shadow result r (first shadowed light) over the shaded colour.
 vec4 csmDebugColor(vec4 shaded, vec4 r)
 {
-  if (csmDebug == 1) return vec4(csmCascadeColor(r.y) * (0.35 + 0.65 * r.x), shaded.a);
-  if (csmDebug == 2) return vec4(r.y < -0.5 ? vec3(0.0) : csmErrorColor(r.z) * (0.4 + 0.6 * r.x), shaded.a);
-  if (csmDebug == 3) return vec4(vec3(r.w), shaded.a);
+  if (csmDebug == CSM_DEBUG_CASCADES) return vec4(csmCascadeColor(r.y) * (0.35 + 0.65 * r.x), shaded.a);
+  if (csmDebug == CSM_DEBUG_ERROR) return vec4(r.y < -0.5 ? vec3(0.0) : csmErrorColor(r.z) * (0.4 + 0.6 * r.x), shaded.a);
+  if (csmDebug == CSM_DEBUG_FACTOR) return vec4(vec3(r.w), shaded.a);
   return shaded;
 }
