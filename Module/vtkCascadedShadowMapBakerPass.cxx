@@ -37,6 +37,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 vtkStandardNewMacro(vtkCascadedShadowMapBakerPass);
 vtkCxxSetObjectMacro(vtkCascadedShadowMapBakerPass, Controller, vtkMultiProcessController);
@@ -287,6 +288,23 @@ int vtkCascadedShadowMapBakerPass::MaximumShadowedLights(vtkOpenGLRenderWindow* 
   return std::max(0, std::min(byUnits, byUniforms));
 }
 
+void vtkCascadedShadowMapBakerPass::ReportOnce(bool error, const std::string& message)
+{
+  // A frame is rendered on every camera move: say each distinct thing once.
+  if (!this->Reported.insert(message).second)
+  {
+    return;
+  }
+  if (error)
+  {
+    vtkErrorMacro(<< message);
+  }
+  else
+  {
+    vtkWarningMacro(<< message);
+  }
+}
+
 bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
   vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles, bool& reallocated)
 {
@@ -299,8 +317,10 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
   if (resolution * columns > maxSize)
   {
     resolution = maxSize / columns;
-    vtkWarningMacro(<< "Shadow map resolution " << this->Resolution << " x " << columns
-                    << " cascades exceeds the GL limit " << maxSize << "; using " << resolution);
+    std::ostringstream message;
+    message << "Shadow map resolution " << this->Resolution << " x " << columns
+            << " cascades exceeds the GL limit " << maxSize << "; using " << resolution;
+    this->ReportOnce(false, message.str());
   }
   vtkTextureObject* atlas = maps.Atlas;
   const unsigned int width = static_cast<unsigned int>(columns * resolution);
@@ -318,7 +338,9 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
     atlas->SetDepthTextureCompareFunction(vtkTextureObject::Lequal);
     if (!atlas->AllocateDepth(width, height, vtkTextureObject::Float32))
     {
-      vtkErrorMacro(<< "Cannot allocate a " << width << " x " << height << " shadow map atlas");
+      std::ostringstream message;
+      message << "Cannot allocate a " << width << " x " << height << " shadow map atlas";
+      this->ReportOnce(true, message.str());
       return false;
     }
     // A new GL texture: its compare mode and filters must be sent again, but the setters above
@@ -727,7 +749,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     state.FrameBuffer->DeactivateReadBuffer();
     if (state.FrameBuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER) == 0)
     {
-      vtkErrorMacro(<< "The shadow map framebuffer is incomplete; no shadows");
+      this->ReportOnce(true, "The shadow map framebuffer is incomplete; no shadows");
       maps.NumberOfCascades = 0;
       continue;
     }
@@ -819,7 +841,7 @@ bool vtkCascadedShadowMapBakerPass::PreReplaceShaderValues(std::string&,
     geometryShader = csmCasterLineGS;
     if (!vtkShaderProgram::Substitute(geometryShader, "//CSM::Caster::Dec", csmCaster, false))
     {
-      vtkErrorMacro(<< "the caster line template lost its declaration tag");
+      this->ReportOnce(true, "the caster line template lost its declaration tag");
       return false;
     }
   }
@@ -840,12 +862,8 @@ bool vtkCascadedShadowMapBakerPass::PostReplaceShaderValues(std::string& vertexS
     fragmentMain == std::string::npos || fragmentEnd == std::string::npos ||
     fragmentEnd < fragmentMain)
   {
-    if (!this->ShaderWarned)
-    {
-      vtkWarningMacro(<< "a mapper's shaders have no main(): its lines and points cast "
-                         "shadows one texel wide");
-      this->ShaderWarned = true;
-    }
+    this->ReportOnce(false,
+      "a mapper's shaders have no main(): its lines and points cast shadows one texel wide");
     return true;
   }
   vertexShader.insert(vertexEnd, "  csmSizePoint(gl_Position);\n");

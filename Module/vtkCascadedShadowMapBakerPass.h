@@ -34,6 +34,8 @@
 #include "vtkWeakPointer.h"                    // for members
 
 #include <array>  // for members
+#include <set>    // for members
+#include <string> // for members
 #include <vector> // for members
 
 class vtkCamera;
@@ -234,6 +236,8 @@ protected:
   void RenderCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebufferObject* frameBuffer,
     LightMaps& maps, int cascade, const std::vector<vtkProp*>& casters,
     const std::vector<std::array<double, 6>>& casterBounds, bool depthClamp);
+  /// vtkErrorMacro / vtkWarningMacro, once per distinct message.
+  void ReportOnce(bool error, const std::string& message);
   /// The light camera for a cascade: the light's rotation as view, the rest as projection.
   void SetUpLightCamera(const LightMaps& maps, int cascade);
   /// The caster uniforms for a cascade, and its CasterView.
@@ -264,7 +268,7 @@ protected:
   int LastCascadesKept = 0;
   int LastPropsDrawn = 0;
   int WarnedShadowingLights = 0; // lights over the limit last warned about: warn once
-  bool ShaderWarned = false;      // a VTK shader template we could not adapt: warn once
+  std::set<std::string> Reported; // messages said already (ReportOnce)
 
 private:
   vtkCascadedShadowMapBakerPass(const vtkCascadedShadowMapBakerPass&) = delete;

@@ -1,6 +1,7 @@
 #include "vtkCascadedShadowMapPass.h"
 
 #include "vtkActor.h"
+#include "vtkAbstractMapper.h"
 #include "vtkCamera.h"
 #include "vtkCameraPass.h"
 #include "vtkCascadedShadowMapBakerPass.h"
@@ -8,6 +9,7 @@
 #include "vtkLight.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLError.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkProperty.h"
 #include "vtkRenderPassCollection.h"
@@ -28,6 +30,7 @@ namespace
 {
 const char* const kVertexVC = "vec4 vertexVC = vertexVCVSOutput;";
 constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES;
+const char* const kShadowDec = "//CSM::Shadow::Dec";
 
 std::string indexed(const char* name, size_t j)
 {
@@ -62,6 +65,7 @@ vtkMTimeType vtkCascadedShadowMapPass::GetShaderStageMTime()
 
 void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
 {
+  vtkOpenGLClearErrorMacro();
   this->NumberOfRenderedProps = 0;
   vtkRenderer* renderer = s->GetRenderer();
   this->ClearLights(renderer);
@@ -133,16 +137,34 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
   {
     maps.Atlas->Deactivate();
   }
+  vtkOpenGLCheckErrorMacro("failed after rendering with cascaded shadows");
+}
+
+bool vtkCascadedShadowMapPass::PreReplaceShaderValues(
+  std::string&, std::string&, std::string& fragmentShader, vtkAbstractMapper*, vtkProp*)
+{
+  // Our declarations go beside the lights' (VTK's place for a shadow pass's); written in the
+  // post hook, once the mapper has said whether it draws impostors.
+  if (this->Uniforms.Lights() > 0)
+  {
+    vtkShaderProgram::Substitute(
+      fragmentShader, "//VTK::Light::Dec", std::string(kShadowDec) + "\n//VTK::Light::Dec", false);
+  }
+  return true;
 }
 
 bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
-  std::string&, std::string&, std::string& fragmentShader, vtkAbstractMapper*, vtkProp*)
+  std::string&, std::string&, std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
 {
-  const size_t vcLine = fragmentShader.find(kVertexVC);
-  const size_t mainLine = fragmentShader.find("void main()");
-  if (this->Uniforms.Lights() == 0 || vcLine == std::string::npos || mainLine == std::string::npos)
+  if (this->Uniforms.Lights() == 0)
   {
-    return true; // unlit: no view-space position, no lights to shadow
+    return true;
+  }
+  if (fragmentShader.find(kVertexVC) == std::string::npos)
+  {
+    // Unlit: no view-space position, no lights to shadow.
+    vtkShaderProgram::Substitute(fragmentShader, kShadowDec, "", false);
+    return true;
   }
   // Tubes and spheres (VTK's impostors) receive on the surface they show, not on their quad.
   const bool impostor = fragmentShader.find("uniform float ZCalcR") != std::string::npos &&
@@ -164,6 +186,17 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
     }
   }
   decl << csmShadowFS << "\n";
+  for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
+  {
+    decl << "uniform sampler2DShadow csmMap" << j << ";\n";
+  }
+  const std::string mapperName = mapper ? mapper->GetClassName() : "a mapper";
+  if (!vtkShaderProgram::Substitute(fragmentShader, kShadowDec, decl.str(), false))
+  {
+    this->ReportOnce(mapperName + "'s fragment shader has no //VTK::Light::Dec: its props are "
+                                  "drawn without shadows");
+    return true;
+  }
   // Screen derivatives where control flow is still uniform; the lookup itself only where the
   // light reaches the surface (df > 0: behind it, diffuse and specular are 0 anyway), or always
   // for the debug views.
@@ -171,10 +204,8 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   impl << kVertexVC << "\n  vec4 csmDVCdx = dFdx(vertexVC);\n  vec4 csmDVCdy = dFdy(vertexVC);\n";
   for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
   {
-    decl << "uniform sampler2DShadow csmMap" << j << ";\n";
     impl << "  vec4 csmResult" << j << " = vec4(1.0, -1.0, 0.0, 1.0);\n";
   }
-  fragmentShader.insert(mainLine, decl.str());
   vtkShaderProgram::Substitute(fragmentShader, kVertexVC, impl.str(), false);
   for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
   {
@@ -185,22 +216,39 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
       (impostor ? " = csmImpostorShadow(" + map + ", vertexVC, normalVCVSOutput);"
                 : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
     const std::string factor = result + ".x * ";
-    vtkShaderProgram::Substitute(fragmentShader, "diffuse += (df * lightColor" + k + ");",
-      "if (df > 0.0 || csmDebug != 0) { " + lookup + " }\n  diffuse += (df * " + factor +
-        "lightColor" + k + ");",
-      false);
-    vtkShaderProgram::Substitute(fragmentShader, "specular += (sf * lightColor" + k + ");",
-      "specular += (sf * " + factor + "lightColor" + k + ");", false);
-    vtkShaderProgram::Substitute(fragmentShader, "radiance = lightColor" + k + ";",
-      lookup + "\n  radiance = " + factor + "lightColor" + k + ";", false);
-    vtkShaderProgram::Substitute(fragmentShader, "radiance = lightColor" + k + " * attenuation;",
-      lookup + "\n  radiance = " + factor + "lightColor" + k + " * attenuation;", false);
+    // Phong-style lighting (diffuse and specular), or PBR (radiance, directional or positional).
+    const bool phong =
+      vtkShaderProgram::Substitute(fragmentShader, "diffuse += (df * lightColor" + k + ");",
+        "if (df > 0.0 || csmDebug != 0) { " + lookup + " }\n  diffuse += (df * " + factor +
+          "lightColor" + k + ");",
+        false);
+    const bool specular =
+      vtkShaderProgram::Substitute(fragmentShader, "specular += (sf * lightColor" + k + ");",
+        "specular += (sf * " + factor + "lightColor" + k + ");", false);
+    const bool pbr =
+      vtkShaderProgram::Substitute(fragmentShader, "radiance = lightColor" + k + ";",
+        lookup + "\n  radiance = " + factor + "lightColor" + k + ";", false) |
+      vtkShaderProgram::Substitute(fragmentShader, "radiance = lightColor" + k + " * attenuation;",
+        lookup + "\n  radiance = " + factor + "lightColor" + k + " * attenuation;", false);
+    if (!(phong && specular) && !pbr)
+    {
+      this->ReportOnce("light " + k + "'s shading was not found in " + mapperName +
+        "'s fragment shader: it is drawn without that light's shadow");
+    }
   }
   vtkShaderProgram::Substitute(fragmentShader, "//VTK::Light::Impl",
     "//VTK::Light::Impl\n  if (csmDebug != 0) { gl_FragData[0] = csmDebugColor(gl_FragData[0], "
     "csmResult0); }\n",
     false);
   return true;
+}
+
+void vtkCascadedShadowMapPass::ReportOnce(const std::string& message)
+{
+  if (this->Reported.insert(message).second)
+  {
+    vtkWarningMacro(<< message);
+  }
 }
 
 bool vtkCascadedShadowMapPass::SetShaderParameters(

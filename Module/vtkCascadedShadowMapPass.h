@@ -29,6 +29,7 @@
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 #include "vtkSmartPointer.h"                   // for members
 
+#include <set>    // for members
 #include <string> // for members
 #include <vector> // for members
 
@@ -123,6 +124,8 @@ protected:
   vtkCascadedShadowMapPass();
   ~vtkCascadedShadowMapPass() override;
 
+  bool PreReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
+    std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
   bool PostReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
     std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
   bool SetShaderParameters(vtkShaderProgram* program, vtkAbstractMapper* mapper, vtkProp* prop,
@@ -153,6 +156,8 @@ protected:
   };
   ShaderUniforms Uniforms;
   std::string ShaderSignature; // light indices the injected code refers to
+  std::set<std::string> Reported; // warnings said already: once each
+  void ReportOnce(const std::string& message);
   vtkTimeStamp ShaderTime;
 
 private:

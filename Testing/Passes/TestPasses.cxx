@@ -880,3 +880,32 @@ TEST(Passes, SplatsGlyphsAndCompositeDataCastShadows)
     EXPECT_GT(darkened, 500) << named.first;
   }
 }
+
+// Every lighting model VTK's mapper writes gets the shadow factor of the shadowed light (the
+// pass warns when it cannot find a light's shading lines; here it must not, and the shadow must
+// be there).
+TEST(Passes, EveryInterpolationGetsTheShadowFactor)
+{
+  const int models[] = { VTK_FLAT, VTK_GOURAUD, VTK_PHONG, VTK_PBR };
+  for (int model : models)
+  {
+    for (bool edges : { false, true })
+    {
+      BoxScene scene;
+      scene.Ground->GetProperty()->SetInterpolation(model);
+      scene.Ground->GetProperty()->SetEdgeVisibility(edges);
+      auto plain = scene.Render();
+      vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+      vtkNew<vtkCallbackCommand> onWarning;
+      int warnings = 0;
+      onWarning->SetClientData(&warnings);
+      onWarning->SetCallback(
+        [](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
+      pass->AddObserver(vtkCommand::WarningEvent, onWarning);
+      auto shadowed = scene.Render();
+      EXPECT_EQ(warnings, 0) << "interpolation " << model << (edges ? " with edges" : "");
+      EXPECT_GT(Darkened(shadowed, plain), 800) // 1155-1158 measured
+        << "interpolation " << model << (edges ? " with edges" : "");
+    }
+  }
+}
