@@ -1,7 +1,5 @@
 #include "vtkCascadedShadowMapBakerPass.h"
 
-#include "csmShadowSetup.h" // the shadow math: culling test
-
 #include "csmCaster.h"       // the GLSL of Module/glsl/csmCaster.glsl
 #include "csmCasterLineGS.h" // the GLSL of Module/glsl/csmCasterLineGS.glsl
 
@@ -128,20 +126,6 @@ void toColumnMajor(const double m[16], float out[16])
   }
 }
 
-/// Does any part of the box reach the light volume of a cascade (row-major world -> clip)?
-bool reachesLightVolume(const double m[16], const double b[6], bool depthClamp)
-{
-  glm::dmat4 matrix;
-  for (int row = 0; row < 4; ++row)
-  {
-    for (int column = 0; column < 4; ++column)
-    {
-      matrix[column][row] = m[4 * row + column];
-    }
-  }
-  const csm::Bounds box{ { b[0], b[2], b[4] }, { b[1], b[3], b[5] } };
-  return !csm::boxOutsideClipVolume(matrix, box, depthClamp);
-}
 }
 
 vtkCascadedShadowMapBakerPass::vtkCascadedShadowMapBakerPass()
@@ -381,7 +365,8 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   std::vector<vtkProp*> drawn;
   for (size_t i = 0; i < casters.size(); ++i)
   {
-    if (reachesLightVolume(maps.WorldToMap[c], casterBounds[i].data(), depthClamp))
+    if (vtkCascadedShadowMapPlanner::CascadeReachesBox(
+          maps.WorldToMap[c], casterBounds[i].data(), depthClamp))
     {
       drawn.push_back(casters[i]);
     }
@@ -938,54 +923,16 @@ vtkCascadedShadowMapPlanner* vtkCascadedShadowMapBakerPass::GetPlanner()
 }
 
 // The planning options live in the planner; the baker forwards them.
-void vtkCascadedShadowMapBakerPass::SetNumberOfCascades(int k)
-{
-  this->Planner->SetNumberOfCascades(k);
-}
-int vtkCascadedShadowMapBakerPass::GetNumberOfCascades()
-{
-  return this->Planner->GetNumberOfCascades();
-}
-void vtkCascadedShadowMapBakerPass::SetWarpMode(int mode)
-{
-  this->Planner->SetWarpMode(mode);
-}
-int vtkCascadedShadowMapBakerPass::GetWarpMode()
-{
-  return this->Planner->GetWarpMode();
-}
-void vtkCascadedShadowMapBakerPass::SetSplitScheme(int scheme)
-{
-  this->Planner->SetSplitScheme(scheme);
-}
-int vtkCascadedShadowMapBakerPass::GetSplitScheme()
-{
-  return this->Planner->GetSplitScheme();
-}
-void vtkCascadedShadowMapBakerPass::SetLambda(double lambda)
-{
-  this->Planner->SetLambda(lambda);
-}
-double vtkCascadedShadowMapBakerPass::GetLambda()
-{
-  return this->Planner->GetLambda();
-}
-void vtkCascadedShadowMapBakerPass::SetAlpha(double alpha)
-{
-  this->Planner->SetAlpha(alpha);
-}
-double vtkCascadedShadowMapBakerPass::GetAlpha()
-{
-  return this->Planner->GetAlpha();
-}
-void vtkCascadedShadowMapBakerPass::SetDepthClamp(bool clamp)
-{
-  this->Planner->SetDepthClamp(clamp);
-}
-bool vtkCascadedShadowMapBakerPass::GetDepthClamp()
-{
-  return this->Planner->GetDepthClamp();
-}
+#define csmForwardToPlanner(name, type)                                                          \
+  void vtkCascadedShadowMapBakerPass::Set##name(type value) { this->Planner->Set##name(value); } \
+  type vtkCascadedShadowMapBakerPass::Get##name() { return this->Planner->Get##name(); }
+csmForwardToPlanner(NumberOfCascades, int)
+csmForwardToPlanner(WarpMode, int)
+csmForwardToPlanner(SplitScheme, int)
+csmForwardToPlanner(Lambda, double)
+csmForwardToPlanner(Alpha, double)
+csmForwardToPlanner(DepthClamp, bool)
+#undef csmForwardToPlanner
 
 vtkMTimeType vtkCascadedShadowMapBakerPass::GetMTime()
 {

@@ -59,6 +59,21 @@ vtkCascadedShadowMapPlanner::~vtkCascadedShadowMapPlanner() = default;
 
 namespace
 {
+/// VTK's row-major double[16] as GLM's column-major matrix (the one conversion; the other way is
+/// vtkMatrix4x4::SetElement(row, column, m[column][row])).
+glm::dmat4 fromRowMajor(const double m[16])
+{
+  glm::dmat4 matrix;
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int column = 0; column < 4; ++column)
+    {
+      matrix[column][row] = m[4 * row + column];
+    }
+  }
+  return matrix;
+}
+
 bool toCamera(vtkCamera* camera, double aspect, csm::Camera& cam)
 {
   if (!camera)
@@ -280,14 +295,7 @@ void vtkCascadedShadowMapPlanner::ComputeAliasing(vtkCamera* camera, double aspe
   {
     return;
   }
-  glm::dmat4 matrix;
-  for (int row = 0; row < 4; ++row)
-  {
-    for (int column = 0; column < 4; ++column)
-    {
-      matrix[column][row] = worldToClip[4 * row + column];
-    }
-  }
+  const glm::dmat4 matrix = fromRowMajor(worldToClip);
   const csm::Aliasing a = csm::aliasingAt(matrix, cam,
     glm::dvec3(lightDirection[0], lightDirection[1], lightDirection[2]),
     glm::dvec3(point[0], point[1], point[2]));
@@ -303,17 +311,27 @@ double vtkCascadedShadowMapPlanner::CompareKeptMap(
   {
     return std::numeric_limits<double>::infinity();
   }
-  glm::dmat4 kept;
-  for (int row = 0; row < 4; ++row)
-  {
-    for (int column = 0; column < 4; ++column)
-    {
-      kept[column][row] = keptWorldToClip[4 * row + column];
-    }
-  }
+  const glm::dmat4 kept = fromRowMajor(keptWorldToClip);
   const csm::MapReuse reuse = csm::compareKeptMap(kept, cascades[i], this->Internal->Camera,
     this->Internal->wsLightDirection, this->Internal->Directional, 2.0 * marginTexels / resolution);
   return reuse.covers ? reuse.errorRatio : std::numeric_limits<double>::infinity();
+}
+
+bool vtkCascadedShadowMapPlanner::CascadeReachesBox(
+  const double worldToClip[16], const double bounds[6], bool depthClamp)
+{
+  if (!worldToClip || !bounds)
+  {
+    return false;
+  }
+  const csm::Bounds box{ { bounds[0], bounds[2], bounds[4] }, { bounds[1], bounds[3], bounds[5] } };
+  return !csm::boxOutsideClipVolume(fromRowMajor(worldToClip), box, depthClamp);
+}
+
+int vtkCascadedShadowMapPlanner::GetCascadeAtDepth(
+  double viewDepth, double splitNear, const double splitFar[], int count)
+{
+  return csm::partitionAtDepth(viewDepth, splitNear, splitFar, count);
 }
 
 const char* vtkCascadedShadowMapPlanner::GetLastMessage() const

@@ -157,6 +157,16 @@ public:
   double CompareKeptMap(int i, const double keptWorldToClip[16], double marginTexels,
     int resolution) const;
 
+  /// Does any part of a world box (xmin, xmax, ymin, ymax, zmin, zmax) reach the light volume of
+  /// a cascade (row-major world -> light clip)? With depthClamp, what is nearer than the near
+  /// plane counts (clamped onto it).
+  static bool CascadeReachesBox(const double worldToClip[16], const double bounds[6],
+    bool depthClamp);
+  /// The cascade a view depth falls in, as the shadow lookup selects it (before it falls back to
+  /// the next map covering a point a kept map misses), or -1 outside [splitNear, splitFar[count-1]].
+  static int GetCascadeAtDepth(double viewDepth, double splitNear, const double splitFar[],
+    int count);
+
   /// Why the last plan has no cascades (empty when it has some).
   const char* GetLastMessage() const;
 

@@ -271,11 +271,10 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
     const double q[3] = { p[0] - eye[0], p[1] - eye[1], p[2] - eye[2] };
     const double depth = Dot(q, dir);
     const auto& lm = maps[0];
-    if (depth < lm.SplitNear || depth > lm.SplitFar[lm.NumberOfCascades - 1])
+    const int c = vtkCascadedShadowMapPlanner::GetCascadeAtDepth(
+      depth, lm.SplitNear, lm.SplitFar, lm.NumberOfCascades);
+    if (c < 0)
       return NAN;
-    int c = 0;
-    while (c < lm.NumberOfCascades - 1 && depth > lm.SplitFar[c])
-      ++c;
     vtkCascadedShadowMapPlanner::ComputeAliasing(camera, aspect, light, lm.WorldToMap[c], p, m);
   }
   else if (t.Passes.Vtk)

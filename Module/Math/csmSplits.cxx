@@ -100,4 +100,18 @@ bool parseSplitScheme(const char* text, SplitScheme& scheme)
   return false;
 }
 
+int partitionAtDepth(double depth, double splitNear, const double* splitFar, int count)
+{
+  if (!splitFar || count <= 0 || !(depth >= splitNear) || !(depth <= splitFar[count - 1]))
+  {
+    return -1;
+  }
+  int i = 0;
+  while (i < count - 1 && depth > splitFar[i])
+  {
+    ++i;
+  }
+  return i;
+}
+
 } // namespace csm

@@ -32,6 +32,10 @@ struct SplitParameters
 /// adaptive scheme uses it. Requires 0 < n < f, finite; lambda in [0,1]; alpha > 1; k >= 1.
 std::vector<double> splitDepths(const SplitParameters& params, double n, double f, double gamma);
 
+/// The partition a view depth falls in: the first i with depth <= splitFar[i], or -1 outside
+/// [splitNear, splitFar[count - 1]] (the shader's selection by depth, Lloyd et al. 2006, §6.3).
+int partitionAtDepth(double depth, double splitNear, const double* splitFar, int count);
+
 const char* toString(SplitScheme scheme);
 bool parseSplitScheme(const char* text, SplitScheme& scheme);
 

@@ -126,3 +126,16 @@ TEST(Splits, LogSplitsInLogSpace)
   for (size_t i = 1; i < a.size(); ++i)
     EXPECT_TRUE(std::isfinite(a[i]) && a[i] > a[i - 1]);
 }
+
+TEST(Splits, PartitionAtDepthSelectsAsTheShaderDoes)
+{
+  const double far[3] = { 2.0, 5.0, 10.0 };
+  EXPECT_EQ(csm::partitionAtDepth(0.5, 1.0, far, 3), -1);  // before the first
+  EXPECT_EQ(csm::partitionAtDepth(1.0, 1.0, far, 3), 0);
+  EXPECT_EQ(csm::partitionAtDepth(2.0, 1.0, far, 3), 0);   // a split belongs to the nearer
+  EXPECT_EQ(csm::partitionAtDepth(2.0001, 1.0, far, 3), 1);
+  EXPECT_EQ(csm::partitionAtDepth(10.0, 1.0, far, 3), 2);
+  EXPECT_EQ(csm::partitionAtDepth(10.5, 1.0, far, 3), -1); // beyond the last
+  EXPECT_EQ(csm::partitionAtDepth(std::nan(""), 1.0, far, 3), -1);
+  EXPECT_EQ(csm::partitionAtDepth(3.0, 1.0, far, 0), -1);
+}

@@ -187,3 +187,20 @@ TEST(Planner, BadLightIsReportedOncePerChange)
   planner->Plan(camera, 1.0, bad.Get(), bounds);
   EXPECT_EQ(errors.Count, 2);
 }
+
+TEST(Planner, CascadeReachesBoxAndCascadeAtDepth)
+{
+  // An orthographic light clip volume [-1, 1]^3 (identity matrix).
+  const double identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+  const double inside[6] = { -0.5, 0.5, -0.5, 0.5, -0.5, 0.5 };
+  const double beside[6] = { 2.0, 3.0, -0.5, 0.5, -0.5, 0.5 };
+  const double nearer[6] = { -0.5, 0.5, -0.5, 0.5, -3.0, -2.0 }; // in front of the near plane
+  EXPECT_TRUE(vtkCascadedShadowMapPlanner::CascadeReachesBox(identity, inside, false));
+  EXPECT_FALSE(vtkCascadedShadowMapPlanner::CascadeReachesBox(identity, beside, true));
+  EXPECT_FALSE(vtkCascadedShadowMapPlanner::CascadeReachesBox(identity, nearer, false));
+  EXPECT_TRUE(vtkCascadedShadowMapPlanner::CascadeReachesBox(identity, nearer, true));
+  const double far[2] = { 4.0, 40.0 };
+  EXPECT_EQ(vtkCascadedShadowMapPlanner::GetCascadeAtDepth(3.0, 1.0, far, 2), 0);
+  EXPECT_EQ(vtkCascadedShadowMapPlanner::GetCascadeAtDepth(5.0, 1.0, far, 2), 1);
+  EXPECT_EQ(vtkCascadedShadowMapPlanner::GetCascadeAtDepth(50.0, 1.0, far, 2), -1);
+}
