@@ -137,6 +137,35 @@ glm::dmat4 fromRows(const glm::dvec4& r0, const glm::dvec4& r1, const glm::dvec4
   return m;
 }
 
+/// Corner i (0..7, bit 0: x, bit 1: y, bit 2: z at the maximum) of a box.
+glm::dvec3 boxCorner(const Bounds& box, int i)
+{
+  return { (i & 1) ? box.wsMax.x : box.wsMin.x, (i & 2) ? box.wsMax.y : box.wsMin.y,
+    (i & 4) ? box.wsMax.z : box.wsMin.z };
+}
+
+/// How much a box or a body of the given size is grown so that a flat or point scene keeps a
+/// volume: relative to its size, and at least to the camera's near distance.
+double inflation(double size, double vsNear)
+{
+  return 1e-6 * std::max(size, vsNear);
+}
+
+/// The clip planes of a box, camera-centred and inflated.
+std::array<Plane, 6> cameraCentredBoxPlanes(const Bounds& box, const Camera& camera)
+{
+  const double grow = inflation(glm::length(box.wsMax - box.wsMin), camera.vsNear);
+  return boxPlanes(box.wsMin - camera.wsPosition - grow, box.wsMax - camera.wsPosition + grow);
+}
+
+/// Clipping tolerance for the view volume up to a depth: relative to its size there, not to the
+/// whole view (a near partition may be 1e-20 of the far distance).
+double clipEpsilon(const Camera& camera, const CameraFrame& frame, double vsDepth)
+{
+  const glm::dvec2 half = halfSize(camera, frame, vsDepth);
+  return 1e-12 * (vsDepth + half.x + half.y);
+}
+
 std::string validateCamera(const Camera& camera, const Bounds* bounds)
 {
   if (!finite(camera.wsPosition) || !finite(camera.wsDirection) || !finite(camera.wsViewUp))
@@ -220,6 +249,185 @@ bool Bounds::isFinite() const
   return finite(this->wsMin) && finite(this->wsMax);
 }
 
+namespace
+{
+/// The receivers of a view partition: the partition clipped by each receiver box (or the one
+/// scene box, or nothing without bounds), as the vertices of those convex bodies.
+class ReceiverClipper
+{
+public:
+  ReceiverClipper(const Camera& camera, const CameraFrame& frame, const Bounds* sceneBounds,
+    const std::vector<Bounds>* receiverParts)
+    : Cam(camera)
+    , Frame(frame)
+  {
+    if (!sceneBounds)
+    {
+      return;
+    }
+    this->Clip = true;
+    if (receiverParts && !receiverParts->empty())
+    {
+      for (const Bounds& part : *receiverParts)
+      {
+        if (!part.isEmpty())
+        {
+          this->Boxes.push_back(cameraCentredBoxPlanes(part, camera));
+        }
+      }
+    }
+    else
+    {
+      this->Boxes.push_back(cameraCentredBoxPlanes(*sceneBounds, camera));
+    }
+  }
+
+  std::vector<glm::dvec3> body(double d0, double d1) const
+  {
+    const ConvexBody partition =
+      ConvexBody::hexahedron(partitionCorners(this->Cam, this->Frame, d0, d1));
+    const double epsilon = clipEpsilon(this->Cam, this->Frame, std::min(d1, this->Cam.vsFar));
+    if (!this->Clip)
+    {
+      return partition.vertices(epsilon);
+    }
+    std::vector<glm::dvec3> vertices;
+    for (const auto& planes : this->Boxes)
+    {
+      ConvexBody part = partition;
+      for (const Plane& plane : planes)
+      {
+        part.clip(plane, epsilon);
+      }
+      const std::vector<glm::dvec3> partVertices = part.vertices(epsilon);
+      vertices.insert(vertices.end(), partVertices.begin(), partVertices.end());
+    }
+    return vertices;
+  }
+
+private:
+  const Camera& Cam;
+  const CameraFrame& Frame;
+  bool Clip = false;
+  std::vector<std::array<Plane, 6>> Boxes;
+};
+
+/// The view depth range [n, f] of the visible receivers, within the camera's; false when the
+/// view sees none of them.
+bool fitDepthRange(const ReceiverClipper& receivers, const Camera& camera,
+  const CameraFrame& frame, double& n, double& f)
+{
+  const std::vector<glm::dvec3> visible = receivers.body(camera.vsNear, camera.vsFar);
+  if (visible.empty())
+  {
+    return false;
+  }
+  double lo = kInf, hi = -kInf;
+  for (const glm::dvec3& p : visible)
+  {
+    const double depth = glm::dot(p, frame.view);
+    lo = std::min(lo, depth);
+    hi = std::max(hi, depth);
+  }
+  n = std::clamp(lo, camera.vsNear, camera.vsFar);
+  f = std::clamp(hi, camera.vsNear, camera.vsFar);
+  if (!(f > n * (1.0 + 1e-6)))
+  {
+    const double middle = 0.5 * (n + f);
+    n = std::max(camera.vsNear, middle * (1.0 - 1e-6));
+    f = std::min(camera.vsFar, middle * (1.0 + 1e-6));
+  }
+  return true;
+}
+
+/// A cascade's points in light space: its receiver body and, without depth clamping, the
+/// casters between it and the light (the body extruded toward the light to the scene box); a
+/// flat or point body gets a minimum thickness on each axis.
+std::vector<glm::dvec3> lightSpacePoints(const std::vector<glm::dvec3>& cwsBody,
+  const LightBasis& ls, const Camera& camera, const Bounds* sceneBounds, bool depthClamp)
+{
+  auto toLight = [&](const glm::dvec3& p) {
+    return glm::dvec3(glm::dot(p, ls.x), glm::dot(p, ls.y), glm::dot(p, ls.z));
+  };
+  std::vector<glm::dvec3> lsPoints;
+  lsPoints.reserve(2 * cwsBody.size() + 6);
+  glm::dvec3 lsMin(kInf), lsMax(-kInf);
+  for (const glm::dvec3& p : cwsBody)
+  {
+    lsPoints.push_back(toLight(p));
+    lsMin = glm::min(lsMin, lsPoints.back());
+    lsMax = glm::max(lsMax, lsPoints.back());
+  }
+  if (sceneBounds && !depthClamp)
+  {
+    const double grow =
+      inflation(glm::length(sceneBounds->wsMax - sceneBounds->wsMin), camera.vsNear);
+    const glm::dvec3 cwsBoxMin = sceneBounds->wsMin - camera.wsPosition - grow;
+    const glm::dvec3 cwsBoxMax = sceneBounds->wsMax - camera.wsPosition + grow;
+    for (const glm::dvec3& p : cwsBody)
+    {
+      lsPoints.push_back(toLight(p - ls.y * exitTowardLight(p, ls.y, cwsBoxMin, cwsBoxMax)));
+    }
+  }
+  const glm::dvec3 lsSize = lsMax - lsMin;
+  const double minSize = inflation(std::max({ lsSize.x, lsSize.y, lsSize.z }), camera.vsNear);
+  const glm::dvec3 lsCentre = 0.5 * (lsMin + lsMax);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (lsSize[axis] < minSize)
+    {
+      glm::dvec3 offset(0.0);
+      offset[axis] = minSize;
+      lsPoints.push_back(lsCentre - offset);
+      lsPoints.push_back(lsCentre + offset);
+    }
+  }
+  return lsPoints;
+}
+
+/// Lloyd et al. 2006, §4.4: maxima of the beam-width ratios over the body's vertices, and
+/// Eq. 12's storage factor.
+void cascadeError(Cascade& cascade, const Camera& camera, const glm::dvec3& wsLightDirection)
+{
+  for (const glm::dvec3& p : cascade.wsBody)
+  {
+    const Aliasing m = aliasingAt(cascade.wsToClip, camera, wsLightDirection, p);
+    cascade.Mx = std::max(cascade.Mx, m.mx);
+    cascade.Mz = std::max(cascade.Mz, m.mz);
+  }
+  cascade.storage = cascade.Mx * cascade.Mz / camera.aspect;
+}
+} // namespace
+
+glm::dmat4 warpMatrix(double nPrime, double lsZMin)
+{
+  if (std::isinf(nPrime))
+  {
+    return fromRows({ 1, 0, 0, 0 }, { 0, 0, 1, 0 }, { 0, 1, 0, 0 }, { 0, 0, 0, 1 });
+  }
+  const double zCentre = lsZMin - nPrime;
+  return fromRows({ 1, 0, 0, 0 }, { 0, 0, 0, -1 }, { 0, 1, 0, 0 }, { 0, 0, 1, -zCentre });
+}
+
+glm::dmat4 focusMatrix(const std::vector<glm::dvec3>& lsPoints, const glm::dmat4& lsToWarped)
+{
+  glm::dvec3 lo(kInf), hi(-kInf);
+  for (const glm::dvec3& p : lsPoints)
+  {
+    const glm::dvec4 h = lsToWarped * glm::dvec4(p, 1.0);
+    const glm::dvec3 q = glm::dvec3(h) / h.w;
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+  const double depthMargin = 0.01 * (hi.z - lo.z); // Lloyd et al. 2006, §6.4: room for the bias
+  lo.z -= depthMargin;
+  hi.z += depthMargin;
+  const glm::dvec3 scale = 2.0 / (hi - lo);
+  return fromRows({ scale.x, 0, 0, -scale.x * 0.5 * (lo.x + hi.x) },
+    { 0, scale.y, 0, -scale.y * 0.5 * (lo.y + hi.y) },
+    { 0, 0, scale.z, -scale.z * 0.5 * (lo.z + hi.z) }, { 0, 0, 0, 1 });
+}
+
 ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts)
 {
@@ -240,6 +448,12 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
     setup.status = Status::InvalidInput;
     return setup;
   }
+  if (sceneBounds && sceneBounds->isEmpty())
+  {
+    setup.status = Status::NothingToShadow;
+    setup.message = "the scene is empty";
+    return setup;
+  }
 
   const CameraFrame frame = cameraFrame(camera);
   const LightBasis ls = lightBasis(frame, wsLightDirection);
@@ -248,105 +462,25 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
   const double gammaFolded = std::min(gamma, kPi - gamma); // light from behind ~ from the front
   setup.gammaDeg = gamma / kDegree;
 
-  // Size of the partitions, for clipping tolerances.
-  const glm::dvec2 farHalf = halfSize(camera, frame, camera.vsFar);
-  const double extent = camera.vsFar + farHalf.x + farHalf.y;
-
-  // The scene box, camera-centred and inflated a little so that flat or point scenes keep a body.
-  const bool clipToScene = sceneBounds != nullptr;
-  glm::dvec3 cwsBoxMin(0.0), cwsBoxMax(0.0);
-  std::array<Plane, 6> boxClip{};
-  if (clipToScene)
-  {
-    if (sceneBounds->isEmpty())
-    {
-      setup.status = Status::NothingToShadow;
-      setup.message = "the scene is empty";
-      return setup;
-    }
-    const double inflate =
-      1e-6 * std::max(glm::length(sceneBounds->wsMax - sceneBounds->wsMin), camera.vsNear);
-    cwsBoxMin = sceneBounds->wsMin - camera.wsPosition - inflate;
-    cwsBoxMax = sceneBounds->wsMax - camera.wsPosition + inflate;
-    boxClip = boxPlanes(cwsBoxMin, cwsBoxMax);
-  }
-  // Receivers of a partition: the partition clipped by each receiver box (or the scene box).
-  std::vector<std::array<Plane, 6>> receiverClips;
-  if (receiverParts && !receiverParts->empty())
-  {
-    for (const Bounds& part : *receiverParts)
-    {
-      if (!part.isEmpty())
-      {
-        const double inflate =
-          1e-6 * std::max(glm::length(part.wsMax - part.wsMin), camera.vsNear);
-        receiverClips.push_back(boxPlanes(part.wsMin - camera.wsPosition - inflate,
-          part.wsMax - camera.wsPosition + inflate));
-      }
-    }
-  }
-  else if (clipToScene)
-  {
-    receiverClips.push_back(boxClip);
-  }
-  auto receiverBody = [&](double d0, double d1) {
-    const ConvexBody partition = ConvexBody::hexahedron(partitionCorners(camera, frame, d0, d1));
-    // Tolerance relative to this partition, not to the whole view: a near partition may be
-    // 1e-20 of the far distance.
-    const glm::dvec2 half1 = halfSize(camera, frame, d1);
-    const double epsilon = std::min(extent, d1 + half1.x + half1.y) * 1e-12;
-    if (!clipToScene)
-    {
-      return partition.vertices(epsilon);
-    }
-    std::vector<glm::dvec3> vertices;
-    for (const auto& planes : receiverClips)
-    {
-      ConvexBody body = partition;
-      for (const Plane& plane : planes)
-      {
-        body.clip(plane, epsilon);
-      }
-      const std::vector<glm::dvec3> part = body.vertices(epsilon);
-      vertices.insert(vertices.end(), part.begin(), part.end());
-    }
-    return vertices;
-  };
-
-  // Fit the depth range to what is visible of the scene.
+  // 1. Receivers, and the depth range of what is visible of them.
+  const ReceiverClipper receivers(camera, frame, sceneBounds, receiverParts);
   double n = camera.vsNear;
   double f = camera.vsFar;
-  if (clipToScene)
+  if (sceneBounds && !fitDepthRange(receivers, camera, frame, n, f))
   {
-    const std::vector<glm::dvec3> visible = receiverBody(n, f);
-    if (visible.empty())
-    {
-      setup.status = Status::NothingToShadow;
-      setup.message = "the view sees none of the scene";
-      return setup;
-    }
-    double lo = kInf, hi = -kInf;
-    for (const glm::dvec3& p : visible)
-    {
-      const double depth = glm::dot(p, frame.view);
-      lo = std::min(lo, depth);
-      hi = std::max(hi, depth);
-    }
-    n = std::clamp(lo, camera.vsNear, camera.vsFar);
-    f = std::clamp(hi, camera.vsNear, camera.vsFar);
-    if (!(f > n * (1.0 + 1e-6)))
-    {
-      const double middle = 0.5 * (n + f);
-      n = std::max(camera.vsNear, middle * (1.0 - 1e-6));
-      f = std::min(camera.vsFar, middle * (1.0 + 1e-6));
-    }
+    setup.status = Status::NothingToShadow;
+    setup.message = "the view sees none of the scene";
+    return setup;
   }
   setup.vsNear = n;
   setup.vsFar = f;
+
+  // 2. Splits.
   setup.splits = splitDepths(settings.split, n, f, gammaFolded);
 
-  // Half-height of the view volume per unit depth in the plane of light and view (a, b of 000
-  // §3.1): the support of the image rectangle in the direction of the light's image-plane part.
+  // Half-height of the view volume per unit depth in the plane of light and view (a, b of
+  // Barroso & Celes 2007, §3.1): the support of the image rectangle in the direction of the
+  // light's image-plane part.
   const glm::dvec3 lightAcross = perpendicularPart(ls.y, frame.view, frame.up);
   const double heightPerDepth = std::abs(glm::dot(lightAcross, frame.right)) * frame.tanX +
     std::abs(glm::dot(lightAcross, frame.up)) * frame.tanY;
@@ -354,12 +488,16 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
     return PartitionShape{ d0, d1, d0 * heightPerDepth, d1 * heightPerDepth };
   };
   setup.gammaLimDeg = gammaLim(shape(n, f)) / kDegree;
+  const glm::dmat4 wsToLs = fromRows({ ls.x, -glm::dot(ls.x, camera.wsPosition) },
+    { ls.y, -glm::dot(ls.y, camera.wsPosition) }, { ls.z, -glm::dot(ls.z, camera.wsPosition) },
+    { 0, 0, 0, 1 });
 
+  // 3. Per partition: body, light-space points, warp, focus, error.
   for (size_t i = 0; i + 1 < setup.splits.size(); ++i)
   {
     const double d0 = setup.splits[i];
     const double d1 = setup.splits[i + 1];
-    const std::vector<glm::dvec3> cwsBody = receiverBody(d0, d1);
+    const std::vector<glm::dvec3> cwsBody = receivers.body(d0, d1);
     if (cwsBody.empty())
     {
       continue; // nothing of the scene in this partition
@@ -368,107 +506,38 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
     cascade.vsNear = d0;
     cascade.vsFar = d1;
     cascade.gammaLimDeg = gammaLim(shape(d0, d1)) / kDegree;
-
-    // Receivers, and (without depth clamping) the casters between them and the light.
-    std::vector<glm::dvec3> lsPoints;
-    lsPoints.reserve(2 * cwsBody.size() + 6);
-    auto toLight = [&](const glm::dvec3& p) {
-      return glm::dvec3(glm::dot(p, ls.x), glm::dot(p, ls.y), glm::dot(p, ls.z));
-    };
-    glm::dvec3 lsMin(kInf), lsMax(-kInf);
     for (const glm::dvec3& p : cwsBody)
     {
-      lsPoints.push_back(toLight(p));
-      lsMin = glm::min(lsMin, lsPoints.back());
-      lsMax = glm::max(lsMax, lsPoints.back());
       cascade.wsBody.push_back(p + camera.wsPosition);
     }
-    if (clipToScene && !settings.depthClamp)
-    {
-      for (const glm::dvec3& p : cwsBody)
-      {
-        lsPoints.push_back(toLight(p - ls.y * exitTowardLight(p, ls.y, cwsBoxMin, cwsBoxMax)));
-      }
-    }
-    // A flat or point body gets a minimum thickness on each light-space axis.
-    const glm::dvec3 lsSize = lsMax - lsMin;
-    const double minSize =
-      1e-6 * std::max({ lsSize.x, lsSize.y, lsSize.z, camera.vsNear });
-    const glm::dvec3 lsCentre = 0.5 * (lsMin + lsMax);
-    for (int axis = 0; axis < 3; ++axis)
-    {
-      if (lsSize[axis] < minSize)
-      {
-        glm::dvec3 offset(0.0);
-        offset[axis] = minSize;
-        lsPoints.push_back(lsCentre - offset);
-        lsPoints.push_back(lsCentre + offset);
-      }
-    }
+    const std::vector<glm::dvec3> lsPoints =
+      lightSpacePoints(cwsBody, ls, camera, sceneBounds, settings.depthClamp);
     double lsZMin = kInf, lsZMax = -kInf;
     for (const glm::dvec3& p : lsPoints)
     {
       lsZMin = std::min(lsZMin, p.z);
       lsZMax = std::max(lsZMax, p.z);
     }
-
-    // The warp: a perspective along ls z with its centre n' before the body (000 Fig. 4, 6).
+    // The warp: a perspective along ls z with its centre n' before the body (Barroso & Celes
+    // 2007, Fig. 4 and 6); orthographic where n' is so large that it only costs precision.
     double warp = camera.parallel ? kInf : nPrime(settings.warp, gammaFolded, shape(d0, d1));
-    const double lsDepth = std::max(lsZMax - lsZMin, minSize);
+    const double lsDepth = std::max(lsZMax - lsZMin, inflation(0.0, camera.vsNear));
     if (!(warp <= kOrthoRatio * lsDepth))
     {
       warp = kInf;
     }
     warp = std::max(warp, 1e-9 * lsDepth);
     cascade.nPrime = warp;
-    glm::dmat4 lsToWarped; // rows: s, t, depth, w
-    if (std::isinf(warp))
-    {
-      lsToWarped = fromRows({ 1, 0, 0, 0 }, { 0, 0, 1, 0 }, { 0, 1, 0, 0 }, { 0, 0, 0, 1 });
-    }
-    else
-    {
-      const double zCentre = lsZMin - warp;
-      lsToWarped =
-        fromRows({ 1, 0, 0, 0 }, { 0, 0, 0, -1 }, { 0, 1, 0, 0 }, { 0, 0, 1, -zCentre });
-    }
-
-    // The focus: scale the warped points' bounds to [-1, 1]^3.
-    glm::dvec3 lo(kInf), hi(-kInf);
-    for (const glm::dvec3& p : lsPoints)
-    {
-      const glm::dvec4 h = lsToWarped * glm::dvec4(p, 1.0);
-      const glm::dvec3 q = glm::dvec3(h) / h.w;
-      lo = glm::min(lo, q);
-      hi = glm::max(hi, q);
-    }
-    const double depthMargin = 0.01 * (hi.z - lo.z); // 003 §6.4: room for the depth bias
-    lo.z -= depthMargin;
-    hi.z += depthMargin;
-    const glm::dvec3 scale = 2.0 / (hi - lo);
-    const glm::dmat4 focus = fromRows({ scale.x, 0, 0, -scale.x * 0.5 * (lo.x + hi.x) },
-      { 0, scale.y, 0, -scale.y * 0.5 * (lo.y + hi.y) },
-      { 0, 0, scale.z, -scale.z * 0.5 * (lo.z + hi.z) }, { 0, 0, 0, 1 });
-    const glm::dmat4 wsToLs = fromRows({ ls.x, -glm::dot(ls.x, camera.wsPosition) },
-      { ls.y, -glm::dot(ls.y, camera.wsPosition) }, { ls.z, -glm::dot(ls.z, camera.wsPosition) },
-      { 0, 0, 0, 1 });
-    cascade.wsToClip = focus * lsToWarped * wsToLs;
-
-    // 003 §4.4: maxima of the beam-width ratios over the body's vertices; Eq. 12 storage.
-    for (const glm::dvec3& p : cascade.wsBody)
-    {
-      const Aliasing m = aliasingAt(cascade.wsToClip, camera, ls.y, p);
-      cascade.Mx = std::max(cascade.Mx, m.mx);
-      cascade.Mz = std::max(cascade.Mz, m.mz);
-    }
-    cascade.storage = cascade.Mx * cascade.Mz / camera.aspect;
+    const glm::dmat4 lsToWarped = warpMatrix(warp, lsZMin);
+    cascade.wsToClip = focusMatrix(lsPoints, lsToWarped) * lsToWarped * wsToLs;
+    cascadeError(cascade, camera, ls.y);
     setup.storageTotal += cascade.storage;
     setup.cascades.push_back(std::move(cascade));
   }
 
   setup.storageOptimal = camera.parallel
     ? std::numeric_limits<double>::quiet_NaN()
-    : (std::log(f) - std::log(n)) / (2.0 * frame.tanY); // 003 App. C
+    : (std::log(f) - std::log(n)) / (2.0 * frame.tanY); // Lloyd et al. 2006, App. C
   if (setup.cascades.empty())
   {
     setup.status = Status::NothingToShadow;
@@ -505,18 +574,14 @@ ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosi
     return setup;
   }
   const CameraFrame frame = cameraFrame(camera);
-  const glm::dvec2 farHalf = halfSize(camera, frame, camera.vsFar);
-  const double epsilon = 1e-12 * (camera.vsFar + farHalf.x + farHalf.y);
+  const double epsilon = clipEpsilon(camera, frame, camera.vsFar);
 
   // What the view needs: the visible scene inside the cone's bounding pyramid.
   ConvexBody body =
     ConvexBody::hexahedron(partitionCorners(camera, frame, camera.vsNear, camera.vsFar));
   if (sceneBounds)
   {
-    const double inflate =
-      1e-6 * std::max(glm::length(sceneBounds->wsMax - sceneBounds->wsMin), camera.vsNear);
-    for (const Plane& plane : boxPlanes(sceneBounds->wsMin - camera.wsPosition - inflate,
-           sceneBounds->wsMax - camera.wsPosition + inflate))
+    for (const Plane& plane : cameraCentredBoxPlanes(*sceneBounds, camera))
     {
       body.clip(plane, epsilon);
     }
@@ -566,10 +631,7 @@ ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosi
     double boxMin = kInf; // nearest corner of the scene box along the axis
     for (int i = 0; i < 8; ++i)
     {
-      const glm::dvec3 corner((i & 1) ? sceneBounds->wsMax.x : sceneBounds->wsMin.x,
-        (i & 2) ? sceneBounds->wsMax.y : sceneBounds->wsMin.y,
-        (i & 4) ? sceneBounds->wsMax.z : sceneBounds->wsMin.z);
-      boxMin = std::min(boxMin, glm::dot(corner - wsLightPosition, w));
+      boxMin = std::min(boxMin, glm::dot(boxCorner(*sceneBounds, i) - wsLightPosition, w));
     }
     zNear = std::max(zNear, 0.99 * boxMin);
   }
@@ -651,9 +713,7 @@ bool boxOutsideClipVolume(const glm::dmat4& wsToClip, const Bounds& box, bool de
   int outside[7] = { 0, 0, 0, 0, 0, 0, 0 };
   for (int i = 0; i < 8; ++i)
   {
-    const glm::dvec3 corner((i & 1) ? box.wsMax.x : box.wsMin.x,
-      (i & 2) ? box.wsMax.y : box.wsMin.y, (i & 4) ? box.wsMax.z : box.wsMin.z);
-    const glm::dvec4 h = wsToClip * glm::dvec4(corner, 1.0);
+    const glm::dvec4 h = wsToClip * glm::dvec4(boxCorner(box, i), 1.0);
     outside[0] += h.x < -h.w;
     outside[1] += h.x > h.w;
     outside[2] += h.y < -h.w;

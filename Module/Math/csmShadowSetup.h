@@ -118,6 +118,15 @@ ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosi
 Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
   const glm::dvec3& wsLightDirection, const glm::dvec3& wsPoint);
 
+/// The warp of a cascade in light space (rows: map s, map t, depth, w): orthographic for an
+/// infinite n', else a perspective along ls z whose centre lies n' before the body's nearest
+/// ls z (Barroso & Celes 2007, Fig. 4 and 6).
+glm::dmat4 warpMatrix(double nPrime, double lsZMin);
+
+/// The focus: the scale and offset that take the warped light-space points' bounds to
+/// [-1, 1]^3, with 1 % of room in depth for the bias (Lloyd et al. 2006, §6.4).
+glm::dmat4 focusMatrix(const std::vector<glm::dvec3>& lsPoints, const glm::dmat4& lsToWarped);
+
 /// True when no point of the box can land inside the light clip volume (conservative test in
 /// homogeneous clip space). With depthClamp, points nearer than the near plane count as inside.
 bool boxOutsideClipVolume(const glm::dmat4& wsToClip, const Bounds& box, bool depthClamp);

@@ -550,3 +550,47 @@ TEST(Stability, ExtremeDepthRanges)
   EXPECT_TRUE(h.cascades.empty());
   EXPECT_NE(h.message.find("1e50"), std::string::npos) << h.message;
 }
+
+// The warp and the focus alone (the steps computeShadowSetup composes).
+TEST(Steps, WarpMatrixIsOrthographicOrACentredPerspective)
+{
+  // Orthographic: s = ls x, t = ls z, depth = ls y (the light's direction of travel).
+  const glm::dmat4 ortho = csm::warpMatrix(std::numeric_limits<double>::infinity(), 5.0);
+  const glm::dvec4 p = ortho * glm::dvec4(1.0, 2.0, 3.0, 1.0);
+  EXPECT_DOUBLE_EQ(p.x, 1.0);
+  EXPECT_DOUBLE_EQ(p.y, 3.0);
+  EXPECT_DOUBLE_EQ(p.z, 2.0);
+  EXPECT_DOUBLE_EQ(p.w, 1.0);
+  // Perspective centred n' = 4 before lsZMin = 5 (at ls z = 1): w is the distance from it, and
+  // t / w = -1 / w runs from -1/4 at the body's near side toward 0.
+  const glm::dmat4 warp = csm::warpMatrix(4.0, 5.0);
+  const glm::dvec4 nearSide = warp * glm::dvec4(0.0, 0.0, 5.0, 1.0);
+  const glm::dvec4 farSide = warp * glm::dvec4(2.0, 7.0, 9.0, 1.0);
+  EXPECT_DOUBLE_EQ(nearSide.w, 4.0);
+  EXPECT_DOUBLE_EQ(nearSide.y / nearSide.w, -0.25);
+  EXPECT_DOUBLE_EQ(farSide.w, 8.0);
+  EXPECT_DOUBLE_EQ(farSide.x / farSide.w, 0.25);
+  EXPECT_DOUBLE_EQ(farSide.z / farSide.w, 7.0 / 8.0);
+}
+
+TEST(Steps, FocusMatrixTakesTheBoundsToTheUnitCube)
+{
+  const std::vector<glm::dvec3> points = { { -3.0, 1.0, 2.0 }, { 5.0, 4.0, 10.0 },
+    { 1.0, 2.0, 6.0 } };
+  const glm::dmat4 ortho = csm::warpMatrix(std::numeric_limits<double>::infinity(), 2.0);
+  const glm::dmat4 clip = csm::focusMatrix(points, ortho) * ortho;
+  glm::dvec3 lo(1e300), hi(-1e300);
+  for (const glm::dvec3& p : points)
+  {
+    const glm::dvec4 h = clip * glm::dvec4(p, 1.0);
+    lo = glm::min(lo, glm::dvec3(h) / h.w);
+    hi = glm::max(hi, glm::dvec3(h) / h.w);
+  }
+  EXPECT_NEAR(lo.x, -1.0, 1e-12);
+  EXPECT_NEAR(hi.x, 1.0, 1e-12);
+  EXPECT_NEAR(lo.y, -1.0, 1e-12);
+  EXPECT_NEAR(hi.y, 1.0, 1e-12);
+  // Depth keeps 1 % of the range as room for the bias on each side: 2 / 1.02 of [-1, 1].
+  EXPECT_NEAR(lo.z, -1.0 / 1.02, 1e-12);
+  EXPECT_NEAR(hi.z, 1.0 / 1.02, 1e-12);
+}
