@@ -490,87 +490,132 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   this->LastCascadesKept = 0;
   this->LastPropsDrawn = 0;
 
-  // Bounds first: computing them brings the props' pipelines up to date, which must not count
-  // as a change next frame.
-  double sceneBounds[6];
-  renderer->ComputeVisiblePropBounds(sceneBounds);
-  int changed = this->InputsChanged(renderer, state) || state.Maps.empty() ? 1 : 0;
+  // 1. The props: casters, receivers, scene bounds (across processes when distributed).
+  FrameProps props;
+  this->CollectProps(renderer, state, props);
   if (this->Distributed())
   {
-    // All processes plan from the global bounds and render the same cascades.
-    double lo[3] = { sceneBounds[0], sceneBounds[2], sceneBounds[4] };
-    double hi[3] = { sceneBounds[1], sceneBounds[3], sceneBounds[5] };
-    double globalLo[3], globalHi[3];
-    this->Controller->AllReduce(lo, globalLo, 3, vtkCommunicator::MIN_OP);
-    this->Controller->AllReduce(hi, globalHi, 3, vtkCommunicator::MAX_OP);
-    for (int i = 0; i < 3; ++i)
-    {
-      sceneBounds[2 * i] = globalLo[i];
-      sceneBounds[2 * i + 1] = globalHi[i];
-    }
-    int anyChanged = 0;
-    this->Controller->AllReduce(&changed, &anyChanged, 1, vtkCommunicator::MAX_OP);
-    changed = anyChanged;
+    this->GatherAcrossProcesses(props);
   }
+  // 2. Plan every shadowed light, and choose the cascades to re-render.
+  std::vector<LightMaps> planned;
+  std::vector<int> render; // per light slot and cascade: 1 render, 0 keep
+  this->PlanLights(renderer, window, state, props, planned, render);
+  if (this->MeasureTimes)
+  {
+    this->LastPlanSeconds = std::chrono::duration<double>(Clock::now() - planStart).count();
+  }
+  if (planned.empty())
+  {
+    state.Maps.clear();
+    return;
+  }
+  // 3. Render those cascades into the lights' atlases.
+  const auto mapStart = Clock::now();
+  if (this->MeasureTimes)
+  {
+    glFinish();
+  }
+  this->RenderAtlases(renderer, window, state, props, planned, render);
+  if (this->MeasureTimes)
+  {
+    glFinish();
+    this->LastMapSeconds = std::chrono::duration<double>(Clock::now() - mapStart).count();
+  }
+  if (this->LastCascadeRenders > 0)
+  {
+    ++this->BakeCount;
+  }
+  state.Maps = planned;
+  vtkOpenGLCheckErrorMacro("failed after rendering the cascaded shadow maps");
+}
 
-  const bool depthClamp = this->Planner->GetDepthClamp();
-  const int numberOfCascades = this->Planner->GetNumberOfCascades();
-  const double aspect = renderer->GetTiledAspectRatio();
-
-  // Casters: visible opaque props. Receivers: every visible prop; their boxes fit the cascades
-  // (up to kMaxReceiverBoxes; beyond, the box around all of them).
-  std::vector<vtkProp*> casters;
-  std::vector<std::array<double, 6>> casterBounds;
-  this->Planner->ClearReceiverBounds();
-  std::vector<std::array<double, 6>> receivers;
-  vtkPropCollection* props = renderer->GetViewProps();
+void vtkCascadedShadowMapBakerPass::CollectProps(
+  vtkRenderer* renderer, RendererMaps& state, FrameProps& props)
+{
+  // Bounds first: computing them brings the props' pipelines up to date, which must not count
+  // as a change next frame.
+  renderer->ComputeVisiblePropBounds(props.SceneBounds);
+  props.Changed = this->InputsChanged(renderer, state) || state.Maps.empty();
+  // Casters: visible opaque props. Receivers: every visible prop; their boxes fit the cascades.
+  vtkPropCollection* collection = renderer->GetViewProps();
   vtkCollectionSimpleIterator pit;
-  props->InitTraversal(pit);
-  while (vtkProp* prop = props->GetNextProp(pit))
+  collection->InitTraversal(pit);
+  while (vtkProp* prop = collection->GetNextProp(pit))
   {
     std::array<double, 6> b;
     if (propBounds(prop, b.data()))
     {
-      receivers.push_back(b);
+      props.Receivers.push_back(b);
       if (prop->HasOpaqueGeometry())
       {
-        casters.push_back(prop);
-        casterBounds.push_back(b);
+        props.Casters.push_back(prop);
+        props.CasterBounds.push_back(b);
       }
     }
   }
-  if (this->Distributed())
+}
+
+void vtkCascadedShadowMapBakerPass::GatherAcrossProcesses(FrameProps& props)
+{
+  // All processes plan from the global bounds and the same receiver boxes, and re-render when
+  // any of them saw a change.
+  double* sceneBounds = props.SceneBounds;
+  double lo[3] = { sceneBounds[0], sceneBounds[2], sceneBounds[4] };
+  double hi[3] = { sceneBounds[1], sceneBounds[3], sceneBounds[5] };
+  double globalLo[3], globalHi[3];
+  this->Controller->AllReduce(lo, globalLo, 3, vtkCommunicator::MIN_OP);
+  this->Controller->AllReduce(hi, globalHi, 3, vtkCommunicator::MAX_OP);
+  for (int i = 0; i < 3; ++i)
   {
-    // The same receiver boxes on every process: gather them all (padded with empty boxes).
-    int count = static_cast<int>(receivers.size()), most = 0;
-    this->Controller->AllReduce(&count, &most, 1, vtkCommunicator::MAX_OP);
-    std::vector<double> mine(6 * static_cast<size_t>(most), 0.0), all;
-    for (int i = 0; i < most; ++i)
+    sceneBounds[2 * i] = globalLo[i];
+    sceneBounds[2 * i + 1] = globalHi[i];
+  }
+  int changed = props.Changed ? 1 : 0, anyChanged = 0;
+  this->Controller->AllReduce(&changed, &anyChanged, 1, vtkCommunicator::MAX_OP);
+  props.Changed = anyChanged != 0;
+  // The receiver boxes of every process (padded with empty boxes).
+  std::vector<std::array<double, 6>>& receivers = props.Receivers;
+  int count = static_cast<int>(receivers.size()), most = 0;
+  this->Controller->AllReduce(&count, &most, 1, vtkCommunicator::MAX_OP);
+  std::vector<double> mine(6 * static_cast<size_t>(most), 0.0), all;
+  for (int i = 0; i < most; ++i)
+  {
+    for (int k = 0; k < 6; ++k)
     {
-      for (int k = 0; k < 6; ++k)
-      {
-        mine[6 * i + k] = i < count ? receivers[i][k] : (k % 2 == 0 ? 1.0 : -1.0);
-      }
-    }
-    all.resize(mine.size() * this->Controller->GetNumberOfProcesses());
-    this->Controller->AllGather(mine.data(), all.data(), static_cast<vtkIdType>(mine.size()));
-    receivers.clear();
-    for (size_t i = 0; i + 5 < all.size(); i += 6)
-    {
-      if (all[i] <= all[i + 1])
-      {
-        receivers.push_back({ all[i], all[i + 1], all[i + 2], all[i + 3], all[i + 4], all[i + 5] });
-      }
+      mine[6 * i + k] = i < count ? receivers[i][k] : (k % 2 == 0 ? 1.0 : -1.0);
     }
   }
-  if (receivers.size() <= kMaxReceiverBoxes)
+  all.resize(mine.size() * this->Controller->GetNumberOfProcesses());
+  this->Controller->AllGather(mine.data(), all.data(), static_cast<vtkIdType>(mine.size()));
+  receivers.clear();
+  for (size_t i = 0; i + 5 < all.size(); i += 6)
   {
-    for (const auto& b : receivers)
+    if (all[i] <= all[i + 1])
+    {
+      receivers.push_back({ all[i], all[i + 1], all[i + 2], all[i + 3], all[i + 4], all[i + 5] });
+    }
+  }
+}
+
+void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
+  vtkOpenGLRenderWindow* window, RendererMaps& state, const FrameProps& props,
+  std::vector<LightMaps>& planned, std::vector<int>& render)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const bool depthClamp = this->Planner->GetDepthClamp();
+  const double aspect = renderer->GetTiledAspectRatio();
+  const double* sceneBounds = props.SceneBounds;
+  // The receivers' boxes fit the cascades (up to kMaxReceiverBoxes; beyond, the box around all
+  // of them).
+  this->Planner->ClearReceiverBounds();
+  if (props.Receivers.size() <= kMaxReceiverBoxes)
+  {
+    for (const auto& b : props.Receivers)
     {
       this->Planner->AddReceiverBounds(b.data());
     }
   }
-
   // Plan every shadowed light for this frame, and decide per cascade whether the map kept from
   // an earlier frame still serves (only the camera moved, it covers, its error is bounded).
   // While the user interacts (VTK's convention: the interactor raises the window's desired
@@ -584,11 +629,9 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     interacting ? this->MapReuseTolerance * (1.0 + 2.0 * border) : 1.0 + 1e-9;
   // Tubes, spheres, wide lines and big points are drawn into the maps as wide as the main view
   // draws them: a still frame keeps such a map only for the view it was sized for.
-  const bool screenSized = hasScreenSizedCasters(casters);
+  const bool screenSized = hasScreenSizedCasters(props.Casters);
   double viewKey[18];
   casterView(renderer, camera, viewKey);
-  std::vector<LightMaps> planned;
-  std::vector<int> render; // per light slot and cascade: 1 render, 0 keep
   const int maximumLights = this->MaximumShadowedLights(window);
   int shadowingLights = 0;
   int lightIndex = 0;
@@ -616,7 +659,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     light->GetTransformedPosition(maps.LightGeometry);
     light->GetTransformedFocalPoint(maps.LightGeometry + 3);
     maps.LightGeometry[6] = light->GetPositional() ? light->GetConeAngle() : -1.0;
-    const LightMaps* kept = !changed && depthClamp && slot < state.Maps.size() &&
+    const LightMaps* kept = !props.Changed && depthClamp && slot < state.Maps.size() &&
         state.Maps[slot].Light == light &&
         std::equal(maps.LightGeometry, maps.LightGeometry + 7, state.Maps[slot].LightGeometry) &&
         state.Maps[slot].NumberOfCascades == maps.NumberOfCascades
@@ -672,16 +715,14 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     state.AtlasPool[i]->ReleaseGraphicsResources(window);
   }
   state.AtlasPool.resize(planned.size());
-  if (this->MeasureTimes)
-  {
-    this->LastPlanSeconds = std::chrono::duration<double>(Clock::now() - planStart).count();
-  }
-  if (planned.empty())
-  {
-    state.Maps.clear();
-    return;
-  }
+}
 
+void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
+  vtkOpenGLRenderWindow* window, RendererMaps& state, const FrameProps& props,
+  std::vector<LightMaps>& planned, std::vector<int>& render)
+{
+  const bool depthClamp = this->Planner->GetDepthClamp();
+  const int numberOfCascades = this->Planner->GetNumberOfCascades();
   vtkOpenGLState* ostate = window->GetState();
   vtkOpenGLState::ScopedglViewport savedViewport(ostate);
   vtkOpenGLState::ScopedglScissor savedScissor(ostate);
@@ -701,11 +742,6 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
     state.FrameBuffer = vtkSmartPointer<vtkOpenGLFramebufferObject>::New();
   }
   state.FrameBuffer->SetContext(window);
-  const auto mapStart = Clock::now();
-  if (this->MeasureTimes)
-  {
-    glFinish();
-  }
 
   for (size_t slot = 0; slot < planned.size(); ++slot)
   {
@@ -761,7 +797,8 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
       if (renderCascade[c])
       {
         --this->LastCascadesKept;
-        this->RenderCascade(renderer, state.FrameBuffer, maps, c, casters, casterBounds, depthClamp);
+        this->RenderCascade(
+          renderer, state.FrameBuffer, maps, c, props.Casters, props.CasterBounds, depthClamp);
       }
     }
     glDisable(GL_PROGRAM_POINT_SIZE);
@@ -771,19 +808,8 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
       this->CombineAcrossProcesses(maps.Atlas);
     }
   }
-  if (this->MeasureTimes)
-  {
-    glFinish();
-    this->LastMapSeconds = std::chrono::duration<double>(Clock::now() - mapStart).count();
-  }
-  if (this->LastCascadeRenders > 0)
-  {
-    ++this->BakeCount;
-  }
-  state.Maps = planned;
   ostate->PopFramebufferBindings();
   renderer->SetAutomaticLightCreation(automaticLights);
-  vtkOpenGLCheckErrorMacro("failed after rendering the cascaded shadow maps");
 }
 
 namespace

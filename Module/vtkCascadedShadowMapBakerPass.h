@@ -226,6 +226,26 @@ protected:
     int LastSize[2] = { 0, 0 };
   };
 
+  /// What a frame draws: the visible props' boxes and the opaque ones among them.
+  struct FrameProps
+  {
+    double SceneBounds[6] = { 1, -1, 1, -1, 1, -1 };
+    bool Changed = true; ///< a prop, light, option or the window size changed: render every map
+    std::vector<vtkProp*> Casters;
+    std::vector<std::array<double, 6>> CasterBounds;
+    std::vector<std::array<double, 6>> Receivers;
+  };
+  /// The steps of Render(): collect the props, share them across processes, plan the lights
+  /// (and choose the cascades to re-render: 1 in render per light slot and cascade), render the
+  /// chosen cascades into the atlases.
+  void CollectProps(vtkRenderer* renderer, RendererMaps& state, FrameProps& props);
+  void GatherAcrossProcesses(FrameProps& props);
+  void PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window, RendererMaps& state,
+    const FrameProps& props, std::vector<LightMaps>& planned, std::vector<int>& render);
+  void RenderAtlases(vtkOpenGLRenderer* renderer, vtkOpenGLRenderWindow* window,
+    RendererMaps& state, const FrameProps& props, std::vector<LightMaps>& planned,
+    std::vector<int>& render);
+
   RendererMaps& MapsOf(vtkRenderer* renderer, vtkOpenGLRenderWindow* window);
   bool InputsChanged(vtkRenderer* renderer, RendererMaps& state);
   bool Distributed() const;
