@@ -1,4 +1,4 @@
-// A convex polyhedron as a list of planar faces, clipped by planes (the body B of 000 §2.3).
+// A convex polyhedron as a list of planar faces, clipped by planes (the body B of Barroso & Celes 2007, §2.3).
 // Pure math: no VTK, no GL.
 #pragma once
 

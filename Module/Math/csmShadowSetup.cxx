@@ -62,7 +62,7 @@ CameraFrame cameraFrame(const Camera& camera)
 
 struct LightBasis
 {
-  glm::dvec3 x, y, z; // 003 Fig. 3; y is the light's direction of travel
+  glm::dvec3 x, y, z; // Lloyd et al. 2006, Fig. 3; y is the light's direction of travel
 };
 
 LightBasis lightBasis(const CameraFrame& frame, const glm::dvec3& wsLightDirection)
@@ -685,7 +685,7 @@ Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
 {
   const CameraFrame frame = cameraFrame(camera);
   const LightBasis ls = lightBasis(frame, wsLightDirection);
-  // 003 Eq. 2 with res_i = 1: width of the image beam at the point.
+  // Lloyd et al. 2006, Eq. 2 with res_i = 1: width of the image beam at the point.
   const double depth = std::max(glm::dot(wsPoint - camera.wsPosition, frame.view), camera.vsNear);
   const double wi = camera.parallel ? 2.0 * camera.parallelScale : 2.0 * frame.tanY * depth;
 
@@ -694,7 +694,7 @@ Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
   auto gradient = [&](int row) { // d(ndc_row)/d(ws point)
     return (glm::dvec3(t[row]) * h.w - glm::dvec3(t[3]) * h[row]) / (h.w * h.w);
   };
-  // 003 Eq. 3-4 with res = 1: s, t in [0, 1] are half the NDC.
+  // Lloyd et al. 2006, Eq. 3-4 with res = 1: s, t in [0, 1] are half the NDC.
   const double dsdx = 0.5 * std::abs(glm::dot(gradient(0), ls.x));
   const double dtdz = 0.5 * std::abs(glm::dot(gradient(1), ls.z));
   Aliasing m;

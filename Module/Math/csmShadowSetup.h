@@ -7,7 +7,7 @@
 //   cws camera-centred world space: world axes, origin at the eye (keeps numbers small far
 //       from the origin).
 //   vs  view space; vsDepth is the distance along the view direction.
-//   ls  light space (003 Fig. 3): origin at the eye, y along the light's direction of travel,
+//   ls  light space (Lloyd et al. 2006, Fig. 3): origin at the eye, y along the light's direction of travel,
 //       z the view direction projected onto the plane perpendicular to y, x = y cross z.
 //   clip the light's clip space: after division by w, the cascade's body lies in [-1,1]^3;
 //       NDC x is the shadow-map s axis (ls x), NDC y the t axis (ls z), NDC z the light depth.
@@ -50,11 +50,11 @@ struct Bounds
 struct Settings
 {
   WarpMode warp = WarpMode::Generalized;
-  SplitParameters split;       ///< defaults: adaptive, k = 2, alpha = 2 (000 §4)
-  bool depthClamp = true;      ///< 003 §6.4: fit the depth range to the receivers only
+  SplitParameters split;       ///< defaults: adaptive, k = 2, alpha = 2 (Barroso & Celes 2007, §4)
+  bool depthClamp = true;      ///< Lloyd et al. 2006, §6.4: fit the depth range to the receivers only
 };
 
-/// Perspective aliasing at one point (003 Eq. 1-4 with all resolutions set to 1).
+/// Perspective aliasing at one point (Lloyd et al. 2006, Eq. 1-4 with all resolutions set to 1).
 struct Aliasing
 {
   double mx = 0.0; ///< w_lx / w_i
@@ -66,12 +66,12 @@ struct Cascade
   double vsNear = 0.0;           ///< split depths of this cascade
   double vsFar = 0.0;
   double nPrime = 0.0;           ///< warp parameter; +infinity when orthographic
-  double gammaLimDeg = 0.0;      ///< 000 Eq. 15 for this partition
+  double gammaLimDeg = 0.0;      ///< Barroso & Celes 2007, Eq. 15 for this partition
   glm::dmat4 wsToClip{ 1.0 };    ///< world -> light clip space
   std::vector<glm::dvec3> wsBody;///< vertices of the receiver body (view partition ∩ scene)
-  double Mx = 0.0;               ///< 003 Eq. 9-10 as in §4.4: maxima over wsBody
+  double Mx = 0.0;               ///< Lloyd et al. 2006, Eq. 9-10 as in §4.4: maxima over wsBody
   double Mz = 0.0;
-  double storage = 0.0;          ///< 003 Eq. 12: critical texels / image pixels = Mx Mz / aspect
+  double storage = 0.0;          ///< Lloyd et al. 2006, Eq. 12: critical texels / image pixels = Mx Mz / aspect
 };
 
 enum class Status
@@ -86,13 +86,13 @@ struct ShadowSetup
   Status status = Status::InvalidInput;
   std::string message;
   double gammaDeg = 0.0;     ///< angle between light and view direction, 0..180 (0: light from behind)
-  double gammaLimDeg = 0.0;  ///< 000 Eq. 15 for the whole fitted frustum
+  double gammaLimDeg = 0.0;  ///< Barroso & Celes 2007, Eq. 15 for the whole fitted frustum
   double vsNear = 0.0;       ///< depth range the cascades cover (clipping range fitted to the scene)
   double vsFar = 0.0;
   std::vector<double> splits;    ///< split depths, vsNear .. vsFar
   std::vector<Cascade> cascades; ///< the non-empty cascades, near to far
   double storageTotal = 0.0;     ///< sum of the cascades' storage factors
-  double storageOptimal = 0.0;   ///< 003 App. C: ln(f/n) / (2 tan theta); NaN for parallel projection
+  double storageOptimal = 0.0;   ///< Lloyd et al. 2006, App. C: ln(f/n) / (2 tan theta); NaN for parallel projection
 };
 
 /// Everything a shadow pass needs for one directional light in one frame. wsLightDirection is the
@@ -113,7 +113,7 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
 ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosition,
   const glm::dvec3& wsLightAxis, double coneAngleDeg, const Bounds* sceneBounds, bool depthClamp);
 
-/// 003 Eq. 2-4 at a world point for a light clip matrix: beam widths of one shadow-map texel
+/// Lloyd et al. 2006, Eq. 2-4 at a world point for a light clip matrix: beam widths of one shadow-map texel
 /// (map resolution 1) along ls x and ls z over the width of one image pixel (image height 1).
 Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
   const glm::dvec3& wsLightDirection, const glm::dvec3& wsPoint);

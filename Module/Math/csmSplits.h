@@ -10,9 +10,9 @@ enum class SplitScheme
 {
   Single,    ///< one partition [n, f], whatever k says
   Uniform,   ///< n + (f - n) i / k
-  Log,       ///< self-similar partitions, 000 Eq. 5 / 003 Eq. 15-16
-  Practical, ///< lambda log + (1 - lambda) uniform (001, parallel-split shadow maps)
-  Adaptive   ///< Barroso & Celes, 000 Eq. 19
+  Log,       ///< self-similar partitions, Barroso & Celes 2007, Eq. 5 / Lloyd et al. 2006, Eq. 15-16
+  Practical, ///< lambda log + (1 - lambda) uniform (Vázquez, parallel-split shadow maps)
+  Adaptive   ///< Barroso & Celes, Barroso & Celes 2007, Eq. 19
 };
 
 /// The most partitions the math plans (the render passes use fewer: see

@@ -15,7 +15,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 double gammaLim(const PartitionShape& p)
 {
-  return std::atan2(p.a + p.b, p.f - p.n); // 000 Eq. 15
+  return std::atan2(p.a + p.b, p.f - p.n); // Barroso & Celes 2007, Eq. 15
 }
 
 double rOfGamma(double gamma, double gammaLimit)
@@ -25,7 +25,7 @@ double rOfGamma(double gamma, double gammaLimit)
     return 1.0;
   }
   const double u = std::clamp(gamma / gammaLimit, 0.0, 1.0);
-  // 000 Eq. 18: [1 + sin((u - 1) pi/2)]^2 = [1 - cos(u pi/2)]^2 = [2 sin^2(u pi/4)]^2
+  // Barroso & Celes 2007, Eq. 18: [1 + sin((u - 1) pi/2)]^2 = [1 - cos(u pi/2)]^2 = [2 sin^2(u pi/4)]^2
   const double s = std::sin(u * kPi / 4.0);
   const double base = 2.0 * s * s;
   return base * base;
@@ -33,7 +33,7 @@ double rOfGamma(double gamma, double gammaLimit)
 
 double nPrime1(double gamma, const PartitionShape& p)
 {
-  // 000 Eq. 13 (first case)
+  // Barroso & Celes 2007, Eq. 13 (first case)
   return (p.n + std::sqrt(p.f * p.n)) * std::sin(gamma) - p.a * std::cos(gamma);
 }
 
@@ -42,10 +42,10 @@ double nPrimeGeneralized(double gamma, const PartitionShape& p)
   const double limit = gammaLim(p);
   if (gamma >= limit)
   {
-    return nPrime1(gamma, p); // 000 Eq. 16, first case
+    return nPrime1(gamma, p); // Barroso & Celes 2007, Eq. 16, first case
   }
   const double r = rOfGamma(gamma, limit);
-  const double value = nPrime1(limit, p) / r; // 000 Eq. 16, second case
+  const double value = nPrime1(limit, p) / r; // Barroso & Celes 2007, Eq. 16, second case
   return (r > 0.0 && std::isfinite(value)) ? value : kInf;
 }
 
@@ -60,7 +60,7 @@ double nPrime(WarpMode mode, double gamma, const PartitionShape& p)
     case WarpMode::LiSPSM:
     {
       const double s = std::sin(gamma);
-      const double value = (p.n + std::sqrt(p.f * p.n)) / s; // Wimmer; 000 §2.3 at gamma = pi/2
+      const double value = (p.n + std::sqrt(p.f * p.n)) / s; // Wimmer; Barroso & Celes 2007, §2.3 at gamma = pi/2
       return (s > 0.0 && std::isfinite(value)) ? value : kInf;
     }
     case WarpMode::Generalized:

@@ -90,7 +90,7 @@ void expectAllFinite(const csm::ShadowSetup& setup)
 }
 } // namespace
 
-// 003 Eq. 12, 17, 18 for an overhead light and self-similar (log) partitions.
+// Lloyd et al. 2006, Eq. 12, 17, 18 for an overhead light and self-similar (log) partitions.
 TEST(StorageFactor, OverheadMatchesClosedForms)
 {
   const double tanTheta = std::tan(30.0 * kDeg);
@@ -107,8 +107,8 @@ TEST(StorageFactor, OverheadMatchesClosedForms)
         ASSERT_EQ(setup.cascades.size(), size_t(k));
         const double r = std::pow(ratio, 1.0 / k);
         const double expected = warp == csm::WarpMode::None
-          ? k * r * (r - 1.0) / (2.0 * tanTheta) // 003 Eq. 17
-          : k * (r - 1.0) / (2.0 * tanTheta);    // 003 Eq. 18
+          ? k * r * (r - 1.0) / (2.0 * tanTheta) // Lloyd et al. 2006, Eq. 17
+          : k * (r - 1.0) / (2.0 * tanTheta);    // Lloyd et al. 2006, Eq. 18
         EXPECT_NEAR(setup.storageTotal, expected, 1e-6 * expected)
           << csm::toString(warp) << " k " << k << " f/n " << ratio;
         EXPECT_NEAR(setup.storageOptimal, std::log(ratio) / (2.0 * tanTheta), 1e-12);
@@ -118,7 +118,7 @@ TEST(StorageFactor, OverheadMatchesClosedForms)
   }
 }
 
-// 003 Eq. 7-10 with n = 1 (the form the paper prints): maxima of m_x, m_z for one LiSPSM map.
+// Lloyd et al. 2006, Eq. 7-10 with n = 1 (the form the paper prints): maxima of m_x, m_z for one LiSPSM map.
 TEST(StorageFactor, OverheadMaximaMatchEq9And10)
 {
   const double n = 1.0, f = 100.0, tanTheta = std::tan(30.0 * kDeg);
@@ -161,7 +161,7 @@ TEST(StorageFactor, LightBehindAndInFrontAgree)
 }
 
 // Beyond gamma_lim the generalized warp beats the orthographic map by a wide margin; below it,
-// where it fades to orthographic (000 Eq. 16-18), its worst error stays within 10% of it.
+// where it fades to orthographic (Barroso & Celes 2007, Eq. 16-18), its worst error stays within 10% of it.
 TEST(StorageFactor, GeneralizedAgainstUniform)
 {
   const csm::Camera cam = camera(1.0, 1000.0, 60.0);
@@ -182,7 +182,7 @@ TEST(StorageFactor, GeneralizedAgainstUniform)
     settings(csm::WarpMode::None, csm::SplitScheme::Log, 2));
   const auto overheadGen = csm::computeShadowSetup(cam, lightAt(cam, 90.0), nullptr,
     settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 2));
-  // 003 Eq. 17 over Eq. 18: the warp saves the factor (f/n)^(1/k).
+  // Lloyd et al. 2006, Eq. 17 over Eq. 18: the warp saves the factor (f/n)^(1/k).
   EXPECT_NEAR(overheadNone.storageTotal / overheadGen.storageTotal, std::sqrt(1000.0), 1e-6);
 }
 

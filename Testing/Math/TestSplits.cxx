@@ -1,4 +1,4 @@
-// Split schemes (000 Eq. 5, 19; 003 Eq. 15-16; 001 practical).
+// Split schemes (Barroso & Celes 2007, Eq. 5, 19; Lloyd et al. 2006, Eq. 15-16; Vázquez practical).
 #include "csmSplits.h"
 
 #include <gtest/gtest.h>

@@ -112,7 +112,7 @@ TEST(Planner, HorizontalViewAngleIsConverted)
   camera->SetViewAngle(2.0 * std::atan(2.0 * std::tan(M_PI / 6.0)) * 180.0 / M_PI);
   planner->Plan(camera, 2.0, down, nullptr);
   EXPECT_NEAR(planner->GetStorageTotal(), vertical, 1e-9 * vertical);
-  // Overhead light, one LiSPSM map: 003 Eq. 12 with f/n = 100, theta = 30 deg.
+  // Overhead light, one LiSPSM map: Lloyd et al. 2006, Eq. 12 with f/n = 100, theta = 30 deg.
   EXPECT_NEAR(vertical, 99.0 / (2.0 * std::tan(M_PI / 6.0)), 1e-6 * vertical);
 }
 
