@@ -1,0 +1,132 @@
+// The lookup's filter on a synthetic shadow map, in a real GL context: the (r+1)^2-tap grid
+// kernel (csmGridPCF in Module/glsl/csmShadowFS.glsl) equals the (2r+1)^2 hardware bilinear
+// compares one texel apart that it stands for, within 1/255.
+#include "csmShadowFS.h" // the GLSL under test
+
+#include "vtkNew.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderWindow.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace
+{
+constexpr int kMap = 64;     // synthetic map, texels per side
+constexpr int kSamples = 96; // sample positions per side (the quad's pixels)
+
+std::string fragmentShader(int r)
+{
+  // The pass prepends these (vtkCascadedShadowMapPass::PostReplaceShaderValues).
+  return std::string("//VTK::System::Dec\n"
+                     "in vec2 texCoord;\n"
+                     "//VTK::Output::Dec\n"
+                     "#define CSM_LIGHTS 1\n#define CSM_MAX_CASCADES 8\n#define CSM_KERNEL_GRID 0\n"
+                     "#define CSM_DEBUG_CASCADES 1\n#define CSM_DEBUG_ERROR 2\n"
+                     "#define CSM_DEBUG_FACTOR 3\n") +
+    csmShadowFS +
+    "\nuniform sampler2DShadow map;\n"
+    "void main()\n"
+    "{\n"
+    "  // Sample positions inside the map, away from its border (the taps clamp there).\n"
+    "  vec2 uv = mix(vec2(0.15), vec2(0.85), texCoord);\n"
+    "  vec4 tile = vec4(0.0, 0.0, 1.0, 1.0);\n"
+    "  float zRef = 0.5;\n"
+    "  int r = " +
+    std::to_string(r) +
+    ";\n"
+    "  float fast = csmGridPCF(map, tile, uv, zRef, vec2(0.0), r);\n"
+    "  float reference = 0.0;\n"
+    "  for (int i = -r; i <= r; ++i)\n"
+    "    for (int k = -r; k <= r; ++k)\n"
+    "      reference += csmTap(map, tile, uv + vec2(i, k) * csmTileTexel, zRef);\n"
+    "  reference /= float((2 * r + 1) * (2 * r + 1));\n"
+    "  gl_FragData[0] = vec4(fast, reference, 0.0, 1.0);\n"
+    "}\n";
+}
+}
+
+TEST(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
+{
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(kSamples, kSamples);
+  window->Render();
+  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
+  ASSERT_NE(gl, nullptr);
+  gl->MakeCurrent();
+
+  // A random depth map: each texel in front of (0.25) or behind (0.75) the reference depth.
+  std::mt19937 random(7);
+  std::vector<float> depth(kMap * kMap);
+  for (float& d : depth)
+    d = random() % 3 == 0 ? 0.25f : 0.75f;
+  vtkNew<vtkTextureObject> map;
+  map->SetContext(gl);
+  map->SetWrapS(vtkTextureObject::ClampToEdge);
+  map->SetWrapT(vtkTextureObject::ClampToEdge);
+  map->SetMinificationFilter(vtkTextureObject::Linear);
+  map->SetMagnificationFilter(vtkTextureObject::Linear);
+  map->SetDepthTextureCompare(true);
+  map->SetDepthTextureCompareFunction(vtkTextureObject::Lequal);
+  ASSERT_TRUE(map->CreateDepthFromRaw(kMap, kMap, vtkTextureObject::Float32, VTK_FLOAT, depth.data()));
+
+  // Results as floats: a colour texture of the quad's size.
+  vtkNew<vtkTextureObject> results;
+  results->SetContext(gl);
+  ASSERT_TRUE(results->Allocate2D(kSamples, kSamples, 4, VTK_FLOAT));
+  vtkNew<vtkOpenGLFramebufferObject> target;
+  target->SetContext(gl);
+  gl->GetState()->PushFramebufferBindings();
+  target->Bind();
+  target->AddColorAttachment(0, results);
+  target->ActivateDrawBuffer(0);
+  target->ActivateReadBuffer(0);
+  ASSERT_TRUE(target->CheckFrameBufferStatus(GL_FRAMEBUFFER));
+
+  for (int r = 1; r <= 3; ++r)
+  {
+    vtkOpenGLQuadHelper quad(gl, nullptr, fragmentShader(r).c_str(), "");
+    ASSERT_NE(quad.Program, nullptr) << "r = " << r;
+    gl->GetShaderCache()->ReadyShaderProgram(quad.Program);
+    map->Activate();
+    quad.Program->SetUniformi("map", map->GetTextureUnit());
+    quad.Program->SetUniformf("csmTileTexel", 1.0f / kMap);
+    gl->GetState()->vtkglViewport(0, 0, kSamples, kSamples);
+    gl->GetState()->vtkglDisable(GL_DEPTH_TEST);
+    gl->GetState()->vtkglDisable(GL_BLEND);
+    quad.Render();
+    map->Deactivate();
+    std::vector<float> pixels(4 * kSamples * kSamples);
+    glReadPixels(0, 0, kSamples, kSamples, GL_RGBA, GL_FLOAT, pixels.data());
+    long differing = 0, penumbra = 0;
+    double worst = 0.0;
+    for (int i = 0; i < kSamples * kSamples; ++i)
+    {
+      const double difference = std::abs(pixels[4 * i] - pixels[4 * i + 1]);
+      worst = std::max(worst, difference);
+      differing += difference > 1.0 / 255.0;
+      penumbra += pixels[4 * i + 1] > 0.05f && pixels[4 * i + 1] < 0.95f; // neither lit nor shadowed
+    }
+    std::printf("r = %d: largest difference %.2e, %ld of %d samples in a penumbra\n", r, worst,
+      penumbra, kSamples * kSamples);
+    EXPECT_EQ(differing, 0) << "r = " << r;
+    // The map is random: most samples see both depths (the comparison is not of constants).
+    EXPECT_GT(penumbra, kSamples * kSamples / 2) << "r = " << r;
+  }
+  gl->GetState()->PopFramebufferBindings();
+}
