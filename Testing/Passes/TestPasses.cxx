@@ -84,8 +84,8 @@ TEST(Passes, MapsAreRebakedOnlyWhenSomethingChanged)
   BoxOverPlane scene;
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
-  // (Window renders only: grabbing an image renders with a copy of the camera. The first frame
-  // creates the ground's default vtkProperty, which modifies the actor: two warm-up frames.)
+  // (Window renders only: grabbing an image renders with a copy of the camera. Two warm-up
+  // frames: anything the first frame creates, such as an actor's default property, is a change.)
   scene.Window->Render();
   scene.Window->Render();
   const int first = baker->GetBakeCount();
@@ -483,7 +483,7 @@ TEST(Passes, PropLightOrOptionChangesReRenderEveryMap)
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   scene.Window->SetDesiredUpdateRate(15.0);
-  scene.Frame(); // (the first frame creates the ground's property: a change)
+  scene.Frame(); // (warm-up: what the first frame creates may count as a change)
   scene.Frame();
   scene.Frame();
   EXPECT_EQ(baker->GetLastCascadeRenders(), 0);
