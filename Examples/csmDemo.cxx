@@ -88,33 +88,39 @@ void requireDisplay()
 
 void usage()
 {
+  const Options o; // the defaults: csm-demo's own, and the pass's (ShadowOptions reads them)
+  const csmScenes::ShadowOptions& d = o.Shadow;
   std::printf(
-    "usage: csm-demo [options]\n"
-    "  --scene S          platform (default) | platform-beams (its bars as lines drawn as\n"
-    "                     tubes) | towers | FILE (.vtp .vtk .stl .ply .obj .glb .gltf)\n"
-    "  --triangles N      platform size in triangles, 1000..~11.8 M [250000]\n"
-    "  --technique T      csm (ours) | vtk (vtkShadowMapPass) | none [csm]\n"
-    "  --warp W           none | psm | lispsm | generalized [generalized]\n"
-    "  --partition P      single | uniform | log | practical | adaptive [adaptive]\n"
-    "  --cascades K       1..8 [2]      --lambda L  practical weight [0.5]\n"
-    "  --alpha A          adaptive ratio > 1 [2]\n"
-    "  --resolution R     texels per cascade side, 64..8192 [2048]\n"
-    "  --pcf N            1 | 3 | 5 | 7 [5]   --kernel grid | jittered [grid]\n"
-    "  --bias B           constant depth bias [0.002]   --slope-bias S [1.5]\n"
-    "  --blend F          cascade blend band, 0..0.5 [0.05]\n"
-    "  --depth-clamp on|off [on]      --darkness D  0..1 [1]\n"
-    "  --debug D          off | cascades | error | factor [off]\n"
-    "  --light X,Y,Z      direction the light travels (world)\n"
+    "usage: csm-demo [options]        (defaults in [])\n"
+    "  --scene S          platform | platform-beams (its bars as lines drawn as tubes) |\n"
+    "                     towers | FILE (.vtp .vtk .stl .ply .obj .glb .gltf) [%s]\n"
+    "  --triangles N      platform size in triangles, 1000..~11.8 M [%lld]\n"
+    "  --technique T      csm (ours) | vtk (vtkShadowMapPass) | none [%s]\n"
+    "  --warp W           none | psm | lispsm | generalized [%s]\n"
+    "  --partition P      single | uniform | log | practical | adaptive [%s]\n"
+    "  --cascades K       1..8 [%d]      --lambda L  practical weight [%g]\n"
+    "  --alpha A          adaptive ratio > 1 [%g]\n"
+    "  --resolution R     texels per cascade side, 64..8192 [%d]\n"
+    "  --pcf N            1 | 3 | 5 | 7 [%d]   --kernel grid | jittered [%s]\n"
+    "  --bias B           constant depth bias [%g]   --slope-bias S [%g]\n"
+    "  --blend F          cascade blend band, 0..0.5 [%g]\n"
+    "  --depth-clamp on|off [%s]      --darkness D  0..1 [%g]\n"
+    "  --debug D          off | cascades | error | factor [%s]\n"
+    "  --light X,Y,Z      direction the light travels (world) [%g,%g,%g]\n"
     "  --gamma DEG        light at this angle to the view (0 behind, 90 overhead, 180 facing)\n"
-    "  --size WxH         window size [800x600]\n"
+    "  --size WxH         window size [%dx%d]\n"
     "  --offscreen        no window; with --out writes the image\n"
     "  --out FILE.png     write the rendered image\n"
     "  --frames N         render N frames orbiting the scene, print median_frame_ms\n"
-    "  --orbit DEG        degrees the camera turns over the frames [360]; 0: a still camera\n"
+    "  --orbit DEG        degrees the camera turns over the frames [%g]; 0: a still camera\n"
     "  --interactive      render --frames as while the user drags the camera (the window's\n"
     "                     desired update rate at the interactor's 15 fps)\n"
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
-    "  t technique, l light angle +15 deg\n");
+    "  t technique, l light angle +15 deg\n",
+    o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
+    d.Cascades, d.Lambda, d.Alpha, d.Resolution, d.PCF, kKernels[d.Kernel], d.ConstantBias,
+    d.SlopeBias, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
+    o.Light[1], o.Light[2], o.Width, o.Height, o.Orbit);
 }
 
 double number(const std::string& flag, const char* text)

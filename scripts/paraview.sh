@@ -2,7 +2,8 @@
 # The ParaView 5.11 plugin (ParaView/): install what it needs, build it against ParaView's own
 # VTK, and run its pvbatch tests: one process (image against the baseline, shadow pixel count,
 # selection, properties, tube shadows), 2 MPI ranks (shadows cast across the ranks' pieces),
-# and the pvpython snippets of README.md and ParaView/README.md run as written (a shadow shows).
+# the pvpython snippets of README.md and ParaView/README.md run as written (a shadow shows), and
+# the XML's default_values against the passes' getters.
 #
 # Debian's ParaView CMake config refers to files of python3-paraview, which conflicts with
 # python3-vtk9 (needed by libvtk9-dev, the main build). So paraview and paraview-dev come from
@@ -10,14 +11,17 @@
 # same version are unpacked into $BUILD/prefix (dpkg -x): the plugin is configured against that
 # prefix and the test runs its pvbatch. Nothing of the libvtk9 build is used.
 #
-#   bash scripts/paraview.sh [all|single|mpi|readme]   build dir: build-paraview/ (or $CSM_PV_BUILD_DIR)
-#   (CTest runs "single" as paraview.View, "mpi" as paraview.ViewMPI, "readme" as
-#   paraview.Readme). "readme" installs and unpacks nothing: it needs the prefix an earlier run
-#   unpacked and exits with status 77 (skipped) without it.
+#   bash scripts/paraview.sh [all|prepare|single|mpi|readme|defaults]
+#   build dir: build-paraview/ (or $CSM_PV_BUILD_DIR)
+#   all (default): prepare, build, run every test. prepare: install the packages and unpack
+#   the prefix, nothing else (scripts/test.sh runs it, through setup.sh). The other modes run
+#   one test each and install and unpack nothing (CTest: paraview.View, paraview.ViewMPI,
+#   paraview.Readme, paraview.Defaults): they build the plugin in the prepared prefix, or exit
+#   with status 77 (skipped) when there is none.
 set -euo pipefail
 MODE="${1:-all}"
-case "$MODE" in all|single|mpi|readme) ;;
-  *) echo "error: unknown mode '$MODE' (all, single, mpi or readme)" >&2; exit 2 ;;
+case "$MODE" in all|prepare|single|mpi|readme|defaults) ;;
+  *) echo "error: unknown mode '$MODE' (all, prepare, single, mpi, readme or defaults)" >&2; exit 2 ;;
 esac
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -70,14 +74,14 @@ configure_and_build() {
   fi
 }
 
-if [ "$MODE" = readme ]; then
-  if [ ! -f "$PREFIX/.version" ] || ! command -v xvfb-run >/dev/null; then
-    echo "SKIP: no ParaView prefix in $PREFIX (or no xvfb-run); run bash scripts/paraview.sh first"
-    exit 77
-  fi
-else
+if [ "$MODE" = all ] || [ "$MODE" = prepare ]; then
   install_missing_packages
   unpack_paraview_prefix
+  [ "$MODE" = prepare ] && exit 0
+elif [ ! -f "$PREFIX/.version" ] || ! command -v xvfb-run >/dev/null; then
+  echo "SKIP: no ParaView prefix in $PREFIX (or no xvfb-run): bash scripts/test.sh prepares" \
+    "it, or bash scripts/paraview.sh prepare with CSM_PV_BUILD_DIR=$BUILD"
+  exit 77
 fi
 configure_and_build
 
@@ -115,6 +119,13 @@ if [ "$MODE" = all ] || [ "$MODE" = readme ]; then
       "$BUILD" "$BUILD/Testing/readme" 2>&1 | tee -a "$LOGS/test-readme.log" ||
       failed+=("snippet of $readme (log: $LOGS/test-readme.log)")
   done
+fi
+
+if [ "$MODE" = all ] || [ "$MODE" = defaults ]; then
+  echo "== pvbatch: each default_values of the plugin's XML against the C++ getter"
+  "${XVFB[@]}" "$PREFIX/usr/bin/pvbatch" "$TESTING/TestXMLDefaults.py" "$PLUGIN" \
+    "$ROOT/ParaView/Plugin/View/CascadedShadowsView.xml" 2>&1 | tee "$LOGS/test-defaults.log" ||
+    failed+=("XML defaults (log: $LOGS/test-defaults.log)")
 fi
 
 [ ${#failed[@]} -eq 0 ] || die "ParaView plugin test failed: ${failed[*]}; images in $BUILD/Testing"

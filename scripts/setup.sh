@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Shared set-up for the README commands: install the Debian packages that are missing, then
-# configure and build in Release. Sourced by main.sh, test.sh and benchmark.sh.
+# configure and build in Release; with CSM_PREPARE_PARAVIEW=1 (test.sh) also prepare the ParaView
+# prefix of the paraview.* tests. Sourced by main.sh, test.sh and benchmark.sh.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -23,5 +24,17 @@ configure_and_build() {
   fi
 }
 
+# The ParaView prefix the paraview.* tests use (they install nothing themselves): prepared when
+# the caller asks (scripts/test.sh), where CTest looks for it.
+prepare_paraview_prefix() {
+  mkdir -p "$LOGS"
+  if ! CSM_PV_BUILD_DIR="$BUILD/paraview" bash "$ROOT/scripts/paraview.sh" prepare \
+    >"$LOGS/paraview-prepare.log" 2>&1; then
+    tail -n 5 "$LOGS/paraview-prepare.log" >&2
+    die "could not prepare the ParaView prefix (full log: $LOGS/paraview-prepare.log)"
+  fi
+}
+
 install_missing_packages
+[ "${CSM_PREPARE_PARAVIEW:-0}" = 1 ] && prepare_paraview_prefix
 configure_and_build

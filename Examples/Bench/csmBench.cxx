@@ -114,28 +114,28 @@ std::vector<Technique> Techniques(const Options& o)
     list.push_back(t);
   };
   add("vtk", "vtk", 0, 0, 1, 1);
-  // The pass as a user gets it: no option set.
-  add("default", "csm", 3, 4, 2, 5);
-  list.back().Shadow.PassDefaults = true;
-  list.back().Shadow.Resolution = vtkNew<vtkCascadedShadowMapBakerPass>()->GetResolution();
-  list.back().Shadow.Cascades = vtkNew<vtkCascadedShadowMapBakerPass>()->GetNumberOfCascades();
-  list.back().Texels = static_cast<long long>(list.back().Shadow.Cascades) *
-    list.back().Shadow.Resolution * list.back().Shadow.Resolution;
-  list.back().MemoryMB = 4.0 * list.back().Texels / (1024.0 * 1024.0);
-  if (!o.Quick)
+  // The pass as a user gets it: every option at the pass's default.
   {
-    add("uniform", "csm", 0, 0, 1, 1);
-    add("lispsm k1", "csm", 2, 0, 1, 1);
-    add("pssm k4", "csm", 0, 3, 4, 1);
-    add("log+lispsm k4", "csm", 2, 2, 4, 1);
-    add("ours k2 pcf1", "csm", 3, 4, 2, 1);
-    add("ours k2 pcf3", "csm", 3, 4, 2, 3);
+    Technique t;
+    t.Label = "default";
+    const csmScenes::ShadowOptions& s = t.Shadow; // default-constructed: the pass's defaults
+    t.Texels = static_cast<long long>(s.Cascades) * s.Resolution * s.Resolution;
+    t.MemoryMB = 4.0 * t.Texels / (1024.0 * 1024.0);
+    list.push_back(t);
   }
   if (!o.Quick)
   {
-    add("ours k2 pcf5", "csm", 3, 4, 2, 5);
-    add("ours k3 pcf5", "csm", 3, 4, 3, 5);
-    add("ours k4 pcf5", "csm", 3, 4, 4, 5);
+    using P = vtkCascadedShadowMapPlanner;
+    add("uniform", "csm", P::WARP_NONE, P::SPLIT_SINGLE, 1, 1);
+    add("lispsm k1", "csm", P::WARP_LISPSM, P::SPLIT_SINGLE, 1, 1);
+    add("pssm k4", "csm", P::WARP_NONE, P::SPLIT_PRACTICAL, 4, 1);
+    add("log+lispsm k4", "csm", P::WARP_LISPSM, P::SPLIT_LOG, 4, 1);
+    const int ours[2] = { P::WARP_GENERALIZED, P::SPLIT_ADAPTIVE };
+    add("ours k2 pcf1", "csm", ours[0], ours[1], 2, 1);
+    add("ours k2 pcf3", "csm", ours[0], ours[1], 2, 3);
+    add("ours k2 pcf5", "csm", ours[0], ours[1], 2, 5);
+    add("ours k3 pcf5", "csm", ours[0], ours[1], 3, 5);
+    add("ours k4 pcf5", "csm", ours[0], ours[1], 4, 5);
   }
   return list;
 }
@@ -330,7 +330,7 @@ struct Row
   const Technique* T;
 };
 
-void Plot(const std::vector<std::pair<std::string, std::vector<Technique>>>& results,
+bool Plot(const std::vector<std::pair<std::string, std::vector<Technique>>>& results,
   const std::string& file)
 {
   vtkNew<vtkContextView> view;
@@ -419,6 +419,7 @@ void Plot(const std::vector<std::pair<std::string, std::vector<Technique>>>& res
   writer->SetFileName(file.c_str());
   writer->SetInputConnection(grab->GetOutputPort());
   writer->Write();
+  return writer->GetErrorCode() == 0;
 }
 
 Options Parse(int argc, char** argv)
@@ -538,9 +539,7 @@ int main(int argc, char** argv)
     else
     {
       std::string error;
-      if (!csmScenes::FromFile("/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/"
-                               "2CylinderEngine.glb",
-            scene, error))
+      if (!csmScenes::FromFile(CSM_ENGINE_MODEL, scene, error)) // the path comes from CMake
       {
         std::fprintf(stderr, "csm-bench: skipping scene engine: %s\n", error.c_str());
         continue;
@@ -774,11 +773,28 @@ int main(int argc, char** argv)
     }
     results.emplace_back(sceneName, std::move(techniques));
   }
+  // The exit status says whether the run measured and wrote what it was asked for.
   csv.close();
-  std::printf("wrote %s and %s.views.csv\n", o.Out.c_str(), o.Out.c_str());
-  if (!o.Plot.empty() && !results.empty())
+  detail.close();
+  if (!csv || !detail)
   {
-    Plot(results, o.Plot);
+    std::fprintf(stderr, "csm-bench: error: cannot write %s or %s.views.csv\n", o.Out.c_str(),
+      o.Out.c_str());
+    return 1;
+  }
+  std::printf("wrote %s and %s.views.csv\n", o.Out.c_str(), o.Out.c_str());
+  if (results.empty())
+  {
+    std::fprintf(stderr, "csm-bench: error: no scene was measured\n");
+    return 1;
+  }
+  if (!o.Plot.empty())
+  {
+    if (!Plot(results, o.Plot))
+    {
+      std::fprintf(stderr, "csm-bench: error: cannot write %s\n", o.Plot.c_str());
+      return 1;
+    }
     std::printf("wrote %s\n", o.Plot.c_str());
   }
   return 0;

@@ -13,6 +13,31 @@
 namespace csmScenes
 {
 
+ShadowOptions::ShadowOptions()
+{
+  static const ShadowOptions defaults(vtkNew<vtkCascadedShadowMapPass>().GetPointer());
+  *this = defaults;
+}
+
+ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
+{
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  this->Warp = baker->GetWarpMode();
+  this->Partition = baker->GetSplitScheme();
+  this->Cascades = baker->GetNumberOfCascades();
+  this->Lambda = baker->GetLambda();
+  this->Alpha = baker->GetAlpha();
+  this->Resolution = baker->GetResolution();
+  this->DepthClamp = baker->GetDepthClamp();
+  this->PCF = pass->GetPCFSize();
+  this->Kernel = pass->GetPCFKernel();
+  this->ConstantBias = pass->GetConstantBias();
+  this->SlopeBias = pass->GetSlopeBias();
+  this->Blend = pass->GetBlendBand();
+  this->Darkness = pass->GetShadowDarkness();
+  this->Debug = pass->GetDebugMode();
+}
+
 void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
 {
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
@@ -40,10 +65,7 @@ vtkSmartPointer<vtkRenderPass> BuildChain(const ShadowOptions& o, Installed& ins
   if (o.Technique == "csm")
   {
     auto pass = vtkSmartPointer<vtkCascadedShadowMapPass>::New();
-    if (!o.PassDefaults)
-    {
-      Configure(pass, o);
-    }
+    Configure(pass, o);
     baker = pass->GetShadowMapBakerPass();
     installed.Cascaded = pass;
     shadows = pass;

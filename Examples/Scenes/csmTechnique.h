@@ -13,24 +13,33 @@ class vtkShadowMapPass;
 namespace csmScenes
 {
 
+/// The options of a technique, as the flags of csm-demo and csm-bench set them. The cascaded
+/// pass's options start at the pass's own defaults: a default-constructed ShadowOptions reads
+/// them from a new vtkCascadedShadowMapPass and its baker, so they are stated once, in the pass.
 struct ShadowOptions
 {
+  /// Technique csm with every option at the pass's default.
+  ShadowOptions();
+  /// Technique csm with the options a pass has now (its own and its baker's): what Configure()
+  /// would set to give the pass exactly these.
+  explicit ShadowOptions(vtkCascadedShadowMapPass* pass);
+
   std::string Technique = "csm"; ///< csm | vtk | none
-  int Warp = 3;                  ///< vtkCascadedShadowMapPlanner::WarpModes
-  int Partition = 4;             ///< vtkCascadedShadowMapPlanner::SplitSchemes
-  int Cascades = 2;
-  double Lambda = 0.5;
-  double Alpha = 2.0;
-  int Resolution = 2048;
-  int PCF = 5;
-  int Kernel = 0;
-  double ConstantBias = 0.002;
-  double SlopeBias = 1.5;
-  double Blend = 0.05;
-  bool DepthClamp = true;
-  double Darkness = 1.0;
-  int Debug = 0;
-  bool PassDefaults = false; ///< csm: leave every option at the pass's own default (ignore the above)
+  // Set by the constructors:
+  int Warp;                      ///< vtkCascadedShadowMapPlanner::WarpModes
+  int Partition;                 ///< vtkCascadedShadowMapPlanner::SplitSchemes
+  int Cascades;
+  double Lambda;
+  double Alpha;
+  int Resolution;                ///< also VTK's pass's, for technique vtk
+  int PCF;
+  int Kernel;                    ///< vtkCascadedShadowMapPass::Kernels
+  double ConstantBias;
+  double SlopeBias;
+  double Blend;
+  bool DepthClamp;
+  double Darkness;
+  int Debug;                     ///< vtkCascadedShadowMapPass::DebugModes
 };
 
 struct Installed

@@ -1,24 +1,15 @@
 // Ray-cast ground truth (Embree) on a scene whose answer is known: a box over a plane, lit from
 // straight above. The truth mask must match the analytic shadow outline, and our pass must
 // misclassify fewer than 0.5% of the comparable pixels.
+#include "csmTestHelpers.h"
 #include "csmTruth.h"
 
-#include "vtkActor.h"
-#include "vtkCamera.h"
 #include "vtkCascadedShadowMapPass.h"
-#include "vtkCubeSource.h"
 #include "vtkImageData.h"
-#include "vtkLight.h"
-#include "vtkNew.h"
-#include "vtkPlaneSource.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProperty.h"
-#include "vtkRenderWindow.h"
-#include "vtkRenderer.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace
@@ -26,57 +17,26 @@ namespace
 constexpr int W = 400, H = 300;
 const double kDown[3] = { 0.0, -1.0, 0.0 };
 
-struct Fixture
+// The box over the plane of the pass tests, with a finer ground (20 x 20 quads), plain white,
+// on black, lit from straight above and seen from aside.
+struct Fixture : csmTest::BoxOverPlane
 {
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkRenderWindow> Window;
-  Fixture()
+  Fixture() : csmTest::BoxOverPlane(Settings()) {}
+  static csmTest::BoxOverPlaneSettings Settings()
   {
-    vtkNew<vtkPlaneSource> plane;
-    plane->SetOrigin(-10, 0, -10);
-    plane->SetPoint1(10, 0, -10);
-    plane->SetPoint2(-10, 0, 10);
-    plane->SetResolution(20, 20);
-    vtkNew<vtkCubeSource> cube;
-    cube->SetBounds(-1, 1, 2, 4, -1, 1);
-    for (vtkAlgorithm* source : { static_cast<vtkAlgorithm*>(plane), static_cast<vtkAlgorithm*>(cube) })
+    csmTest::BoxOverPlaneSettings s;
+    s.Size[0] = W;
+    s.Size[1] = H;
+    s.GroundResolution = 20;
+    for (int i = 0; i < 3; ++i)
     {
-      vtkNew<vtkPolyDataMapper> mapper;
-      mapper->SetInputConnection(source->GetOutputPort());
-      vtkNew<vtkActor> actor;
-      actor->SetMapper(mapper);
-      actor->GetProperty()->SetAmbient(0.0);
-      actor->GetProperty()->SetDiffuse(1.0);
-      actor->GetProperty()->SetSpecular(0.0);
-      this->Renderer->AddActor(actor);
+      s.BoxColor[i] = 1.0;
+      s.Background[i] = 0.0;
+      s.LightPosition[i] = -kDown[i];
     }
-    vtkNew<vtkLight> light;
-    light->SetLightTypeToSceneLight();
-    light->SetPositional(false);
-    light->SetPosition(0, 1, 0);
-    light->SetFocalPoint(0, 0, 0);
-    this->Renderer->AddLight(light);
-    this->Renderer->AutomaticLightCreationOff();
-    this->Window->SetSize(W, H);
-    this->Window->SetMultiSamples(0);
-    this->Window->SetOffScreenRendering(1);
-    this->Window->AddRenderer(this->Renderer);
-    vtkCamera* camera = this->Renderer->GetActiveCamera();
-    camera->SetPosition(3, 9, 12);
-    camera->SetFocalPoint(0, 0, 0);
-    camera->SetViewUp(0, 1, 0);
-    this->Renderer->ResetCameraClippingRange();
-  }
-  vtkSmartPointer<vtkImageData> Grab()
-  {
-    this->Window->Render();
-    vtkNew<vtkWindowToImageFilter> grab;
-    grab->SetInput(this->Window);
-    grab->ReadFrontBufferOff();
-    grab->Update();
-    auto image = vtkSmartPointer<vtkImageData>::New();
-    image->DeepCopy(grab->GetOutput());
-    return image;
+    const double camera[3] = { 3, 9, 12 };
+    std::copy(camera, camera + 3, s.CameraPosition);
+    return s;
   }
 };
 } // namespace
@@ -120,9 +80,9 @@ TEST(Truth, MatchesTheAnalyticOutline)
 TEST(Truth, OurPassMisclassifiesUnderHalfAPercent)
 {
   Fixture f;
-  auto plain = f.Grab();
+  auto plain = f.Render();
   vtkCascadedShadowMapPass::UseShadowsOn(f.Renderer);
-  auto shadowed = f.Grab();
+  auto shadowed = f.Render();
   csmTruth::RayScene rays;
   rays.Build(f.Renderer);
   const auto surfaces = rays.CastPrimary(f.Renderer->GetActiveCamera(), W, H);

@@ -4,6 +4,7 @@
 // (vtkTesting), then renders it again without shadows and counts the pixels the shadows
 // darkened: a scene where shadows must appear must have at least the expected count.
 #include "csmScenes.h"
+#include "csmTestHelpers.h"
 #include "csmTechnique.h"
 
 #include "vtkActor.h"
@@ -11,7 +12,6 @@
 #include "vtkCellArray.h"
 #include "vtkMath.h"
 #include "vtkPNGWriter.h"
-#include "vtkPlaneSource.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
@@ -21,12 +21,10 @@
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
-#include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkTesting.h"
-#include "vtkUnsignedCharArray.h"
-#include "vtkWindowToImageFilter.h"
+#include "vtksys/SystemTools.hxx"
 
 #include <array>
 #include <cmath>
@@ -42,6 +40,7 @@
 namespace
 {
 constexpr double kPlatformFill = 0.25;
+constexpr int kSkipped = 77; // CTest's SKIP_RETURN_CODE
 
 struct Test
 {
@@ -116,15 +115,7 @@ struct Impostors
 
 vtkSmartPointer<vtkActor> GroundPlane()
 {
-  vtkNew<vtkPlaneSource> plane;
-  plane->SetOrigin(-kGroundHalf, 0.0, -kGroundHalf);
-  plane->SetPoint1(kGroundHalf, 0.0, -kGroundHalf);
-  plane->SetPoint2(-kGroundHalf, 0.0, kGroundHalf);
-  plane->SetResolution(20, 20);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(plane->GetOutputPort());
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
+  vtkSmartPointer<vtkActor> actor = csmTest::GroundPlane(kGroundHalf, 20);
   actor->GetProperty()->SetColor(0.85, 0.85, 0.8);
   return actor;
 }
@@ -464,7 +455,12 @@ std::map<std::string, std::function<void(Test&)>> Cases()
   cases["TestEngineCAD"] = [](Test& t) {
     csmScenes::Scene scene;
     std::string error;
-    const char* file = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+    const char* file = CSM_ENGINE_MODEL; // from CMake
+    if (!vtksys::SystemTools::FileExists(file, true))
+    {
+      std::printf("SKIP: no engine model %s (package assimp-testmodels)\n", file);
+      std::exit(kSkipped);
+    }
     if (!csmScenes::FromFile(file, scene, error))
     {
       std::fprintf(stderr, "%s\n", error.c_str());
@@ -479,38 +475,8 @@ std::map<std::string, std::function<void(Test&)>> Cases()
   return cases;
 }
 
-vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
-{
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  vtkSmartPointer<vtkImageData> image = vtkSmartPointer<vtkImageData>::New();
-  image->DeepCopy(grab->GetOutput());
-  return image;
-}
-
-/// Pixels at least 15% darker with shadows than without (only those of the mask, if given).
-long DarkenedPixels(vtkImageData* shadowed, vtkImageData* plain, const std::vector<char>* mask = nullptr)
-{
-  auto* a = vtkUnsignedCharArray::SafeDownCast(shadowed->GetPointData()->GetScalars());
-  auto* b = vtkUnsignedCharArray::SafeDownCast(plain->GetPointData()->GetScalars());
-  if (!a || !b || a->GetNumberOfTuples() != b->GetNumberOfTuples())
-    return -1;
-  const int nc = a->GetNumberOfComponents();
-  long count = 0;
-  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
-  {
-    double la = 0, lb = 0;
-    for (int c = 0; c < 3 && c < nc; ++c)
-    {
-      la += a->GetValue(nc * i + c);
-      lb += b->GetValue(nc * i + c);
-    }
-    count += la < 0.85 * lb - 6.0 && (!mask || (*mask)[i]);
-  }
-  return count;
-}
+using csmTest::DarkenedPixels;
+using csmTest::Grab;
 } // namespace
 
 int main(int argc, char* argv[])

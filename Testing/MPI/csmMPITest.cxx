@@ -4,6 +4,8 @@
 // must match the single-process image of the whole scene, and the ground on rank 1 must be
 // shadowed by the caster on rank 0. Prints the per-frame cost of combining the maps.
 //   mpiexec -n N csmMPITest <output dir>
+#include "csmTestHelpers.h"
+
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
@@ -11,10 +13,8 @@
 #include "vtkCubeSource.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
-#include "vtkLight.h"
 #include "vtkMPIController.h"
 #include "vtkNew.h"
-#include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -37,25 +37,33 @@ namespace
 {
 constexpr int W = 400, H = 300;
 
-// Part p of the scene: 0 a tall box (caster), 1 the ground (receiver), 2 a sphere, 3 a box.
-vtkSmartPointer<vtkActor> Part(int p)
+// The scene: the box over the plane of the pass tests (a taller box, a wider ground), and a
+// sphere and a second box as further casters. Part p of it: 0 the tall box (caster), 1 the
+// ground (receiver), 2 the sphere, 3 the second box.
+csmTest::BoxOverPlaneSettings Settings()
+{
+  csmTest::BoxOverPlaneSettings s;
+  s.Size[0] = W;
+  s.Size[1] = H;
+  s.GroundHalfWidth = 12.0;
+  const double ground[3] = { 0.8, 0.8, 0.85 }, caster[3] = { 0.9, 0.5, 0.3 };
+  const double box[6] = { -1, 1, 0, 5, -1, 1 };
+  const double background[3] = { 0.3, 0.4, 0.5 }, light[3] = { 4, 10, 3 };
+  const double camera[3] = { 4, 14, 20 }, focal[3] = { 0, 1, 0 };
+  std::copy(ground, ground + 3, s.GroundColor);
+  std::copy(caster, caster + 3, s.BoxColor);
+  std::copy(box, box + 6, s.Box);
+  std::copy(background, background + 3, s.Background);
+  std::copy(light, light + 3, s.LightPosition);
+  std::copy(camera, camera + 3, s.CameraPosition);
+  std::copy(focal, focal + 3, s.CameraFocalPoint);
+  return s;
+}
+
+vtkSmartPointer<vtkActor> ExtraPart(int p)
 {
   vtkSmartPointer<vtkAlgorithm> source;
-  if (p == 0)
-  {
-    auto cube = vtkSmartPointer<vtkCubeSource>::New();
-    cube->SetBounds(-1, 1, 0, 5, -1, 1);
-    source = cube;
-  }
-  else if (p == 1)
-  {
-    auto plane = vtkSmartPointer<vtkPlaneSource>::New();
-    plane->SetOrigin(-12, 0, -12);
-    plane->SetPoint1(12, 0, -12);
-    plane->SetPoint2(-12, 0, 12);
-    source = plane;
-  }
-  else if (p == 2)
+  if (p == 2)
   {
     auto sphere = vtkSmartPointer<vtkSphereSource>::New();
     sphere->SetCenter(4, 2, -3);
@@ -74,33 +82,25 @@ vtkSmartPointer<vtkActor> Part(int p)
   mapper->SetInputConnection(source->GetOutputPort());
   auto actor = vtkSmartPointer<vtkActor>::New();
   actor->SetMapper(mapper);
-  actor->GetProperty()->SetColor(p == 1 ? 0.8 : 0.9, p == 1 ? 0.8 : 0.5, p == 1 ? 0.85 : 0.3);
+  actor->GetProperty()->SetColor(Settings().BoxColor);
   return actor;
 }
 
-struct View
+/// The parts `keep` says, of the whole scene; the clipping range the same on every rank.
+struct View : csmTest::BoxOverPlane
 {
-  vtkNew<vtkRenderer> Renderer;
-  vtkNew<vtkRenderWindow> Window;
-  View()
+  template <typename Keep>
+  explicit View(Keep keep)
+    : csmTest::BoxOverPlane(Settings())
   {
-    this->Window->SetSize(W, H);
-    this->Window->SetMultiSamples(0);
-    this->Window->SetOffScreenRendering(1);
-    this->Window->AddRenderer(this->Renderer);
-    this->Renderer->SetBackground(0.3, 0.4, 0.5);
-    this->Renderer->AutomaticLightCreationOff();
-    vtkNew<vtkLight> light;
-    light->SetLightTypeToSceneLight();
-    light->SetPositional(false);
-    light->SetPosition(4, 10, 3);
-    light->SetFocalPoint(0, 0, 0);
-    this->Renderer->AddLight(light);
-    vtkCamera* camera = this->Renderer->GetActiveCamera();
-    camera->SetPosition(4, 14, 20);
-    camera->SetFocalPoint(0, 1, 0);
-    camera->SetViewUp(0, 1, 0);
-    camera->SetClippingRange(5, 60); // the same on every rank
+    if (!keep(0))
+      this->Renderer->RemoveActor(this->Box);
+    if (!keep(1))
+      this->Renderer->RemoveActor(this->Ground);
+    for (int p = 2; p < 4; ++p)
+      if (keep(p))
+        this->Renderer->AddActor(ExtraPart(p));
+    this->Renderer->GetActiveCamera()->SetClippingRange(5, 60);
   }
 };
 
@@ -147,17 +147,6 @@ std::vector<unsigned char> Composite(vtkMPIController* controller, vtkRenderWind
   return rgb;
 }
 
-long Darkened(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
-{
-  long count = 0;
-  for (int i = 0; i < W * H; ++i)
-  {
-    const double la = a[3 * i] + a[3 * i + 1] + a[3 * i + 2];
-    const double lb = b[3 * i] + b[3 * i + 1] + b[3 * i + 2];
-    count += la < 0.85 * lb - 6.0;
-  }
-  return count;
-}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -170,10 +159,7 @@ int main(int argc, char* argv[])
   const std::string out = argc > 1 ? argv[1] : ".";
   int status = 0;
   {
-    View view;
-    for (int p = 0; p < 4; ++p)
-      if (p % ranks == rank || (ranks == 1))
-        view.Renderer->AddActor(Part(p));
+    View view([&](int p) { return p % ranks == rank; });
     vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(view.Renderer);
     pass->GetShadowMapBakerPass()->SetController(controller);
     pass->GetShadowMapBakerPass()->SetResolution(1024);
@@ -204,9 +190,7 @@ int main(int argc, char* argv[])
       std::printf("ranks: %d  median_frame_ms: %.1f  median_combine_ms: %.1f\n", ranks,
         frame[3], combine[3]);
       // The whole scene in one process: the reference.
-      View single;
-      for (int p = 0; p < 4; ++p)
-        single.Renderer->AddActor(Part(p));
+      View single([](int) { return true; });
       vtkCascadedShadowMapPass::UseShadowsOn(single.Renderer)
         ->GetShadowMapBakerPass()
         ->SetResolution(1024);
@@ -233,8 +217,8 @@ int main(int argc, char* argv[])
       vtkNew<vtkTrivialProducer> producer;
       producer->SetOutput(ToImage(shadowed));
       const int compared = testing->RegressionTest(producer, 0.15);
-      const long darkened = Darkened(shadowed, plain);
-      const long darkenedReference = Darkened(reference, plain);
+      const long darkened = csmTest::DarkenedPixels(ToImage(shadowed), ToImage(plain));
+      const long darkenedReference = csmTest::DarkenedPixels(ToImage(reference), ToImage(plain));
       std::printf("composite vs single process: %s; shadowed pixels: %ld (single process: %ld)\n",
         compared == vtkTesting::PASSED ? "match" : "DIFFER", darkened, darkenedReference);
       if (compared != vtkTesting::PASSED || darkened < 2000 ||

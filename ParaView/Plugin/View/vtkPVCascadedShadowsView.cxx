@@ -17,10 +17,8 @@ vtkStandardNewMacro(vtkPVCascadedShadowsView);
 
 vtkPVCascadedShadowsView::vtkPVCascadedShadowsView()
 {
-  vtkNew<vtkRenderPassCollection> passes;
-  passes->AddItem(this->ShadowPass->GetShadowMapBakerPass());
-  passes->AddItem(this->ShadowPass);
-  this->ShadowSequence->SetPasses(passes);
+  this->ShadowPass = vtkSmartPointer<vtkCascadedShadowMapPass>::New();
+  this->UpdateShadowSequence();
   // ParaView owns the renderer's pass chain (camera pass, FXAA, image processing, IceT):
   // our passes go below its camera pass, where vtkPVDefaultPass would otherwise be.
   this->SynchronizedRenderers->SetRenderPass(this->ShadowSequence);
@@ -63,15 +61,57 @@ vtkPVCascadedShadowsView::~vtkPVCascadedShadowsView()
   }
 }
 
+void vtkPVCascadedShadowsView::SetShadowPass(vtkCascadedShadowMapPass* pass)
+{
+  if (!pass || pass == this->ShadowPass)
+  {
+    return;
+  }
+  if (vtkRenderWindow* window = this->GetRenderWindow())
+  {
+    this->ShadowPass->ReleaseGraphicsResources(window);
+  }
+  this->ShadowPass = pass;
+  this->UpdateShadowSequence();
+  this->Modified();
+}
+
+vtkCascadedShadowMapPass* vtkPVCascadedShadowsView::GetShadowPass()
+{
+  return this->ShadowPass;
+}
+
+void vtkPVCascadedShadowsView::UpdateShadowSequence()
+{
+  vtkRenderPass* baker = this->ShadowPass->GetShadowMapBakerPass();
+  if (baker == this->SequencedBaker && this->ShadowSequence->GetPasses() &&
+    this->ShadowSequence->GetPasses()->IsItemPresent(this->ShadowPass))
+  {
+    return;
+  }
+  vtkNew<vtkRenderPassCollection> passes;
+  if (baker)
+  {
+    passes->AddItem(baker);
+  }
+  passes->AddItem(this->ShadowPass);
+  this->ShadowSequence->SetPasses(passes);
+  this->SequencedBaker = baker;
+}
+
 void vtkPVCascadedShadowsView::Render(bool interactive, bool skip_rendering)
 {
+  this->UpdateShadowSequence(); // the pass may have been given another baker
+
   // Distributed rendering: every rank renders its own piece, in step with the others, so the
   // maps must hold the casters of all ranks. Otherwise (one process, or local rendering on the
   // client or on rank 0 alone) no collective calls may happen.
   const bool distributed = interactive ? this->GetUseDistributedRenderingForLODRender()
                                        : this->GetUseDistributedRenderingForRender();
-  this->ShadowPass->GetShadowMapBakerPass()->SetController(
-    distributed ? vtkMultiProcessController::GetGlobalController() : nullptr);
+  if (vtkCascadedShadowMapBakerPass* baker = this->ShadowPass->GetShadowMapBakerPass())
+  {
+    baker->SetController(distributed ? vtkMultiProcessController::GetGlobalController() : nullptr);
+  }
   this->Superclass::Render(interactive, skip_rendering);
 }
 
@@ -120,81 +160,6 @@ void vtkPVCascadedShadowsView::UpdateLightKitShadows()
   {
     light->SetShadowAttenuation(this->ShadowedLights == ALL_LIGHTS ? 1.0f : 0.0f);
   }
-}
-
-void vtkPVCascadedShadowsView::SetNumberOfCascades(int cascades)
-{
-  this->ShadowPass->GetShadowMapBakerPass()->SetNumberOfCascades(cascades);
-}
-
-int vtkPVCascadedShadowsView::GetNumberOfCascades()
-{
-  return this->ShadowPass->GetShadowMapBakerPass()->GetNumberOfCascades();
-}
-
-void vtkPVCascadedShadowsView::SetShadowMapResolution(int texels)
-{
-  this->ShadowPass->GetShadowMapBakerPass()->SetResolution(texels);
-}
-
-int vtkPVCascadedShadowsView::GetShadowMapResolution()
-{
-  return this->ShadowPass->GetShadowMapBakerPass()->GetResolution();
-}
-
-void vtkPVCascadedShadowsView::SetWarpMode(int mode)
-{
-  this->ShadowPass->GetShadowMapBakerPass()->SetWarpMode(mode);
-}
-
-int vtkPVCascadedShadowsView::GetWarpMode()
-{
-  return this->ShadowPass->GetShadowMapBakerPass()->GetWarpMode();
-}
-
-void vtkPVCascadedShadowsView::SetSplitScheme(int scheme)
-{
-  this->ShadowPass->GetShadowMapBakerPass()->SetSplitScheme(scheme);
-}
-
-int vtkPVCascadedShadowsView::GetSplitScheme()
-{
-  return this->ShadowPass->GetShadowMapBakerPass()->GetSplitScheme();
-}
-
-void vtkPVCascadedShadowsView::SetPCFSize(int texels)
-{
-  this->ShadowPass->SetPCFSize(texels);
-}
-
-int vtkPVCascadedShadowsView::GetPCFSize()
-{
-  return this->ShadowPass->GetPCFSize();
-}
-
-void vtkPVCascadedShadowsView::SetShadowDarkness(double darkness)
-{
-  this->ShadowPass->SetShadowDarkness(darkness);
-}
-
-double vtkPVCascadedShadowsView::GetShadowDarkness()
-{
-  return this->ShadowPass->GetShadowDarkness();
-}
-
-void vtkPVCascadedShadowsView::SetShadowDebugMode(int mode)
-{
-  this->ShadowPass->SetDebugMode(mode);
-}
-
-int vtkPVCascadedShadowsView::GetShadowDebugMode()
-{
-  return this->ShadowPass->GetDebugMode();
-}
-
-vtkCascadedShadowMapPass* vtkPVCascadedShadowsView::GetShadowPass()
-{
-  return this->ShadowPass;
 }
 
 void vtkPVCascadedShadowsView::PrintSelf(ostream& os, vtkIndent indent)

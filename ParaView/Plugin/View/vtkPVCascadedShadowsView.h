@@ -23,9 +23,11 @@
 #include "vtkNew.h" // for members
 #include "vtkPVCascadedShadowsModule.h" // for export macro
 #include "vtkPVRenderView.h"
+#include "vtkSmartPointer.h" // for members
 
 class vtkCascadedShadowMapPass;
 class vtkLightCollection;
+class vtkRenderPass;
 class vtkSequencePass;
 
 class VTKPVCASCADEDSHADOWS_EXPORT vtkPVCascadedShadowsView : public vtkPVRenderView
@@ -53,33 +55,16 @@ public:
   ///@}
 
   ///@{
-  /// Forwarded to vtkCascadedShadowMapBakerPass: cascades per light (1..8, default 2), texels
-  /// per cascade side (64..8192, default 2048), warp mode (0 none, 1 PSM, 2 LiSPSM,
-  /// 3 generalized; default 3) and split scheme (0 single, 1 uniform, 2 log, 3 practical,
-  /// 4 adaptive; default 4).
-  void SetNumberOfCascades(int cascades);
-  int GetNumberOfCascades();
-  void SetShadowMapResolution(int texels);
-  int GetShadowMapResolution();
-  void SetWarpMode(int mode);
-  int GetWarpMode();
-  void SetSplitScheme(int scheme);
-  int GetSplitScheme();
-  ///@}
-
-  ///@{
-  /// Forwarded to vtkCascadedShadowMapPass: PCF kernel width (1, 3, 5, 7; default 5), shadow
-  /// darkness (0..1, default 1) and debug view (0 off, 1 cascades, 2 error, 3 factor).
-  void SetPCFSize(int texels);
-  int GetPCFSize();
-  void SetShadowDarkness(double darkness);
-  double GetShadowDarkness();
-  void SetShadowDebugMode(int mode);
-  int GetShadowDebugMode();
-  ///@}
-
-  /// The shadow pass (its baker: GetShadowPass()->GetShadowMapBakerPass()).
+  /**
+   * The shadow pass the view renders with, and with it its baker
+   * (GetShadowPass()->GetShadowMapBakerPass()): the sequence { baker, pass } is the view's
+   * render pass. The view creates one; the server manager sets the pass of the view proxy's
+   * ShadowPass subproxy, whose properties (the pass's and its baker's options, with their
+   * defaults) the view proxy exposes (CascadedShadowsView.xml).
+   */
+  virtual void SetShadowPass(vtkCascadedShadowMapPass* pass);
   vtkCascadedShadowMapPass* GetShadowPass();
+  ///@}
 
 protected:
   vtkPVCascadedShadowsView();
@@ -91,12 +76,15 @@ protected:
   /// collective calls need all of them.
   void Update() override;
   void UpdateLightKitShadows();
+  /// Makes the sequence { baker, pass } of the current pass and its current baker.
+  void UpdateShadowSequence();
 
   bool CascadedShadows = true;
   int ShadowedLights = KEY_LIGHT;
   vtkNew<vtkLightCollection> FillAndBackLights; // the light kit's camera lights but the key light
-  vtkNew<vtkCascadedShadowMapPass> ShadowPass;
+  vtkSmartPointer<vtkCascadedShadowMapPass> ShadowPass;
   vtkNew<vtkSequencePass> ShadowSequence; // { baker, shadow pass }
+  vtkRenderPass* SequencedBaker = nullptr; // the baker in ShadowSequence (compared only)
 
 private:
   vtkPVCascadedShadowsView(const vtkPVCascadedShadowsView&) = delete;
