@@ -1,5 +1,5 @@
-# GLSL lives in its own files and is embedded at build time; one list for the VTK module
-# (Module/CMakeLists.txt) and the ParaView plugin that compiles the same sources.
+# GLSL lives in its own files and is embedded at build time (Module/CMakeLists.txt; the
+# ParaView plugin builds the same module file).
 set(csm_glsl_files csmShadowFS csmCaster csmCasterLineGS)
 
 # csm_encode_glsl(<Module dir> <sources var> <headers var>)
