@@ -289,20 +289,20 @@ void vtkCascadedShadowMapBakerPass::ReportOnce(bool error, const std::string& me
   }
 }
 
-bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
-  vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles, bool& reallocated)
+bool vtkCascadedShadowMapBakerPass::PrepareAtlas(vtkOpenGLRenderWindow* window,
+  LightMaps& maps, int tiles, int wanted, bool& reallocated)
 {
   reallocated = false;
   const int columns = std::min(tiles, 4);
   const int rows = (tiles + columns - 1) / columns;
   GLint maxSize = 4096;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  int resolution = this->Resolution;
+  int resolution = wanted;
   if (resolution * columns > maxSize)
   {
     resolution = maxSize / columns;
     std::ostringstream message;
-    message << "Shadow map resolution " << this->Resolution << " x " << columns
+    message << "Shadow map resolution " << wanted << " x " << columns
             << " cascades exceeds the GL limit " << maxSize << "; using " << resolution;
     this->ReportOnce(false, message.str());
   }
@@ -723,6 +723,10 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
 {
   const bool depthClamp = this->Planner->GetDepthClamp();
   const int numberOfCascades = this->Planner->GetNumberOfCascades();
+  // VTK's interactive convention (see PlanLights): fewer texels while the user drags.
+  const int resolution = window->GetDesiredUpdateRate() >= kInteractiveUpdateRate
+    ? std::min(this->InteractiveResolution, this->Resolution)
+    : this->Resolution;
   vtkOpenGLState* ostate = window->GetState();
   vtkOpenGLState::ScopedglViewport savedViewport(ostate);
   vtkOpenGLState::ScopedglScissor savedScissor(ostate);
@@ -747,7 +751,7 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
   {
     LightMaps& maps = planned[slot];
     bool reallocated = false;
-    if (!this->PrepareAtlas(window, maps, numberOfCascades, reallocated))
+    if (!this->PrepareAtlas(window, maps, numberOfCascades, resolution, reallocated))
     {
       maps.NumberOfCascades = 0;
       continue;
@@ -969,6 +973,7 @@ void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Resolution: " << this->Resolution << "\n";
+  os << indent << "InteractiveResolution: " << this->InteractiveResolution << "\n";
   os << indent << "Planner:\n";
   this->Planner->PrintSelf(os, indent.GetNextIndent());
   os << indent << "PolygonOffsetFactor: " << this->PolygonOffsetFactor << "\n";

@@ -66,6 +66,14 @@ public:
   ///@}
 
   ///@{
+  /// While the user interacts (see SetInteractiveMapBorder()), the maps are rendered at
+  /// min(InteractiveResolution, Resolution) texels a side, a quarter of the texels to fill at
+  /// the default; the first still frame re-renders them at Resolution. 64..8192. Default 1024.
+  vtkSetClampMacro(InteractiveResolution, int, 64, 8192);
+  vtkGetMacro(InteractiveResolution, int);
+  ///@}
+
+  ///@{
   /**
    * How the cascades are planned; these forward to GetPlanner(), which documents them:
    * number of cascades (1..MAXIMUM_NUMBER_OF_CASCADES, default 2, Barroso & Celes §4), warp mode and split scheme
@@ -252,7 +260,8 @@ protected:
   void CombineAcrossProcesses(vtkTextureObject* atlas);
   /// Sizes the light's atlas and its tiles; returns false when it cannot be allocated. Sets
   /// reallocated when the texture is new (nothing in it may be kept).
-  bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles, bool& reallocated);
+  bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles, int resolution,
+    bool& reallocated);
   void RenderCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebufferObject* frameBuffer,
     LightMaps& maps, int cascade, const std::vector<vtkProp*>& casters,
     const std::vector<std::array<double, 6>>& casterBounds, bool depthClamp);
@@ -268,6 +277,7 @@ protected:
   int MaximumShadowedLights(vtkOpenGLRenderWindow* window);
 
   int Resolution = 2048;
+  int InteractiveResolution = 1024;
   double PolygonOffsetFactor = 1.1;
   double PolygonOffsetUnits = 2.0;
   double MapReuseTolerance = 1.25;

@@ -471,10 +471,15 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
   }
   EXPECT_GT(kept, 0);         // the point of it: maps were kept
   EXPECT_EQ(rendered, 8 * 2); // the reference re-rendered both cascades every frame
+  // While dragging, the maps have InteractiveResolution texels a side.
+  vtkCascadedShadowMapBakerPass* baker = a->GetShadowMapBakerPass();
+  EXPECT_EQ(baker->GetLightMaps(keep.Renderer).at(0).Resolution, baker->GetInteractiveResolution());
   // The still frame after dragging returns to tight maps (full quality): identical images.
   keep.Window->SetDesiredUpdateRate(0.0001);
   fresh.Window->SetDesiredUpdateRate(0.0001);
   EXPECT_EQ(DifferingValues(keep.Frame(), fresh.Frame()), 0);
+  EXPECT_EQ(baker->GetLightMaps(keep.Renderer).at(0).Resolution, baker->GetResolution());
+  EXPECT_EQ(baker->GetLastCascadeRenders(), 2);
 }
 
 TEST(Passes, PropLightOrOptionChangesReRenderEveryMap)
