@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# The install test: install the build into a temporary prefix, move the prefix (it must be
+# relocatable), build a downstream VTK application against it with find_package, run it (it
+# fails when its picture has no shadow), and run an installed program from the prefix.
+#   run.sh <build dir> <downstream source dir> <work dir>
+set -euo pipefail
+build=$1 source=$2 work=$3
+rm -rf "$work"
+mkdir -p "$work"
+cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
+mv "$work/prefix" "$work/moved"
+if grep -rl "$build" "$work/moved/lib/cmake" "$work/moved/include"; then
+  echo "the installed package refers to the build tree (above)"
+  exit 1
+fi
+cmake -S "$source" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/moved" \
+  -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
+cmake --build "$work/build" > "$work/build.log"
+"$work/moved/bin/csm-demo" --help > /dev/null
+"$work/moved/bin/csm-analyze" --near 0.5 --far 500 > /dev/null
+"$work/build/downstream"
