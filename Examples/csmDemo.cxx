@@ -1,5 +1,6 @@
 // csm-demo: renders a scene with cascaded generalized-LiSPSM shadows (or VTK's own shadow pass,
 // or none), interactively or offscreen to a PNG, and times orbiting frames.
+#include "csmHeadless.h"
 #include "csmScenes.h"
 #include "csmTechnique.h"
 
@@ -61,14 +62,18 @@ struct Options
   std::exit(2);
 }
 
-/// VTK here renders through GLX, offscreen too: without an X display it crashes (SIGSEGV or an
-/// abort inside VTK). Say so before VTK touches X.
+/// VTK here renders through GLX: without an X display it crashes (SIGSEGV or an abort inside
+/// VTK). Say so before VTK touches X. Built with the OSMesa window (CSM_OSMESA), --offscreen
+/// renders through OSMesa and needs no display; the interactive window still does.
 void requireDisplay()
 {
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display)
-    fail("no X display (DISPLAY is not set; csm-demo needs one, also with --offscreen): set "
-         "DISPLAY or run it under xvfb-run -a",
+    fail(csmHeadless::Available()
+        ? "no X display (DISPLAY is not set; the interactive window needs one): set DISPLAY, run "
+          "csm-demo under xvfb-run -a, or render with --offscreen (OSMesa, no X server)"
+        : "no X display (DISPLAY is not set; csm-demo needs one, also with --offscreen: this "
+          "build has no OSMesa): set DISPLAY or run it under xvfb-run -a",
       false);
   void* x11 = dlopen("libX11.so.6", RTLD_NOW | RTLD_LOCAL);
   using Open = void* (*)(const char*);
@@ -107,14 +112,16 @@ void usage()
     "  --light X,Y,Z      direction the light travels (world)\n"
     "  --gamma DEG        light at this angle to the view (0 behind, 90 overhead, 180 facing)\n"
     "  --size WxH         window size [800x600]\n"
-    "  --offscreen        no window; with --out writes the image\n"
+    "  --offscreen        no window; with --out writes the image (%s)\n"
     "  --out FILE.png     write the rendered image\n"
     "  --frames N         render N frames orbiting the scene, print median_frame_ms\n"
     "  --orbit DEG        degrees the camera turns over the frames [360]; 0: a still camera\n"
     "  --interactive      render --frames as while the user drags the camera (the window's\n"
     "                     desired update rate at the interactor's 15 fps)\n"
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
-    "  t technique, l light angle +15 deg\n");
+    "  t technique, l light angle +15 deg\n",
+    csmHeadless::Available() ? "through OSMesa: no X display needed"
+                             : "needs an X display: xvfb-run -a");
 }
 
 double number(const std::string& flag, const char* text)
@@ -414,7 +421,11 @@ int main(int argc, char** argv)
     if (!csmScenes::FromFile(app.Opt.Scene, scene, error))
       fail(error, false);
   }
-  requireDisplay();
+  // --offscreen: the OSMesa window where built with it; the interactive window is VTK's own.
+  if (!app.Opt.Offscreen)
+    csmHeadless::UseOSMesa(false);
+  if (!csmHeadless::UsingOSMesa())
+    requireDisplay();
 
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
