@@ -1,5 +1,6 @@
 // csm-demo: renders a scene with cascaded generalized-LiSPSM shadows (or VTK's own shadow pass,
 // or none), interactively or offscreen to a PNG, and times orbiting frames.
+#include "csmHeadless.h"
 #include "csmScenes.h"
 #include "csmTechnique.h"
 
@@ -61,14 +62,18 @@ struct Options
   std::exit(2);
 }
 
-/// VTK here renders through GLX, offscreen too: without an X display it crashes (SIGSEGV or an
-/// abort inside VTK). Say so before VTK touches X.
+/// VTK here renders through GLX: without an X display it crashes (SIGSEGV or an abort inside
+/// VTK). Say so before VTK touches X. Built with the OSMesa window (CSM_OSMESA), --offscreen
+/// renders through OSMesa and needs no display; the interactive window still does.
 void requireDisplay()
 {
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display)
-    fail("no X display (DISPLAY is not set; csm-demo needs one, also with --offscreen): set "
-         "DISPLAY or run it under xvfb-run -a",
+    fail(csmHeadless::Available()
+        ? "no X display (DISPLAY is not set; the interactive window needs one): set DISPLAY, run "
+          "csm-demo under xvfb-run -a, or render with --offscreen (OSMesa, no X server)"
+        : "no X display (DISPLAY is not set; csm-demo needs one, also with --offscreen: this "
+          "build has no OSMesa): set DISPLAY or run it under xvfb-run -a",
       false);
   void* x11 = dlopen("libX11.so.6", RTLD_NOW | RTLD_LOCAL);
   using Open = void* (*)(const char*);
@@ -109,7 +114,7 @@ void usage()
     "  --light X,Y,Z      direction the light travels (world) [%g,%g,%g]\n"
     "  --gamma DEG        light at this angle to the view (0 behind, 90 overhead, 180 facing)\n"
     "  --size WxH         window size [%dx%d]\n"
-    "  --offscreen        no window; with --out writes the image\n"
+    "  --offscreen        no window; with --out writes the image (%s)\n"
     "  --out FILE.png     write the rendered image\n"
     "  --frames N         render N frames orbiting the scene, print median_frame_ms\n"
     "  --orbit DEG        degrees the camera turns over the frames [%g]; 0: a still camera\n"
@@ -120,7 +125,10 @@ void usage()
     o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
     d.Cascades, d.Lambda, d.Alpha, d.Resolution, d.PCF, kKernels[d.Kernel], d.ConstantBias,
     d.SlopeBias, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
-    o.Light[1], o.Light[2], o.Width, o.Height, o.Orbit);
+    o.Light[1], o.Light[2], o.Width, o.Height,
+    csmHeadless::Available() ? "through OSMesa: no X display needed"
+                             : "needs an X display: xvfb-run -a",
+    o.Orbit);
 }
 
 double number(const std::string& flag, const char* text)
@@ -420,7 +428,11 @@ int main(int argc, char** argv)
     if (!csmScenes::FromFile(app.Opt.Scene, scene, error))
       fail(error, false);
   }
-  requireDisplay();
+  // --offscreen: the OSMesa window where built with it; the interactive window is VTK's own.
+  if (!app.Opt.Offscreen)
+    csmHeadless::UseOSMesa(false);
+  if (!csmHeadless::UsingOSMesa())
+    requireDisplay();
 
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderWindow> window;

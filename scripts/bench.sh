@@ -5,5 +5,5 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 mkdir -p "$BUILD/bench"
-with_display "$BUILD/Examples/csm-bench" --out "$BUILD/bench/results.csv" \
+run_gl "$BUILD/Examples/csm-bench" --out "$BUILD/bench/results.csv" \
   --plot "$BUILD/bench/plot.png" "$@"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Shared by the scripts: one-line errors, installing the missing Debian packages of $PACKAGES
-# (logs in $LOGS), and running a command with a display.
+# (logs in $LOGS), and running a command with a display (or without one, through OSMesa).
 
 die() { echo "error: $*" >&2; exit 1; }
 
@@ -32,5 +32,22 @@ with_display() {
     "$@"
   else
     xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" "$@"
+  fi
+}
+
+# Whether the build in $BUILD links the OSMesa window (CMake option CSM_OSMESA; on by default
+# where libosmesa6-dev is installed): its GL tests, csm-demo --offscreen and csm-bench render
+# with no X server.
+osmesa_build() {
+  grep -q '^CSM_OSMESA_IN_USE:INTERNAL=ON$' "$BUILD/CMakeCache.txt" 2>/dev/null
+}
+
+# Runs an offscreen GL program of the build: with no X server (DISPLAY unset) through OSMesa,
+# else with a display.
+run_gl() {
+  if osmesa_build; then
+    env -u DISPLAY "$@"
+  else
+    with_display "$@"
   fi
 }

@@ -8,7 +8,7 @@ OUT="${CSM_OUT_DIR:-$BUILD/output}"
 mkdir -p "$OUT"
 for technique in csm vtk; do
   echo "== technique $technique"
-  with_display "$BUILD/Examples/csm-demo" --offscreen --technique "$technique" --frames 12 \
+  run_gl "$BUILD/Examples/csm-demo" --offscreen --technique "$technique" --frames 12 \
     --out "$OUT/platform-$technique.png"
 done
 echo "== analytic storage factor of common settings (csm-analyze --table)"

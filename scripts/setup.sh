@@ -9,7 +9,7 @@ source "$ROOT/scripts/common.sh"
 BUILD="${CSM_BUILD_DIR:-$ROOT/build}"
 LOGS="$BUILD/logs"
 PACKAGES=(cmake g++ make pkg-config libvtk9-dev libglm-dev libgtest-dev libbenchmark-dev
-  xvfb xauth libgl1-mesa-dri assimp-testmodels libembree-dev openmpi-bin)
+  xvfb xauth libgl1-mesa-dri libosmesa6-dev assimp-testmodels libembree-dev openmpi-bin)
 
 configure_and_build() {
   mkdir -p "$LOGS"

@@ -1,11 +1,13 @@
 """csm-demo against damaged and hostile input (issue 9, items 8-11 and 14).
 
-    python3 csmDemoRobustness.py <csm-demo> <temp dir> <case>
+    python3 csmDemoRobustness.py <csm-demo> <temp dir> <case> [osmesa|glx]
 
 Each broken case writes its file into <temp dir>, runs csm-demo on it with a timeout and
 checks: exit status 2 (not a crash signal, not a timeout), exactly one line on stderr, starting
 with "csm-demo: error:" and naming what is wrong. The "tiny" case checks a model of half-size
-1e-6 is drawn. Prints "FAIL: ..." and exits 1 on failure.
+1e-6 is drawn. The last argument says how csm-demo renders --offscreen: "osmesa" (built with
+the OSMesa window: no X display needed, only the interactive window needs one) or "glx" (the
+default: every run needs a display). Prints "FAIL: ..." and exits 1 on failure.
 """
 import os
 import struct
@@ -14,6 +16,8 @@ import sys
 import zlib
 
 demo, tmp, case = sys.argv[1], sys.argv[2], sys.argv[3]
+osmesa = len(sys.argv) > 4 and sys.argv[4] == "osmesa"
+NO_DISPLAY = {k: v for k, v in os.environ.items() if k != "DISPLAY"}
 os.makedirs(tmp, exist_ok=True)
 TIMEOUT = 60
 
@@ -94,6 +98,13 @@ def read_png(file):
     return rows
 
 
+def drawn_fraction(out):
+    background = (191, 209, 229)  # the demo's background (0.75, 0.82, 0.9)
+    pixels = [p for row in read_png(out) for p in row]
+    drawn = sum(1 for p in pixels if max(abs(x - y) for x, y in zip(p, background)) > 12)
+    return drawn, len(pixels)
+
+
 def tiny():
     # A tetrahedron of half-size 5e-7 on the demo's ground slab: it was drawn blank.
     s = 1e-6
@@ -105,12 +116,26 @@ def tiny():
                           "--technique", technique])
         if rc != 0:
             return "tiny model, --technique %s: status %s: %s" % (technique, rc, err[:300])
-        background = (191, 209, 229)  # the demo's background (0.75, 0.82, 0.9)
-        pixels = [p for row in read_png(out) for p in row]
-        drawn = sum(1 for p in pixels if max(abs(x - y) for x, y in zip(p, background)) > 12)
-        if drawn < 0.2 * len(pixels):
-            return "tiny model, --technique %s: only %d of %d pixels drawn" % (technique, drawn, len(pixels))
-        print("ok: tiny model, --technique %s: %d of %d pixels drawn" % (technique, drawn, len(pixels)))
+        drawn, total = drawn_fraction(out)
+        if drawn < 0.2 * total:
+            return "tiny model, --technique %s: only %d of %d pixels drawn" % (technique, drawn, total)
+        print("ok: tiny model, --technique %s: %d of %d pixels drawn" % (technique, drawn, total))
+    return None
+
+
+def offscreen_no_display():
+    # Built with the OSMesa window, --offscreen renders with no X display at all.
+    if not osmesa:
+        return "only for a build with the OSMesa window (csm-demo renders through GLX here)"
+    out = path("no-display.png")
+    rc, stdout, err = run(["--offscreen", "--out", out, "--size", "200x150", "--triangles", "20000"],
+                          env=NO_DISPLAY)
+    if rc != 0:
+        return "--offscreen without DISPLAY: status %s: %s" % (rc, err[:300])
+    drawn, total = drawn_fraction(out)
+    if drawn < 0.2 * total:
+        return "--offscreen without DISPLAY: only %d of %d pixels drawn" % (drawn, total)
+    print("ok: --offscreen without DISPLAY: %d of %d pixels drawn" % (drawn, total))
     return None
 
 
@@ -153,9 +178,11 @@ cases = {
                                       ["is a directory"]),
     "range_message": lambda: expect_error(["--darkness", "2"], ["--darkness must be in [0, 1] (see --help)"]),
     "triangles_cap": lambda: expect_error(["--triangles", "5e7"], ["--triangles must be in [1000, "]),
+    # The interactive window needs a display; so does --offscreen without the OSMesa window.
     "no_display": lambda: expect_error(
-        ["--offscreen", "--out", path("x.png")], ["DISPLAY", "xvfb-run -a"],
-        env={k: v for k, v in os.environ.items() if k != "DISPLAY"}),
+        ["--out", path("x.png")] if osmesa else ["--offscreen", "--out", path("x.png")],
+        ["DISPLAY", "xvfb-run -a"] + (["--offscreen", "OSMesa"] if osmesa else []), env=NO_DISPLAY),
+    "offscreen_no_display": offscreen_no_display,
     "tiny": tiny,
 }
 problem = cases[case]()

@@ -1,5 +1,6 @@
-// Behaviour of the passes in a real GL context (Mesa under Xvfb in CI): what VTK's shadow pass
-// gets wrong or does not do, each checked with numbers.
+// Behaviour of the passes in a real GL context (Mesa llvmpipe through OSMesa, no X server; Xvfb
+// in a build without OSMesa): what VTK's shadow pass gets wrong or does not do, each checked with
+// numbers.
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"

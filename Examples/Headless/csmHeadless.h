@@ -1,0 +1,22 @@
+// Which window vtkRenderWindow::New() makes in the programs of this project (tests, csm-demo,
+// csm-bench). Built with CSM_OSMESA (the default where libosmesa6-dev is installed), they link
+// libcsm_headless, whose object factory makes it a vtkOSMesaHeadlessRenderWindow: rendering with
+// no X server. Without it, or after UseOSMesa(false), it is VTK's own (X/GLX) window.
+#ifndef csmHeadless_h
+#define csmHeadless_h
+
+namespace csmHeadless
+{
+/// True when this executable is linked with the OSMesa window (built with CSM_OSMESA).
+bool Available();
+
+/// From now on vtkRenderWindow::New() makes the OSMesa window (true; the default when available,
+/// unless CSM_HEADLESS=x is set in the environment) or VTK's own X window (false). Returns
+/// whether the OSMesa window is in use afterwards.
+bool UseOSMesa(bool use);
+
+/// Whether vtkRenderWindow::New() makes the OSMesa window now.
+bool UsingOSMesa();
+}
+
+#endif
