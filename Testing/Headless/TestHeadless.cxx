@@ -1,4 +1,4 @@
-// The OSMesa render window (Examples/Headless): the programs render with no X server at all.
+// The OSMesa render window (Support/Headless): the programs render with no X server at all.
 // CTest runs these with DISPLAY unset.
 #include "csmHeadless.h"
 #include "vtkOSMesaHeadlessRenderWindow.h"
