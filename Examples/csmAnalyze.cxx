@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // csm-analyze: the analytic planner. For a view frustum and a light angle it prints the split
 // depths, warp parameters and perspective aliasing error (Lloyd et al. 2006) of each cascade.
 // With --table it prints a speed-against-error table for a CAD-like configuration.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // csm-demo: renders a scene with cascaded generalized-LiSPSM shadows (or VTK's own shadow pass,
 // or none), interactively or offscreen to a PNG, and times orbiting frames.
 #include "csmHeadless.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The complete minimal program of Documentation/Passes.md: a box casting a cascaded shadow.
 #include "vtkActor.h"
 #include "vtkCascadedShadowMapPass.h"

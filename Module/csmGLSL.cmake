@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # GLSL lives in its own files and is embedded at build time (Module/CMakeLists.txt; the
 # ParaView plugin builds the same module file).
 set(csm_glsl_files csmShadowFS csmCaster csmCasterLineGS)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapBakerPass.h"
 
 #include "csmCaster.h"       // the GLSL of Module/glsl/csmCaster.glsl

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkCascadedShadowMapBakerPass
  * @brief   Renders the depth of the shadow casters into cascaded shadow maps.

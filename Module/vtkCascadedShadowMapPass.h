@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkCascadedShadowMapPass
  * @brief   Renders the scene with cascaded shadow maps: a drop-in for vtkShadowMapPass.

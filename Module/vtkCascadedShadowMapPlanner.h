@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkCascadedShadowMapPlanner
  * @brief   Plans the cascades of a directional light's shadow maps for a VTK camera.

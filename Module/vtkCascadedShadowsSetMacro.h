@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * vtkSetFiniteClampMacro: vtkSetClampMacro for floating-point options that refuses values that
  * are not finite. vtkSetClampMacro lets NaN through (every comparison with NaN is false); here

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Shared by the scripts: one-line errors, installing the missing Debian packages of $PACKAGES
 # (logs in $LOGS), and running a command with a display (or without one, through OSMesa).
 

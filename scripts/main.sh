@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The main job: set up, build, then render the default scene (the procedural platform, ~250k
 # triangles) offscreen with our cascaded shadows and with VTK's own shadow pass, print the
 # two frame times, and print the analytic speed-against-error table.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The Debian package: set up and build as the other scripts do, then CPack writes
 # build/vtk-cascaded-shadows_<version>_<arch>.deb (install it with `apt install ./<file>.deb`).
 set -euo pipefail

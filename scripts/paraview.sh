@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The ParaView 5.11 plugin (ParaView/): install what it needs, build it against ParaView's own
 # VTK, and run its pvbatch tests: one process (image against the baseline, shadow pixel count,
 # selection, properties, tube shadows), 2 MPI ranks (shadows cast across the ranks' pieces),

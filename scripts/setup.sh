@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Shared set-up for the README commands: install the Debian packages that are missing, then
 # configure and build in Release; with CSM_PREPARE_PARAVIEW=1 (test.sh) also prepare the ParaView
 # prefix of the paraview.* tests. Sourced by main.sh, test.sh and benchmark.sh.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The tests: set up (packages, the ParaView prefix), build, then run every CTest test. With the
 # OSMesa window (the default where libosmesa6-dev is installed, which setup.sh installs) ctest
 # runs with no X server at all (DISPLAY unset); only the ParaView tests (pvbatch has its own,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // csm-bench: speed against error. Renders scenes along camera paths and light sweeps with VTK's
 // shadow pass and with cascaded variants at equal total shadow-map texels, measures frame time
 // (median, interleaved, glFinish in each frame), misclassified pixels against Embree ground

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Whether a shadow map rendered for an earlier frame can stand in for a freshly planned cascade
 // (maps reused across frames: re-render only what the view needs). Pure math, no VTK, no GL.
 #pragma once

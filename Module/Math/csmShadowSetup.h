@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Per-frame shadow setup for one directional light: light space, body B, split depths, warp,
 // the light view-projection matrix of each cascade, and its perspective aliasing error.
 // Pure math (C++17, GLM, double precision): no VTK, no GL.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Split depths of a z-partitioned (cascaded) view frustum. Pure math: no VTK, no GL.
 #pragma once
 

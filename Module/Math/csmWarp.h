@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The warp parameter n' of a light-space perspective shadow map, and its pieces.
 // Pure math: no VTK, no GL. Angles in radians, lengths in view-space units.
 #pragma once

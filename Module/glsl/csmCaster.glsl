@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Screen-sized casters in the shadow maps: lines drawn as tubes (or wide lines) and points drawn
 // as spheres (or big points). VTK sizes them in the main view's pixels, so their world radius
 // grows with their depth in the main view; the maps draw them with that world radius, seen from

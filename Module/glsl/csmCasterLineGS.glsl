@@ -1,4 +1,5 @@
 //VTK::System::Dec
+// SPDX-License-Identifier: BSD-3-Clause
 
 // The map pass's geometry shader for lines that VTK widens (tubes, and wide lines the GL cannot
 // draw): each segment becomes the quad the tube shows the light, as wide as the tube the main

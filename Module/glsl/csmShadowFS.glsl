@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cascaded shadow-map lookup, injected into VTK's polydata fragment shaders by
 // vtkCascadedShadowMapPass. Cascade selection by view depth (Lloyd et al. 2006, §6.3);
 // texel-space PCF whose taps are virtual samples on the receiver's tangent plane

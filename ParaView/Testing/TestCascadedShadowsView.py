@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """pvbatch test of the CascadedShadows plugin.
 
     pvbatch TestCascadedShadowsView.py <plugin.so> <baseline.png> <output dir>

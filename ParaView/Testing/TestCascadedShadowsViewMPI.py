@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """pvbatch test of the CascadedShadows plugin on 2 MPI ranks (IceT compositing).
 
     mpiexec -np 2 pvbatch --mpi TestCascadedShadowsViewMPI.py <plugin.so> <output dir>

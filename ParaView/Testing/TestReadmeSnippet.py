@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """pvbatch test: a README's pvpython snippet, run exactly as written, saves a picture with a shadow.
 
     pvbatch TestReadmeSnippet.py <README.md> <plugin build dir> <output dir>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """pvbatch test: each default_values of the plugin's server-manager XML is the C++ default.
 
     pvbatch TestXMLDefaults.py <plugin.so> <CascadedShadowsView.xml>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /* GL entry points for an OSMesa context in a GLX-only VTK (Debian's VTK 9.1).
  *
  * Debian's VTK loads GL through Debian's GLEW, a GLX build: glewInit() takes every entry point,

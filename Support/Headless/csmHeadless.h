@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Which window vtkRenderWindow::New() makes in the programs of this project (tests, csm-demo,
 // csm-bench). Built with CSM_OSMESA (the default where libosmesa6-dev is installed), they link
 // libcsm_headless, whose object factory makes it a vtkOSMesaHeadlessRenderWindow: rendering with

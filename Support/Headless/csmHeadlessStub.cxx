@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // csmHeadless without the OSMesa window (built with CSM_OSMESA=OFF): VTK's own X window.
 #include "csmHeadless.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkOSMesaHeadlessRenderWindow
  * @brief A render window over an OSMesa context: renders with no X server and no display, in a

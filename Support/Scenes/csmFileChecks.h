@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Checks of scene files before and after VTK's readers see them: a damaged or hostile file gets
 // one clear message instead of a crash, a hang or a blank image.
 #pragma once

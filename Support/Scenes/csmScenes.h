@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Scene generators and loaders for the demo, the image tests and the benchmarks.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Installs a shadow technique on a renderer: ours (cascaded), VTK's own pass, or none.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Ground truth for shadows by ray casting (Embree), and the error measures of csm-bench:
 // misclassified pixels against the truth, and the perspective aliasing m of Lloyd et al.
 #pragma once

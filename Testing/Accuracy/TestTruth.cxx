@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Ray-cast ground truth (Embree) on a scene whose answer is known: a box over a plane, lit from
 // straight above. The truth mask must match the analytic shadow outline, and our pass must
 // misclassify fewer than 0.5% of the comparable pixels.

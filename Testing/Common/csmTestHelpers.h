@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the GL tests (passes, image, accuracy, MPI) share: the image of a window, the pixels the
 // shadows darken, and the scene of a box over a ground plane lit from above.
 #pragma once

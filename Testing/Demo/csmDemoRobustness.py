@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """csm-demo against damaged and hostile input (issue 9, items 8-11 and 14).
 
     python3 csmDemoRobustness.py <csm-demo> <temp dir> <case> [osmesa|glx]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The OSMesa render window (Support/Headless): the programs render with no X server at all.
 // CTest runs these with DISPLAY unset.
 #include "csmHeadless.h"

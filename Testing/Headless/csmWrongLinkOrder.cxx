@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Linked with glvnd's libGLX, libOpenGL and libGL ahead of libcsm_headless and libOSMesa (the
 // wrong order): making a render window must stop with the message that says how to link, exit
 // status 2, not a crash inside GLEW or VTK. Checked by expect-refusal.sh.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: BSD-3-Clause
 # expect-refusal.sh <program>: the program must exit with status 2 (not a signal, not 0) and
 # print the OSMesa window's link-order message.
 out=$("$1" 2>&1)

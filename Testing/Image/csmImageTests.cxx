@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Image regression tests of the cascaded shadow passes, one scene per CTest test:
 //   csmImageTests <name> -B <baseline dir> -V <name>.png -T <output dir>
 // Each test renders the scene with our shadows and compares it against its committed baseline

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A box over a ground plane, rendered offscreen without and with the installed module's
 // shadows; prints the pixels the shadow darkened and fails below a floor.
 #include "vtkActor.h"

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The install test: install the build into a temporary prefix, move the prefix (it must be
 # relocatable), build a downstream VTK application against it with find_package, run it (it
 # fails when its picture has no shadow), and run an installed program from the prefix.

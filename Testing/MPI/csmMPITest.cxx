@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shadows across MPI ranks: each rank holds part of the scene (rank 0 the casters, rank 1 the
 // ground that receives their shadows, further ranks more casters), renders it with the
 // cascaded passes sharing a controller, and rank 0 composites the images by depth. The result

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Light space, body B, per-cascade matrices and the aliasing error of 003.
 #include "csmShadowSetup.h"
 

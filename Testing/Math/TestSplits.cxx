@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Split schemes (Barroso & Celes 2007, Eq. 5, 19; Lloyd et al. 2006, Eq. 15-16; Vázquez practical).
 #include "csmSplits.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The generalized LiSPSM parameter (Barroso & Celes 2007, Eq. 13-18).
 #include "csmWarp.h"
 

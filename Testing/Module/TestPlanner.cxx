@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // vtkCascadedShadowMapPlanner: VTK camera and light in, the math's cascades out.
 #include "vtkCascadedShadowMapPlanner.h"
 

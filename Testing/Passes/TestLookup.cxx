@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The lookup's filter on a synthetic shadow map, in a real GL context: the (r+1)^2-tap grid
 // kernel (csmGridPCF in Module/glsl/csmShadowFS.glsl) equals the (2r+1)^2 hardware bilinear
 // compares one texel apart that it stands for, within 1/255.

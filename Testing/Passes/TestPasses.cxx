@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Behaviour of the passes in a real GL context (Mesa llvmpipe through OSMesa, no X server; Xvfb
 // in a build without OSMesa): what VTK's shadow pass gets wrong or does not do, each checked with
 // numbers.

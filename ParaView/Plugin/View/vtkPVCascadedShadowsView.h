@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkPVCascadedShadowsView
  * @brief   ParaView's render view with cascaded shadow maps.
