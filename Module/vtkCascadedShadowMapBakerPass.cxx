@@ -105,9 +105,9 @@ bool hasScreenSizedCasters(const std::vector<vtkProp*>& casters)
   actors->InitTraversal(it);
   while (vtkProp* prop = actors->GetNextProp(it))
   {
-    vtkActor* actor = vtkActor::SafeDownCast(prop);
-    vtkProperty* property = actor ? actor->GetProperty() : nullptr;
-    if (property && (property->GetLineWidth() > 1.0f || property->GetPointSize() > 1.0f))
+    float sizes[2];
+    vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, sizes);
+    if (sizes[0] > 1.0f || sizes[1] > 1.0f)
     {
       return true;
     }
@@ -828,7 +828,9 @@ bool drawsOnlyWideLines(vtkAbstractMapper* mapper, vtkProp* prop)
   vtkProperty* property = actor ? actor->GetProperty() : nullptr;
   vtkPolyDataMapper* polyMapper = vtkPolyDataMapper::SafeDownCast(mapper);
   vtkPolyData* data = polyMapper ? polyMapper->GetInput() : nullptr;
-  if (!property || !data || property->GetLineWidth() <= 1.0f ||
+  float sizes[2];
+  vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, sizes);
+  if (!property || !data || sizes[0] <= 1.0f ||
     property->GetRepresentation() == VTK_POINTS || property->GetVertexVisibility() ||
     data->GetNumberOfVerts() > 0)
   {
@@ -903,6 +905,19 @@ bool vtkCascadedShadowMapBakerPass::PostReplaceShaderValues(std::string& vertexS
   return true;
 }
 
+void vtkCascadedShadowMapBakerPass::GetScreenSizes(vtkProp* prop, float sizes[2])
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkProperty* property = actor ? actor->GetProperty() : nullptr;
+  sizes[0] = property ? property->GetLineWidth() : 1.0f;
+  sizes[1] = property ? property->GetPointSize() : 1.0f;
+  for (int i = 0; i < 2; ++i)
+  {
+    // vtkProperty's clamped setters let NaN through: such a prop is drawn one pixel wide here.
+    sizes[i] = std::isfinite(sizes[i]) && sizes[i] >= 1.0f ? sizes[i] : 1.0f;
+  }
+}
+
 bool vtkCascadedShadowMapBakerPass::SetShaderParameters(
   vtkShaderProgram* program, vtkAbstractMapper*, vtkProp* prop, vtkOpenGLVertexArrayObject*)
 {
@@ -910,10 +925,8 @@ bool vtkCascadedShadowMapBakerPass::SetShaderParameters(
   {
     return true;
   }
-  vtkActor* actor = vtkActor::SafeDownCast(prop);
-  vtkProperty* property = actor ? actor->GetProperty() : nullptr;
-  const float width[2] = { property ? property->GetLineWidth() : 1.0f,
-    property ? property->GetPointSize() : 1.0f };
+  float width[2];
+  vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, width);
   CasterUniforms& u = this->Caster;
   program->SetUniform2f("csmCasterWidth", width);
   program->SetUniformMatrix4x4("csmMapToView", u.MapToView);

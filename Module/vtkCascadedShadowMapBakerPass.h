@@ -179,6 +179,10 @@ public:
   bool GetHasShadows(vtkRenderer* renderer) const { return !this->GetLightMaps(renderer).empty(); }
   bool GetHasShadows() const { return !this->GetLightMaps().empty(); }
 
+  /// The line width and point size VTK draws a prop with, in the main view's pixels (1 for
+  /// props without a vtkProperty, and where the property's value is not finite or below 1).
+  static void GetScreenSizes(vtkProp* prop, float sizes[2]);
+
   /// Number of Render() calls that rendered at least one map (not all kept); for tests.
   vtkGetMacro(BakeCount, int);
 

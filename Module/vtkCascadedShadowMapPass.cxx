@@ -261,10 +261,8 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   }
   if (program->IsUniformUsed("csmImpostorPixels"))
   {
-    vtkActor* actor = vtkActor::SafeDownCast(prop);
-    vtkProperty* property = actor ? actor->GetProperty() : nullptr;
-    const float pixels[2] = { property ? property->GetLineWidth() : 1.0f,
-      property ? property->GetPointSize() : 1.0f };
+    float pixels[2];
+    vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, pixels);
     program->SetUniform2f("csmImpostorPixels", pixels);
   }
   program->SetUniformf("csmTileTexel", this->Uniforms.TileTexel);

@@ -807,3 +807,34 @@ TEST(Passes, EveryInterpolationGetsTheShadowFactor)
     }
   }
 }
+
+// A tube or sphere whose width is not a number (vtkProperty's clamped setter lets NaN through)
+// is drawn into the maps one pixel wide: no garbage shadow, no crash.
+TEST(Passes, NaNLineWidthAndPointSizeGiveNoGarbage)
+{
+  // The darkened pixels of the same lines at width 1 and at width NaN.
+  long darkened[2] = { 0, 0 };
+  for (int nan = 0; nan < 2; ++nan)
+  {
+    BoxOverPlane scene;
+    scene.Box->SetVisibility(false);
+    const float width = nan ? std::nanf("") : 1.0f;
+    vtkSmartPointer<vtkActor> tubes = TubeRow(2.0, -4.0, 4.0, width);
+    tubes->GetProperty()->SetPointSize(width);
+    tubes->GetProperty()->RenderPointsAsSpheresOn();
+    scene.Renderer->AddActor(tubes);
+    auto plain = scene.Render();
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+    auto shadowed = scene.Render();
+    float sizes[2] = { 0, 0 };
+    vtkCascadedShadowMapBakerPass::GetScreenSizes(tubes, sizes);
+    EXPECT_EQ(sizes[0], 1.0f);
+    EXPECT_EQ(sizes[1], 1.0f);
+    darkened[nan] = DarkenedPixels(shadowed, plain);
+  }
+  std::printf("darkened pixels: width 1 %ld, width NaN %ld\n", darkened[0], darkened[1]);
+  // Hairline shadows in both, and about as many.
+  EXPECT_GT(darkened[0], 100);
+  EXPECT_GE(darkened[1], darkened[0] / 2);
+  EXPECT_LE(darkened[1], darkened[0] * 3 / 2);
+}
