@@ -10,15 +10,19 @@
  * whose bounds reach each cascade's light volume into one tile of a depth-texture atlas per
  * light, cleared to far depth and sampled with hardware depth compare. When more lights cast
  * shadows than the GL context has texture units for (leaving 8 for the mappers' own textures),
- * the first ones get maps and the others are lit without shadows (one warning).
+ * the first ones get maps and the others are lit without shadows (one warning). Lines drawn as
+ * tubes or wide and points drawn as spheres or big are drawn into the maps as wide as the main
+ * view draws them (their width is in the view's pixels; Module/glsl/csmCaster.glsl).
  *
  * The cascades are planned anew every frame (microseconds), but a map is re-rendered only when
  * it must be: every map when a light, a prop, the window size or an option changed; when only
  * the camera moved, a cascade keeps the map it has (with its own world -> map matrix, still a
  * valid shadow map) while that map covers the cascade's part of the visible scene and its
  * aliasing error there (Lloyd et al. 2006) is bounded: equal to a fresh map's in a still frame,
- * within MapReuseTolerance while the user interacts (see SetInteractiveMapBorder()). Maps are
- * kept per renderer (and so per GL context): one pass chain may serve several renderers. Used with vtkCascadedShadowMapPass, which reads the maps:
+ * within MapReuseTolerance while the user interacts (see SetInteractiveMapBorder(); the maps
+ * then have InteractiveResolution texels a side). Maps are kept per renderer (and so per GL
+ * context): one pass chain may serve several renderers. Used with vtkCascadedShadowMapPass,
+ * which reads the maps:
  * @code
  * camera pass -> sequence{ shadowPass->GetShadowMapBakerPass(), shadowPass }
  * @endcode
