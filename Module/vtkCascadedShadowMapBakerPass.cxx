@@ -622,7 +622,7 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
   // While the user interacts (VTK's convention: the interactor raises the window's desired
   // update rate), maps get a border and may be kept within MapReuseTolerance; a still frame
   // keeps only a map that is exactly the one it would plan, so it always has full quality.
-  const bool interacting = window->GetDesiredUpdateRate() >= kInteractiveUpdateRate;
+  const bool interacting = vtkCascadedShadowMapBakerPass::IsInteracting(window);
   const double border = interacting ? this->InteractiveMapBorder : 0.0;
   // (The tolerance is against a fresh map with the same border, whose error is 1 + 2 border
   // times a tight one's.)
@@ -725,7 +725,7 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
   const bool depthClamp = this->Planner->GetDepthClamp();
   const int numberOfCascades = this->Planner->GetNumberOfCascades();
   // VTK's interactive convention (see PlanLights): fewer texels while the user drags.
-  const int resolution = window->GetDesiredUpdateRate() >= kInteractiveUpdateRate
+  const int resolution = vtkCascadedShadowMapBakerPass::IsInteracting(window)
     ? std::min(this->InteractiveResolution, this->Resolution)
     : this->Resolution;
   vtkOpenGLState* ostate = window->GetState();
@@ -903,6 +903,11 @@ bool vtkCascadedShadowMapBakerPass::PostReplaceShaderValues(std::string& vertexS
       fragmentMain, std::string("#define CSM_CASTER_SPHERE_FRAGMENT\n") + csmCaster + "\n");
   }
   return true;
+}
+
+bool vtkCascadedShadowMapBakerPass::IsInteracting(vtkRenderWindow* window)
+{
+  return window && window->GetDesiredUpdateRate() >= kInteractiveUpdateRate;
 }
 
 void vtkCascadedShadowMapBakerPass::GetScreenSizes(vtkProp* prop, float sizes[2])

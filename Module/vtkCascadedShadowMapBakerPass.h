@@ -51,6 +51,7 @@ class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
 class vtkOpenGLRenderer;
 class vtkProp;
+class vtkRenderWindow;
 class vtkRenderer;
 class vtkTextureObject;
 
@@ -182,6 +183,11 @@ public:
   /// True when the last Render() for the renderer produced at least one shadowed light.
   bool GetHasShadows(vtkRenderer* renderer) const { return !this->GetLightMaps(renderer).empty(); }
   bool GetHasShadows() const { return !this->GetLightMaps().empty(); }
+
+  /// Is the user interacting with the window? VTK's convention: vtkRenderWindowInteractor raises
+  /// the window's desired update rate (to 15 by default) while the user drags, and lowers it
+  /// (to 0.0001) for the still frame; here interacting means a rate of at least 1 frame a second.
+  static bool IsInteracting(vtkRenderWindow* window);
 
   /// The line width and point size VTK draws a prop with, in the main view's pixels (1 for
   /// props without a vtkProperty, and where the property's value is not finite or below 1).
