@@ -7,6 +7,7 @@
 
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCascadedShadowMapPlanner.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
 #include "vtkCascadedShadowMapPlanner.h"
@@ -44,6 +45,7 @@ struct Options
   csmScenes::ShadowOptions Shadow;
   std::string Scene = "platform";
   long long Triangles = 250000;
+  bool TrianglesGiven = false;
   int Width = 800, Height = 600;
   bool Offscreen = false;
   std::string Out;
@@ -104,7 +106,7 @@ void usage()
     "  --technique T      csm (ours) | vtk (vtkShadowMapPass) | none [%s]\n"
     "  --warp W           none | psm | lispsm | generalized [%s]\n"
     "  --partition P      single | uniform | log | practical | adaptive [%s]\n"
-    "  --cascades K       1..8 [%d]      --lambda L  practical weight [%g]\n"
+    "  --cascades K       1..%d [%d]      --lambda L  practical weight [%g]\n"
     "  --alpha A          adaptive ratio > 1 [%g]\n"
     "  --resolution R     texels per cascade side, 64..8192 [%d]\n"
     "  --pcf N            1 | 3 | 5 | 7 [%d]   --kernel grid | jittered [%s]\n"
@@ -124,7 +126,7 @@ void usage()
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
     "  t technique, l light angle +15 deg\n",
     o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
-    d.Cascades, d.Lambda, d.Alpha, d.Resolution, d.PCF, kKernels[d.Kernel], d.ConstantBias,
+    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.Alpha, d.Resolution, d.PCF, kKernels[d.Kernel], d.ConstantBias,
     d.SlopeBias, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
     o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
@@ -271,9 +273,10 @@ Options parse(int argc, char** argv)
           fail("--triangles must be in [1000, " + std::to_string(most) +
             "] (the platform's finest tessellation)");
         o.Triangles = static_cast<long long>(value);
+        o.TrianglesGiven = true;
       }
       else if (f == "--cascades")
-        o.Shadow.Cascades = whole(1, 8);
+        o.Shadow.Cascades = whole(1, vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES);
       else if (f == "--resolution")
         o.Shadow.Resolution = whole(64, 8192);
       else if (f == "--pcf")
@@ -417,6 +420,10 @@ int main(int argc, char** argv)
   app.Opt = parse(argc, argv);
 
   csmScenes::Scene scene;
+  if (app.Opt.TrianglesGiven && app.Opt.Scene != "platform")
+  {
+    std::fprintf(stderr, "csm-demo: note: --triangles sizes the platform scene only; ignored\n");
+  }
   if (app.Opt.Scene == "platform")
     scene = csmScenes::Platform(app.Opt.Triangles);
   else if (app.Opt.Scene == "platform-beams")
