@@ -380,7 +380,7 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   }
   vtkSmartPointer<vtkCamera> realCamera = renderer->GetActiveCamera();
   this->SetUpLightCamera(maps, c);
-  this->SetUpCasterUniforms(renderer, realCamera, maps, c, x, y, w, h);
+  this->SetUpCasterUniforms(maps, c, x, y, w, h);
   renderer->SetActiveCamera(this->LightCamera);
   vtkRenderState casterState(renderer);
   casterState.SetPropArrayAndCount(drawn.data(), static_cast<int>(drawn.size()));
@@ -423,11 +423,10 @@ void vtkCascadedShadowMapBakerPass::SetUpLightCamera(const LightMaps& maps, int 
   this->LightCamera->Modified();
 }
 
-void vtkCascadedShadowMapBakerPass::SetUpCasterUniforms(vtkRenderer* renderer,
-  vtkCamera* camera, LightMaps& maps, int c, int x, int y, int w, int h)
+void vtkCascadedShadowMapBakerPass::SetUpCasterUniforms(
+  const LightMaps& maps, int c, int x, int y, int w, int h)
 {
-  double* key = maps.CasterView[c];
-  casterView(renderer, camera, key);
+  const double* key = maps.CasterView[c]; // RenderCascade set it for this view
   vtkNew<vtkMatrix4x4> worldToView, viewToWorld, worldToMap, mapToWorld;
   worldToView->DeepCopy(key);
   vtkMatrix4x4::Invert(worldToView, viewToWorld);

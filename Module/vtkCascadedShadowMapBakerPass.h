@@ -284,9 +284,8 @@ protected:
   void ReportOnce(bool error, const std::string& message);
   /// The light camera for a cascade: the light's rotation as view, the rest as projection.
   void SetUpLightCamera(const LightMaps& maps, int cascade);
-  /// The caster uniforms for a cascade, and its CasterView.
-  void SetUpCasterUniforms(vtkRenderer* renderer, vtkCamera* camera, LightMaps& maps, int cascade,
-    int x, int y, int width, int height);
+  /// The caster uniforms for a cascade, from its CasterView and its tile.
+  void SetUpCasterUniforms(const LightMaps& maps, int cascade, int x, int y, int width, int height);
   /// Lights that can get maps in this context: a texture unit each, leaving units and uniforms
   /// for the mapper's own.
   int MaximumShadowedLights(vtkOpenGLRenderWindow* window);

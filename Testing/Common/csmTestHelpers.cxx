@@ -2,9 +2,12 @@
 #include "csmTestHelpers.h"
 
 #include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkCubeSource.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkUnsignedCharArray.h"
@@ -107,6 +110,29 @@ long DifferingPixels(vtkImageData* a, vtkImageData* b, int tolerance)
     count += off;
   }
   return count;
+}
+
+vtkSmartPointer<vtkActor> SegmentsActor(
+  const std::vector<std::array<double, 6>>& segments, float pixels, bool tubes)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> lines;
+  for (const auto& s : segments)
+  {
+    const vtkIdType ids[2] = { points->InsertNextPoint(s.data()),
+      points->InsertNextPoint(s.data() + 3) };
+    lines->InsertNextCell(2, ids);
+  }
+  vtkNew<vtkPolyData> data;
+  data->SetPoints(points);
+  data->SetLines(lines);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(data);
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetLineWidth(pixels);
+  actor->GetProperty()->SetRenderLinesAsTubes(tubes);
+  return actor;
 }
 
 vtkSmartPointer<vtkActor> GroundPlane(double halfWidth, int resolution)

@@ -4,6 +4,8 @@
 #pragma once
 
 #include "vtkActor.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
@@ -11,6 +13,7 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 
+#include <array>
 #include <vector>
 
 namespace csmTest
@@ -38,6 +41,24 @@ long DifferingValues(vtkImageData* a, vtkImageData* b, int tolerance = 2);
 
 /// Pixels with a channel that differs by more than `tolerance` levels.
 long DifferingPixels(vtkImageData* a, vtkImageData* b, int tolerance);
+
+/// Counts the ErrorEvents of an object (vtkErrorMacro invokes one per message).
+struct ErrorCounter
+{
+  int Count = 0;
+  vtkNew<vtkCallbackCommand> Command;
+  explicit ErrorCounter(vtkObject* object)
+  {
+    this->Command->SetClientData(this);
+    this->Command->SetCallback(
+      [](vtkObject*, unsigned long, void* self, void*) { ++static_cast<ErrorCounter*>(self)->Count; });
+    object->AddObserver(vtkCommand::ErrorEvent, this->Command);
+  }
+};
+
+/// An actor of line segments (end points, 6 numbers each) drawn `pixels` wide, as tubes or not.
+vtkSmartPointer<vtkActor> SegmentsActor(
+  const std::vector<std::array<double, 6>>& segments, float pixels, bool tubes);
 
 /// A flat square at y = 0, |x| and |z| up to halfWidth, of resolution x resolution quads.
 vtkSmartPointer<vtkActor> GroundPlane(double halfWidth, int resolution);

@@ -296,25 +296,9 @@ void TubeLattice(Test& t, double pixels, bool tubes = true)
     const double x = -4.5 + 3.0 * i;
     scene->Segments.push_back({ x, 3.0, -6.0, x, 3.0, 6.0 });
   }
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> lines;
-  for (const auto& s : scene->Segments)
-  {
-    const vtkIdType a = points->InsertNextPoint(s.data());
-    const vtkIdType b = points->InsertNextPoint(s.data() + 3);
-    const vtkIdType ids[2] = { a, b };
-    lines->InsertNextCell(2, ids);
-  }
-  vtkNew<vtkPolyData> data;
-  data->SetPoints(points);
-  data->SetLines(lines);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputData(data);
-  vtkNew<vtkActor> actor;
-  actor->SetMapper(mapper);
+  vtkSmartPointer<vtkActor> actor =
+    csmTest::SegmentsActor(scene->Segments, static_cast<float>(pixels), tubes);
   actor->GetProperty()->SetColor(0.9, 0.45, 0.2);
-  actor->GetProperty()->SetLineWidth(static_cast<float>(pixels));
-  actor->GetProperty()->SetRenderLinesAsTubes(tubes);
   t.Renderer->AddActor(actor);
   t.Renderer->AddActor(GroundPlane());
   ImpostorView(t);

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkCascadedShadowMapPlanner: VTK camera and light in, the math's cascades out.
+#include "csmTestHelpers.h" // ErrorCounter
 #include "vtkCascadedShadowMapPlanner.h"
 
 #include "vtkCallbackCommand.h"
@@ -15,19 +16,7 @@
 
 namespace
 {
-/// Counts the ErrorEvents of an object (vtkErrorMacro invokes one per message).
-struct ErrorCounter
-{
-  int Count = 0;
-  vtkNew<vtkCallbackCommand> Command;
-  explicit ErrorCounter(vtkObject* object)
-  {
-    this->Command->SetClientData(this);
-    this->Command->SetCallback(
-      [](vtkObject*, unsigned long, void* self, void*) { ++static_cast<ErrorCounter*>(self)->Count; });
-    object->AddObserver(vtkCommand::ErrorEvent, this->Command);
-  }
-};
+using csmTest::ErrorCounter;
 
 void project(vtkMatrix4x4* m, const double p[3], double ndc[3])
 {

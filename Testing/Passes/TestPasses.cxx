@@ -38,6 +38,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -50,19 +51,7 @@ using csmTest::BoxOverPlane;
 using csmTest::DarkenedPixels;
 using csmTest::DifferingValues;
 
-/// Counts the ErrorEvents of an object (vtkErrorMacro invokes one per message).
-struct ErrorCounter
-{
-  int Count = 0;
-  vtkNew<vtkCallbackCommand> Command;
-  explicit ErrorCounter(vtkObject* object)
-  {
-    this->Command->SetClientData(this);
-    this->Command->SetCallback(
-      [](vtkObject*, unsigned long, void* self, void*) { ++static_cast<ErrorCounter*>(self)->Count; });
-    object->AddObserver(vtkCommand::ErrorEvent, this->Command);
-  }
-};
+using csmTest::ErrorCounter;
 } // namespace
 
 TEST(Passes, ShadowAppearsUnderTheBox)
@@ -604,24 +593,14 @@ namespace
 /// Lines along z drawn as tubes (LineWidth pixels) at height y, from z0 to z1.
 vtkSmartPointer<vtkActor> TubeRow(double y, double z0, double z1, float pixels)
 {
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkCellArray> lines;
+  std::vector<std::array<double, 6>> segments;
   for (int i = 0; i < 5; ++i)
   {
     const double x = -4.0 + 2.0 * i;
-    const vtkIdType ids[2] = { points->InsertNextPoint(x, y, z0), points->InsertNextPoint(x, y, z1) };
-    lines->InsertNextCell(2, ids);
+    segments.push_back({ x, y, z0, x, y, z1 });
   }
-  vtkNew<vtkPolyData> data;
-  data->SetPoints(points);
-  data->SetLines(lines);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputData(data);
-  auto actor = vtkSmartPointer<vtkActor>::New();
-  actor->SetMapper(mapper);
+  vtkSmartPointer<vtkActor> actor = csmTest::SegmentsActor(segments, pixels, true);
   actor->GetProperty()->SetColor(0.9, 0.9, 0.9);
-  actor->GetProperty()->SetLineWidth(pixels);
-  actor->GetProperty()->RenderLinesAsTubesOn();
   return actor;
 }
 
