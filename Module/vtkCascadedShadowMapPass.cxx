@@ -95,7 +95,6 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
     u.SplitNear.push_back(static_cast<float>(maps.SplitNear));
     u.Attenuation.push_back(
       static_cast<float>(this->ShadowDarkness * maps.Light->GetShadowAttenuation()));
-    u.TileTexel = 1.0f / static_cast<float>(std::max(1, maps.Resolution));
     for (int c = 0; c < kMaxCascades; ++c)
     {
       double clipFromView[16], mapFromView[16];
@@ -120,11 +119,15 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
         u.Tile.push_back(static_cast<float>(maps.Tile[c][k]));
       }
       u.SplitFar.push_back(c < maps.NumberOfCascades ? static_cast<float>(maps.SplitFar[c]) : 0.0f);
+      u.Texel.push_back(1.0f / static_cast<float>(std::max(1, maps.Resolution)));
     }
     maps.Atlas->Activate();
     u.TextureUnit.push_back(maps.Atlas->GetTextureUnit());
     signature += std::to_string(maps.LightIndex) + ";";
   }
+  // The kernel and the debug view are compiled into the lookup (see csmShadowFS.glsl).
+  signature +=
+    " kernel " + std::to_string(this->PCFKernel) + " debug " + std::to_string(this->DebugMode);
   if (signature != this->ShaderSignature)
   {
     this->ShaderSignature = signature;
@@ -175,9 +178,12 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   decl << "#define CSM_LIGHTS " << this->Uniforms.Lights() << "\n"
        << "#define CSM_MAX_CASCADES " << kMaxCascades << "\n"
        << "#define CSM_KERNEL_GRID " << KERNEL_GRID << "\n"
+       << "#define CSM_KERNEL_JITTERED " << KERNEL_JITTERED << "\n"
+       << "#define CSM_KERNEL " << this->PCFKernel << "\n"
        << "#define CSM_DEBUG_CASCADES " << DEBUG_CASCADES << "\n"
        << "#define CSM_DEBUG_ERROR " << DEBUG_ERROR << "\n"
-       << "#define CSM_DEBUG_FACTOR " << DEBUG_FACTOR << "\n";
+       << "#define CSM_DEBUG_FACTOR " << DEBUG_FACTOR << "\n"
+       << "#define CSM_DEBUG " << this->DebugMode << "\n";
   if (impostor)
   {
     decl << "#define CSM_IMPOSTOR\n";
@@ -201,6 +207,7 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   // Screen derivatives where control flow is still uniform; the lookup itself only where the
   // light reaches the surface (df > 0: behind it, diffuse and specular are 0 anyway), or always
   // for the debug views.
+  const std::string reaches = this->DebugMode == DEBUG_OFF ? "df > 0.0" : "true";
   std::ostringstream impl;
   impl << kVertexVC << "\n  vec4 csmDVCdx = dFdx(vertexVC);\n  vec4 csmDVCdy = dFdy(vertexVC);\n";
   for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
@@ -220,7 +227,7 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
     // Phong-style lighting (diffuse and specular), or PBR (radiance, directional or positional).
     const bool phong =
       vtkShaderProgram::Substitute(fragmentShader, "diffuse += (df * lightColor" + k + ");",
-        "if (df > 0.0 || csmDebug != 0) { " + lookup + " }\n  diffuse += (df * " + factor +
+        "if (" + reaches + ") { " + lookup + " }\n  diffuse += (df * " + factor +
           "lightColor" + k + ");",
         false);
     const bool specular =
@@ -237,10 +244,11 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
         "'s fragment shader: it is drawn without that light's shadow");
     }
   }
-  vtkShaderProgram::Substitute(fragmentShader, "//VTK::Light::Impl",
-    "//VTK::Light::Impl\n  if (csmDebug != 0) { gl_FragData[0] = csmDebugColor(gl_FragData[0], "
-    "csmResult0); }\n",
-    false);
+  if (this->DebugMode != DEBUG_OFF)
+  {
+    vtkShaderProgram::Substitute(fragmentShader, "//VTK::Light::Impl",
+      "//VTK::Light::Impl\n  gl_FragData[0] = csmDebugColor(gl_FragData[0], csmResult0);\n", false);
+  }
   return true;
 }
 
@@ -255,7 +263,7 @@ void vtkCascadedShadowMapPass::ReportOnce(const std::string& message)
 bool vtkCascadedShadowMapPass::SetShaderParameters(
   vtkShaderProgram* program, vtkAbstractMapper*, vtkProp* prop, vtkOpenGLVertexArrayObject*)
 {
-  if (this->Uniforms.Lights() == 0 || !program->IsUniformUsed("csmPCFSize"))
+  if (this->Uniforms.Lights() == 0 || !program->IsUniformUsed("csmCount"))
   {
     return true;
   }
@@ -265,13 +273,10 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
     vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, pixels);
     program->SetUniform2f("csmImpostorPixels", pixels);
   }
-  program->SetUniformf("csmTileTexel", this->Uniforms.TileTexel);
-  program->SetUniformi("csmPCFSize", this->PCFSize);
-  program->SetUniformi("csmKernel", this->PCFKernel);
+  program->SetUniformi("csmPCFRadius", this->PCFSize / 2);
   program->SetUniformf("csmConstantBias", static_cast<float>(this->ConstantBias));
   program->SetUniformf("csmSlopeBias", static_cast<float>(this->SlopeBias));
   program->SetUniformf("csmBlendBand", static_cast<float>(this->BlendBand));
-  program->SetUniformi("csmDebug", this->DebugMode);
   const ShaderUniforms& u = this->Uniforms;
   const int lights = static_cast<int>(u.Lights());
   for (int j = 0; j < lights; ++j)
@@ -281,6 +286,7 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   program->SetUniformMatrix4x4v(
     "csmToMap", lights * kMaxCascades, const_cast<float*>(u.ToMap.data()));
   program->SetUniform4fv("csmTile", lights * kMaxCascades, u.Tile.data());
+  program->SetUniform1fv("csmTexel", lights * kMaxCascades, u.Texel.data());
   program->SetUniform1fv("csmSplitFar", lights * kMaxCascades, u.SplitFar.data());
   program->SetUniform1fv("csmSplitNear", lights, u.SplitNear.data());
   program->SetUniform1iv("csmCount", lights, u.Count.data());

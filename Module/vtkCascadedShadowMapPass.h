@@ -152,11 +152,11 @@ protected:
     std::vector<float> ToMap;     ///< per cascade: view -> map, 16 floats column-major
     std::vector<float> Tile;      ///< per cascade: atlas offset and scale, 4 floats
     std::vector<float> SplitFar;  ///< per cascade
-    float TileTexel = 1.0f;       ///< one texel of a cascade in its [0,1] coordinates
+    std::vector<float> Texel;     ///< per cascade: one texel in the cascade's [0,1] coordinates
     size_t Lights() const { return this->Count.size(); }
   };
   ShaderUniforms Uniforms;
-  std::string ShaderSignature; // light indices the injected code refers to
+  std::string ShaderSignature; // what the injected code is compiled for (lights, kernel, debug)
   std::set<std::string> Reported; // warnings said already: once each
   void ReportOnce(const std::string& message);
   vtkTimeStamp ShaderTime;

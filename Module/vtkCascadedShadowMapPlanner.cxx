@@ -10,6 +10,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -270,6 +271,12 @@ double vtkCascadedShadowMapPlanner::GetCascadeNPrime(int i) const
 {
   const auto& c = this->Internal->Setup.cascades;
   return i >= 0 && i < static_cast<int>(c.size()) ? c[i].nPrime : 0.0;
+}
+
+double vtkCascadedShadowMapPlanner::GetCascadeMaximumAliasing(int i) const
+{
+  const auto& c = this->Internal->Setup.cascades;
+  return i >= 0 && i < static_cast<int>(c.size()) ? std::max(c[i].Mx, c[i].Mz) : 0.0;
 }
 
 double vtkCascadedShadowMapPlanner::GetStorageTotal() const

@@ -132,6 +132,11 @@ public:
   /// Warp parameter n' of cascade i; +infinity when orthographic.
   double GetCascadeNPrime(int i) const;
 
+  /// Predicted worst perspective aliasing of cascade i (Lloyd et al. 2006, Eq. 9-10: the maxima
+  /// M_x, M_z over its receiver body) for a map of 1 texel and an image 1 pixel high: multiply by
+  /// image height / map resolution for texels per pixel. 0 for spot lights and bad indices.
+  double GetCascadeMaximumAliasing(int i) const;
+
   /// Storage factor of the plan (Lloyd Eq. 12 summed over the cascades) and its optimum.
   double GetStorageTotal() const;
   double GetStorageOptimal() const;

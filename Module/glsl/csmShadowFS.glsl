@@ -4,58 +4,43 @@
 // texel-space PCF whose taps are virtual samples on the receiver's tangent plane
 // (Barroso & Celes 2007, §2.2); the per-pixel aliasing error m (Lloyd et al., Eq. 1).
 
-uniform float csmTileTexel;    // one texel of a cascade, in the cascade's [0,1] coordinates
-uniform int csmPCFSize;        // kernel width in texels: 1, 3, 5 or 7
-uniform int csmKernel;         // CSM_KERNEL_GRID: regular grid; otherwise jittered circular
+// Compile-time choices, #defined by the pass (vtkCascadedShadowMapPass): CSM_KERNEL
+// (CSM_KERNEL_GRID or CSM_KERNEL_JITTERED), CSM_DEBUG (0 off, or CSM_DEBUG_CASCADES, _ERROR,
+// _FACTOR), CSM_LIGHTS, CSM_MAX_CASCADES. Every fragment makes one map lookup: a software
+// rasterizer runs both sides of a branch, so options that a uniform would switch at run time are
+// compiled in or out instead. The kernel radius stays a uniform: a loop of constant length is
+// unrolled, and with many shadowed lights the unrolled taps make a shader too large to compile.
+uniform int csmPCFRadius;      // kernel of 2 r + 1 texels a side
+
 uniform float csmConstantBias; // in the map's [0,1] depth
 uniform float csmSlopeBias;    // times the receiver-plane depth change over one texel
 uniform float csmBlendBand;    // share of a cascade's depth range blended into the next
-uniform int csmDebug;          // 0 off, or CSM_DEBUG_CASCADES, _ERROR, _FACTOR
-
-// Map coordinates ([0,1]^3 inside the cascade) of a view-space point.
-vec3 csmProject(mat4 vcToMap, vec4 vc)
-{
-  vec4 h = vcToMap * vc;
-  return h.xyz / h.w;
-}
-
-// Screen derivatives of the map coordinates, from those of the view-space position (exact for
-// the projective map, and the same on both sides of a cascade boundary).
-void csmDerivatives(mat4 vcToMap, vec4 vc, vec4 dvcdx, vec4 dvcdy, out vec3 dx, out vec3 dy)
-{
-  vec4 h = vcToMap * vc;
-  vec3 p = h.xyz / h.w;
-  vec4 hx = vcToMap * dvcdx;
-  vec4 hy = vcToMap * dvcdy;
-  dx = (hx.xyz - p * hx.w) / h.w;
-  dy = (hy.xyz - p * hy.w) / h.w;
-}
-
-
 
 float csmHash(vec2 p)
 {
   return fract(sin(dot(p, vec2(12.9898, 78.233))) * 43758.5453);
 }
 
-float csmTap(sampler2DShadow map, vec4 tile, vec2 uv, float z)
+// One hardware bilinear compare at uv in a cascade's [0,1]^2, kept half a texel inside its tile.
+float csmTap(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float z)
 {
-  vec2 inside = clamp(uv, vec2(0.5 * csmTileTexel), vec2(1.0 - 0.5 * csmTileTexel));
+  vec2 inside = clamp(uv, vec2(0.5 * texel), vec2(1.0 - 0.5 * texel));
   return textureLod(map, vec3(tile.xy + inside * tile.zw, z), 0.0);
 }
 
-// Texel-space PCF over (2r+1) x (2r+1) texels: the mean of (2r+1)^2 hardware bilinear compares
-// one texel apart around uv, taken with (r+1)^2 taps. Along each axis those compares weigh the
-// 2r+2 texels they touch [1-f, 1, ..., 1, f] (f: uv's fraction between texel centres); each
-// adjacent pair of texels is one bilinear tap of weight w0 + w1 placed w1/(w0+w1) past the first
-// (the "optimized PCF" of The Witness / Castano 2013, exact for the box of bilinear compares).
-// Every tap keeps its own receiver-plane depth (Barroso & Celes 2007, §2.2).
-float csmGridPCF(sampler2DShadow map, vec4 tile, vec2 uv, float zRef, vec2 dz, int r)
+// Texel-space PCF over (2r+1) x (2r+1) texels (r = csmPCFRadius): the mean of (2r+1)^2 hardware
+// bilinear compares one texel apart around uv, taken with (r+1)^2 taps. Along each axis those
+// compares weigh the 2r+2 texels they touch [1-f, 1, ..., 1, f] (f: uv's fraction between texel
+// centres); each adjacent pair of texels is one bilinear tap of weight w0 + w1 placed w1/(w0+w1)
+// past the first (the "optimized PCF" of The Witness / Castano 2013, exact for the box of
+// bilinear compares). Every tap keeps its own receiver-plane depth (Barroso & Celes 2007, §2.2).
+float csmGridPCF(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float zRef, vec2 dz)
 {
+  int r = csmPCFRadius;
   float maxStep = 0.05; // keep grazing receivers from throwing the taps far off their plane
-  vec2 texel = uv / csmTileTexel - 0.5; // in texel-centre units
-  vec2 base = floor(texel);
-  vec2 f = texel - base;
+  vec2 t = uv / texel - 0.5; // in texel-centre units
+  vec2 base = floor(t);
+  vec2 f = t - base;
   float sum = 0.0;
   for (int i = 0; i <= r; ++i)
   {
@@ -69,9 +54,9 @@ float csmGridPCF(sampler2DShadow map, vec4 tile, vec2 uv, float zRef, vec2 dz, i
       float w1y = k == r ? f.y : 1.0;
       float wy = w0y + w1y;
       float py = base.y - float(r) + 2.0 * float(k) + w1y / wy;
-      vec2 tap = (vec2(px, py) + 0.5) * csmTileTexel;
+      vec2 tap = (vec2(px, py) + 0.5) * texel;
       vec2 o = tap - uv;
-      sum += wx * wy * csmTap(map, tile, tap, zRef + clamp(dot(dz, o), -maxStep, maxStep));
+      sum += wx * wy * csmTap(map, tile, texel, tap, zRef + clamp(dot(dz, o), -maxStep, maxStep));
     }
   }
   float n = float(2 * r + 1);
@@ -80,69 +65,77 @@ float csmGridPCF(sampler2DShadow map, vec4 tile, vec2 uv, float zRef, vec2 dz, i
 
 // Jittered circular kernel of radius r + 0.5 texels: as many bilinear taps as the grid kernel,
 // on a spiral rotated per pixel, so that the taps stay unaligned (Barroso & Celes 2007, §2.2).
-float csmJitteredPCF(sampler2DShadow map, vec4 tile, vec2 uv, float zRef, vec2 dz, int r)
+float csmJitteredPCF(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float zRef, vec2 dz)
 {
-  float maxStep = 0.05;
+  int r = csmPCFRadius;
   int n = (r + 1) * (r + 1);
+  float maxStep = 0.05;
   float turn = 6.2831853 * csmHash(gl_FragCoord.xy);
   float sum = 0.0;
   for (int i = 0; i < n; ++i)
   {
     float radius = sqrt((float(i) + 0.5) / float(n)) * (float(r) + 0.5);
     float angle = float(i) * 2.3999632 + turn;
-    vec2 o = radius * vec2(cos(angle), sin(angle)) * csmTileTexel;
-    sum += csmTap(map, tile, uv + o, zRef + clamp(dot(dz, o), -maxStep, maxStep));
+    vec2 o = radius * vec2(cos(angle), sin(angle)) * texel;
+    sum += csmTap(map, tile, texel, uv + o, zRef + clamp(dot(dz, o), -maxStep, maxStep));
   }
   return sum / float(n);
 }
 
-// Is a view-space point inside a cascade's map (its xy square and in front of its far plane)?
-bool csmInside(mat4 vcToMap, vec4 vc)
+// Is a point, in a cascade's homogeneous map coordinates, inside its map (its xy square and in
+// front of its far plane)?
+bool csmCovers(vec4 h)
 {
-  vec4 h = vcToMap * vc;
   vec3 p = h.xyz / h.w;
   return h.w > 0.0 && all(greaterThanEqual(p.xy, vec2(0.0))) && all(lessThanEqual(p.xy, vec2(1.0))) &&
     p.z <= 1.0;
 }
 
-// Visibility (1 lit, 0 shadowed) of one cascade, or -1 when the point is outside its map; the
-// aliasing error m there when the error view asks for it.
-float csmVisibility(sampler2DShadow map, mat4 vcToMap, vec4 tile, vec4 vc, vec4 dvcdx,
-  vec4 dvcdy, out float m)
+// Visibility (1 lit, 0 shadowed) of a point given in a cascade's homogeneous map coordinates h,
+// with the screen derivatives hx, hy of those coordinates (exact for the projective map); the
+// aliasing error m there for the error view (Lloyd et al. 2006, Eq. 1).
+float csmVisibility(sampler2DShadow map, vec4 tile, float texel, vec4 h, vec4 hx, vec4 hy,
+  out float m)
 {
+  vec3 p = h.xyz / h.w;
+  vec3 dx = (hx.xyz - p * hx.w) / h.w;
+  vec3 dy = (hy.xyz - p * hy.w) / h.w;
   m = 0.0;
-  if (!csmInside(vcToMap, vc))
-  {
-    return -1.0;
-  }
-  vec3 p = csmProject(vcToMap, vc);
-  vec3 dx, dy;
-  csmDerivatives(vcToMap, vc, dvcdx, dvcdy, dx, dy);
-  if (csmDebug == CSM_DEBUG_ERROR)
-  {
-    // Lloyd Eq. 1: a texel's footprint in pixels, 1 / smallest singular value of d(texel)/d(pixel).
-    mat2 j = mat2(dx.xy, dy.xy) / csmTileTexel;
-    float e = dot(j[0], j[0]) + dot(j[1], j[1]);
-    float d = abs(determinant(j));
-    float smin2 = 0.5 * (e - sqrt(max(e * e - 4.0 * d * d, 0.0)));
-    m = 1.0 / sqrt(max(smin2, 1e-12));
-  }
+#if CSM_DEBUG == CSM_DEBUG_ERROR
+  // A texel's footprint in pixels, 1 / smallest singular value of d(texel)/d(pixel).
+  mat2 j = mat2(dx.xy, dy.xy) / texel;
+  float e = dot(j[0], j[0]) + dot(j[1], j[1]);
+  float d = abs(determinant(j));
+  float smin2 = 0.5 * (e - sqrt(max(e * e - 4.0 * d * d, 0.0)));
+  m = 1.0 / sqrt(max(smin2, 1e-12));
+#endif
   // Receiver plane: depth change per unit of map u and v (Barroso & Celes §2.2 virtual samples).
   float det = dx.x * dy.y - dx.y * dy.x;
   vec2 dz = abs(det) > 1e-24
     ? vec2(dy.y * dx.z - dx.y * dy.z, dx.x * dy.z - dy.x * dx.z) / det
     : vec2(0.0);
-  float zSlopePerTexel = min((abs(dz.x) + abs(dz.y)) * csmTileTexel, 0.05);
+  float zSlopePerTexel = min((abs(dz.x) + abs(dz.y)) * texel, 0.05);
   float zRef = p.z - csmConstantBias - csmSlopeBias * zSlopePerTexel;
-  int r = csmPCFSize / 2;
-  return csmKernel == CSM_KERNEL_GRID || r == 0 ? csmGridPCF(map, tile, p.xy, zRef, dz, r)
-                                  : csmJitteredPCF(map, tile, p.xy, zRef, dz, r);
+#if CSM_KERNEL == CSM_KERNEL_GRID
+  return csmGridPCF(map, tile, texel, p.xy, zRef, dz);
+#else
+  return csmPCFRadius == 0 ? csmGridPCF(map, tile, texel, p.xy, zRef, dz)
+                           : csmJitteredPCF(map, tile, texel, p.xy, zRef, dz);
+#endif
 }
 
-// Per shadowed light j (CSM_LIGHTS of them, defined by the pass), its cascades at
-// [j * CSM_MAX_CASCADES, ...): view space -> map matrices, atlas tiles, far split depths.
+// A threshold in [0, 1) per pixel that tiles the screen without visible pattern (interleaved
+// gradient noise, Jimenez 2014): which pixels of a blend band take the next cascade.
+float csmDither()
+{
+  return fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+}
+
+// Per shadowed light j (CSM_LIGHTS of them), its cascades at [j * CSM_MAX_CASCADES, ...): view
+// space -> map matrices, atlas tiles, texel sizes (in the cascade's [0,1]), far split depths.
 uniform mat4 csmToMap[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform vec4 csmTile[CSM_LIGHTS * CSM_MAX_CASCADES];
+uniform float csmTexel[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmSplitFar[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmSplitNear[CSM_LIGHTS];
 uniform int csmCount[CSM_LIGHTS];
@@ -150,45 +143,70 @@ uniform float csmAttenuation[CSM_LIGHTS];
 
 // Shadow of light j: x = light factor (1 lit .. 1 - attenuation), y = cascade index (-1: none),
 // z = aliasing error m (error view only), w = visibility.
+// The cascade is the one whose view-depth interval holds the point (Lloyd et al. 2006, §6.3) or,
+// where a map kept from an earlier frame misses the point, the next one that covers it. In the
+// last BlendBand of a cascade's depth range a share of the pixels growing from 0 to 1 across the
+// band takes the next cascade (where its map covers the point): the seam becomes a dithered
+// transition at the cost of one lookup, where a blend would take two.
 vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
 {
   int count = csmCount[j];
   int first = j * CSM_MAX_CASCADES;
   float depth = -vc.z;
-  if (count <= 0 || depth < csmSplitNear[j] || depth > csmSplitFar[first + count - 1])
+  int c = 0;
+  float cascadeNear = csmSplitNear[j];
+  for (int i = 0; i + 1 < count; ++i)
+  {
+    if (depth > csmSplitFar[first + i])
+    {
+      c = i + 1;
+      cascadeNear = csmSplitFar[first + i];
+    }
+  }
+  float cascadeFar = csmSplitFar[first + c];
+  float band = csmBlendBand * (cascadeFar - cascadeNear);
+  bool blend = c + 1 < count && band > 0.0 && (depth - (cascadeFar - band)) / band > csmDither();
+  // The covering cascade at or after c, and the next one if it covers.
+  int chosen = -1;
+  bool nextCovers = false;
+  vec4 h = vec4(0.0, 0.0, 0.0, 1.0), hx = vec4(0.0), hy = vec4(0.0);
+  vec4 hNext = h, hxNext = hx, hyNext = hy;
+  for (int i = 0; i < count; ++i)
+  {
+    mat4 toMap = csmToMap[first + i];
+    vec4 hi = toMap * vc;
+    bool covers = csmCovers(hi);
+    if (i >= c && chosen < 0 && covers)
+    {
+      chosen = i;
+      h = hi;
+      hx = toMap * dvcdx;
+      hy = toMap * dvcdy;
+    }
+    if (i == c + 1 && covers)
+    {
+      nextCovers = true;
+      hNext = hi;
+      hxNext = toMap * dvcdx;
+      hyNext = toMap * dvcdy;
+    }
+  }
+  if (blend && chosen == c && nextCovers)
+  {
+    chosen = c + 1;
+    h = hNext;
+    hx = hxNext;
+    hy = hyNext;
+  }
+  if (count <= 0 || depth < csmSplitNear[j] || depth > csmSplitFar[first + max(count, 1) - 1] ||
+    chosen < 0)
   {
     return vec4(1.0, -1.0, 0.0, 1.0); // outside every cascade: lit as without shadows
   }
-  int c = 0;
-  while (c < count - 1 && depth > csmSplitFar[first + c])
-  {
-    ++c;
-  }
   float m;
   float visibility =
-    csmVisibility(map, csmToMap[first + c], csmTile[first + c], vc, dvcdx, dvcdy, m);
-  // A map kept from an earlier frame that misses this point: the next one that covers it.
-  while (visibility < 0.0 && c + 1 < count)
-  {
-    ++c;
-    visibility = csmVisibility(map, csmToMap[first + c], csmTile[first + c], vc, dvcdx, dvcdy, m);
-  }
-  if (visibility < 0.0)
-  {
-    return vec4(1.0, -1.0, 0.0, 1.0);
-  }
-  float cascadeNear = c == 0 ? csmSplitNear[j] : csmSplitFar[first + c - 1];
-  float band = csmBlendBand * (csmSplitFar[first + c] - cascadeNear);
-  if (c + 1 < count && band > 0.0 && depth > csmSplitFar[first + c] - band &&
-    csmInside(csmToMap[first + c + 1], vc))
-  {
-    // Blend into the next cascade only where its map covers the point.
-    float mNext;
-    float next = csmVisibility(
-      map, csmToMap[first + c + 1], csmTile[first + c + 1], vc, dvcdx, dvcdy, mNext);
-    visibility = mix(visibility, next, (depth - (csmSplitFar[first + c] - band)) / band);
-  }
-  return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), float(c), m, visibility);
+    csmVisibility(map, csmTile[first + chosen], csmTexel[first + chosen], h, hx, hy, m);
+  return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), float(chosen), m, visibility);
 }
 
 #ifdef CSM_IMPOSTOR
@@ -240,8 +258,8 @@ vec3 csmErrorColor(float m)
 // Debug output for a shadow result r (first shadowed light) over the shaded colour.
 vec4 csmDebugColor(vec4 shaded, vec4 r)
 {
-  if (csmDebug == CSM_DEBUG_CASCADES) return vec4(csmCascadeColor(r.y) * (0.35 + 0.65 * r.x), shaded.a);
-  if (csmDebug == CSM_DEBUG_ERROR) return vec4(r.y < -0.5 ? vec3(0.0) : csmErrorColor(r.z) * (0.4 + 0.6 * r.x), shaded.a);
-  if (csmDebug == CSM_DEBUG_FACTOR) return vec4(vec3(r.w), shaded.a);
+  if (CSM_DEBUG == CSM_DEBUG_CASCADES) return vec4(csmCascadeColor(r.y) * (0.35 + 0.65 * r.x), shaded.a);
+  if (CSM_DEBUG == CSM_DEBUG_ERROR) return vec4(r.y < -0.5 ? vec3(0.0) : csmErrorColor(r.z) * (0.4 + 0.6 * r.x), shaded.a);
+  if (CSM_DEBUG == CSM_DEBUG_FACTOR) return vec4(vec3(r.w), shaded.a);
   return shaded;
 }

@@ -29,15 +29,16 @@ namespace
 constexpr int kMap = 64;     // synthetic map, texels per side
 constexpr int kSamples = 96; // sample positions per side (the quad's pixels)
 
-std::string fragmentShader(int r)
+std::string fragmentShader()
 {
   // The pass prepends these (vtkCascadedShadowMapPass::PostReplaceShaderValues).
   return std::string("//VTK::System::Dec\n"
                      "in vec2 texCoord;\n"
                      "//VTK::Output::Dec\n"
                      "#define CSM_LIGHTS 1\n#define CSM_MAX_CASCADES 8\n#define CSM_KERNEL_GRID 0\n"
+                     "#define CSM_KERNEL_JITTERED 1\n#define CSM_KERNEL 0\n"
                      "#define CSM_DEBUG_CASCADES 1\n#define CSM_DEBUG_ERROR 2\n"
-                     "#define CSM_DEBUG_FACTOR 3\n") +
+                     "#define CSM_DEBUG_FACTOR 3\n#define CSM_DEBUG 0\n") +
     csmShadowFS +
     "\nuniform sampler2DShadow map;\n"
     "void main()\n"
@@ -46,14 +47,13 @@ std::string fragmentShader(int r)
     "  vec2 uv = mix(vec2(0.15), vec2(0.85), texCoord);\n"
     "  vec4 tile = vec4(0.0, 0.0, 1.0, 1.0);\n"
     "  float zRef = 0.5;\n"
-    "  int r = " +
-    std::to_string(r) +
-    ";\n"
-    "  float fast = csmGridPCF(map, tile, uv, zRef, vec2(0.0), r);\n"
+    "  int r = csmPCFRadius;\n"
+    "  float texel = 1.0 / " + std::to_string(kMap) + ".0;\n"
+    "  float fast = csmGridPCF(map, tile, texel, uv, zRef, vec2(0.0));\n"
     "  float reference = 0.0;\n"
     "  for (int i = -r; i <= r; ++i)\n"
     "    for (int k = -r; k <= r; ++k)\n"
-    "      reference += csmTap(map, tile, uv + vec2(i, k) * csmTileTexel, zRef);\n"
+    "      reference += csmTap(map, tile, texel, uv + vec2(i, k) * texel, zRef);\n"
     "  reference /= float((2 * r + 1) * (2 * r + 1));\n"
     "  gl_FragData[0] = vec4(fast, reference, 0.0, 1.0);\n"
     "}\n";
@@ -101,12 +101,12 @@ TEST(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
 
   for (int r = 1; r <= 3; ++r)
   {
-    vtkOpenGLQuadHelper quad(gl, nullptr, fragmentShader(r).c_str(), "");
+    vtkOpenGLQuadHelper quad(gl, nullptr, fragmentShader().c_str(), "");
     ASSERT_NE(quad.Program, nullptr) << "r = " << r;
     gl->GetShaderCache()->ReadyShaderProgram(quad.Program);
     map->Activate();
     quad.Program->SetUniformi("map", map->GetTextureUnit());
-    quad.Program->SetUniformf("csmTileTexel", 1.0f / kMap);
+    quad.Program->SetUniformi("csmPCFRadius", r);
     gl->GetState()->vtkglViewport(0, 0, kSamples, kSamples);
     gl->GetState()->vtkglDisable(GL_DEPTH_TEST);
     gl->GetState()->vtkglDisable(GL_BLEND);
