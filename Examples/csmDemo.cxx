@@ -108,7 +108,9 @@ void usage()
     "  --partition P      single | uniform | log | practical | adaptive [%s]\n"
     "  --cascades K       1..%d [%d]      --lambda L  practical weight [%g]\n"
     "  --alpha A          adaptive ratio > 1 [%g]\n"
-    "  --resolution R     texels per cascade side, 64..8192 [%d]\n"
+    "  --resolution R     texels per cascade side at most, 64..8192 [%d]\n"
+    "  --error-target M   each cascade's resolution for aliasing error <= M (texel/pixel);\n"
+    "                     0: always --resolution [%g]\n"
     "  --pcf N            1 | 3 | 5 | 7 [%d]   --kernel grid | jittered [%s]\n"
     "  --bias B           constant depth bias [%g]   --slope-bias S [%g]\n"
     "  --blend F          cascade blend band, 0..0.5 [%g]\n"
@@ -126,7 +128,7 @@ void usage()
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
     "  t technique, l light angle +15 deg\n",
     o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
-    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.Alpha, d.Resolution, d.PCF, kKernels[d.Kernel], d.ConstantBias,
+    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
     d.SlopeBias, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
     o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
@@ -243,7 +245,8 @@ Options parse(int argc, char** argv)
     }
     else
     {
-      static const char* const numeric[] = { "--triangles", "--cascades", "--resolution", "--pcf",
+      static const char* const numeric[] = { "--triangles", "--cascades", "--resolution",
+        "--error-target", "--pcf",
         "--lambda", "--alpha", "--bias", "--slope-bias", "--blend", "--darkness", "--gamma",
         "--frames", "--orbit" };
       if (std::none_of(std::begin(numeric), std::end(numeric),
@@ -279,6 +282,8 @@ Options parse(int argc, char** argv)
         o.Shadow.Cascades = whole(1, vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES);
       else if (f == "--resolution")
         o.Shadow.Resolution = whole(64, 8192);
+      else if (f == "--error-target")
+        o.Shadow.ErrorTarget = range(0, 1.0e6);
       else if (f == "--pcf")
       {
         o.Shadow.PCF = whole(1, 7);

@@ -630,6 +630,10 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
   // Tubes, spheres, wide lines and big points are drawn into the maps as wide as the main view
   // draws them: a still frame keeps such a map only for the view it was sized for.
   const bool screenSized = hasScreenSizedCasters(props.Casters);
+  // Resolution from need (ErrorTarget), up to the ceiling of this kind of frame.
+  const int ceiling = interacting ? std::min(this->InteractiveResolution, this->Resolution)
+                                  : this->Resolution;
+  const int imageHeight = renderer->GetSize()[1];
   double viewKey[18];
   casterView(renderer, camera, viewKey);
   const int maximumLights = this->MaximumShadowedLights(window);
@@ -671,15 +675,20 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       this->Planner->GetCascadeMatrix(c, m, border);
       std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
       maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
+      maps.CascadeResolution[c] = this->Planner->GetCascadeResolution(
+        c, imageHeight, this->ErrorTarget, RESOLUTION_STEP, ceiling);
+      // A kept map serves if it has at least the texels this view needs.
       const bool keep = kept &&
         (interacting || !screenSized ||
           std::equal(viewKey, viewKey + 18, kept->CasterView[c])) &&
+        kept->CascadeResolution[c] >= maps.CascadeResolution[c] &&
         this->Planner->CompareKeptMap(c, kept->WorldToMap[c], kReuseMarginTexels,
-          kept->Resolution) <= tolerance;
+          kept->CascadeResolution[c]) <= tolerance;
       if (keep)
       {
         std::copy(kept->WorldToMap[c], kept->WorldToMap[c] + 16, maps.WorldToMap[c]);
         std::copy(kept->CasterView[c], kept->CasterView[c] + 18, maps.CasterView[c]);
+        maps.CascadeResolution[c] = kept->CascadeResolution[c];
       }
       render.push_back(keep ? 0 : 1);
     }
@@ -723,10 +732,6 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
 {
   const bool depthClamp = this->Planner->GetDepthClamp();
   const int numberOfCascades = this->Planner->GetNumberOfCascades();
-  // VTK's interactive convention (see PlanLights): fewer texels while the user drags.
-  const int resolution = vtkCascadedShadowMapBakerPass::IsInteracting(window)
-    ? std::min(this->InteractiveResolution, this->Resolution)
-    : this->Resolution;
   vtkOpenGLState* ostate = window->GetState();
   vtkOpenGLState::ScopedglViewport savedViewport(ostate);
   vtkOpenGLState::ScopedglScissor savedScissor(ostate);
@@ -751,10 +756,18 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
   {
     LightMaps& maps = planned[slot];
     bool reallocated = false;
-    if (!this->PrepareAtlas(window, maps, numberOfCascades, resolution, reallocated))
+    // Tiles of Resolution texels (the ceiling); each cascade's map fills the lower left of its
+    // tile with the resolution PlanLights chose.
+    if (!this->PrepareAtlas(window, maps, numberOfCascades, this->Resolution, reallocated))
     {
       maps.NumberOfCascades = 0;
       continue;
+    }
+    for (int c = 0; c < maps.NumberOfCascades; ++c)
+    {
+      maps.CascadeResolution[c] = std::max(1, std::min(maps.CascadeResolution[c], maps.Resolution));
+      maps.Tile[c][2] = double(maps.CascadeResolution[c]) / maps.Atlas->GetWidth();
+      maps.Tile[c][3] = double(maps.CascadeResolution[c]) / maps.Atlas->GetHeight();
     }
     int* renderCascade = render.data() + kMaxCascades * slot;
     bool any = false;
@@ -992,6 +1005,7 @@ void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Resolution: " << this->Resolution << "\n";
   os << indent << "InteractiveResolution: " << this->InteractiveResolution << "\n";
+  os << indent << "ErrorTarget: " << this->ErrorTarget << "\n";
   os << indent << "Planner:\n";
   this->Planner->PrintSelf(os, indent.GetNextIndent());
   os << indent << "PolygonOffsetFactor: " << this->PolygonOffsetFactor << "\n";

@@ -81,6 +81,22 @@ public:
 
   ///@{
   /**
+   * Texels only where the view needs them: each cascade's map gets the smallest resolution (a
+   * multiple of RESOLUTION_STEP) at which the planner's predicted worst aliasing error of the
+   * cascade (Lloyd et al. 2006, Eq. 9-10: m, the width of a texel over that of a pixel, at the
+   * worst point of the cascade's receivers) is at most ErrorTarget in this renderer's viewport;
+   * Resolution (InteractiveResolution while the user drags) is the ceiling. A view that a map
+   * oversamples (a small model, a small window) renders a smaller map; 0 renders every map at
+   * the ceiling. Default 1 (one texel to a pixel where the error is largest).
+   */
+  vtkSetFiniteClampMacro(ErrorTarget, double, 0.0, 1.0e6);
+  vtkGetMacro(ErrorTarget, double);
+  ///@}
+  /// Resolutions chosen from ErrorTarget are multiples of this.
+  static constexpr int RESOLUTION_STEP = 64;
+
+  ///@{
+  /**
    * How the cascades are planned; these forward to GetPlanner(), which documents them:
    * number of cascades (1..MAXIMUM_NUMBER_OF_CASCADES, default 2, Barroso & Celes §4), warp mode and split scheme
    * (vtkCascadedShadowMapPlanner::WarpModes / SplitSchemes; defaults generalized LiSPSM and
@@ -167,7 +183,9 @@ public:
     double SplitNear = 0.0;       ///< view depth where the first cascade begins
     double SplitFar[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};           ///< view depth where each cascade ends
     double Tile[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][4] = {};            ///< atlas tile: offset x, y and scale x, y in [0, 1]
-    int Resolution = 0;           ///< texels per cascade side (Resolution, or less if GL limits)
+    int Resolution = 0;           ///< texels a side of each cascade's tile (Resolution, or less if GL limits)
+    /// Texels a side of each cascade's map (from ErrorTarget), in the lower left of its tile.
+    int CascadeResolution[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     double LightGeometry[7] = { 0, 0, 0, 0, 0, 0, 0 }; ///< position, focal point, cone angle (-1: directional) the maps were rendered for
     /// Per cascade: the main view its screen-sized casters (tubes, spheres, wide lines, big
     /// points) were sized for: world -> view (row-major) and the pixel size (see CasterView()).
@@ -292,6 +310,7 @@ protected:
 
   int Resolution = 2048;
   int InteractiveResolution = 1024;
+  double ErrorTarget = 1.0;
   double PolygonOffsetFactor = 1.1;
   double PolygonOffsetUnits = 2.0;
   double MapReuseTolerance = 1.25;

@@ -119,7 +119,7 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
         u.Tile.push_back(static_cast<float>(maps.Tile[c][k]));
       }
       u.SplitFar.push_back(c < maps.NumberOfCascades ? static_cast<float>(maps.SplitFar[c]) : 0.0f);
-      u.Texel.push_back(1.0f / static_cast<float>(std::max(1, maps.Resolution)));
+      u.Texel.push_back(1.0f / static_cast<float>(std::max(1, maps.CascadeResolution[c])));
     }
     maps.Atlas->Activate();
     u.TextureUnit.push_back(maps.Atlas->GetTextureUnit());

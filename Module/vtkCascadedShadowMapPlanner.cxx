@@ -279,6 +279,13 @@ double vtkCascadedShadowMapPlanner::GetCascadeMaximumAliasing(int i) const
   return i >= 0 && i < static_cast<int>(c.size()) ? std::max(c[i].Mx, c[i].Mz) : 0.0;
 }
 
+int vtkCascadedShadowMapPlanner::GetCascadeResolution(
+  int i, int imageHeight, double targetError, int step, int ceiling) const
+{
+  return csm::resolutionForError(
+    this->GetCascadeMaximumAliasing(i), imageHeight, targetError, step, ceiling);
+}
+
 double vtkCascadedShadowMapPlanner::GetStorageTotal() const
 {
   return this->Internal->Setup.storageTotal;

@@ -137,6 +137,12 @@ public:
   /// image height / map resolution for texels per pixel. 0 for spot lights and bad indices.
   double GetCascadeMaximumAliasing(int i) const;
 
+  /// The map resolution (texels a side) cascade i needs for an aliasing error m of at most
+  /// targetError in an image imageHeight pixels high: a multiple of step, at most ceiling; the
+  /// ceiling where the error is not defined (spot lights) or targetError is 0
+  /// (csm::resolutionForError).
+  int GetCascadeResolution(int i, int imageHeight, double targetError, int step, int ceiling) const;
+
   /// Storage factor of the plan (Lloyd Eq. 12 summed over the cascades) and its optimum.
   double GetStorageTotal() const;
   double GetStorageOptimal() const;

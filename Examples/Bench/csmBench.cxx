@@ -261,6 +261,7 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
   vtkCamera* camera = renderer->GetActiveCamera();
   const double aspect = renderer->GetTiledAspectRatio();
   double m[2] = { 0, 0 };
+  double resolution = t.Shadow.Resolution;
   if (t.Passes.Cascaded)
   {
     const auto& maps = t.Passes.Cascaded->GetShadowMapBakerPass()->GetLightMaps();
@@ -277,6 +278,7 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
     if (c < 0)
       return NAN;
     vtkCascadedShadowMapPlanner::ComputeAliasing(camera, aspect, light, lm.WorldToMap[c], p, m);
+    resolution = lm.CascadeResolution[c]; // the resolution this view's map was rendered at
   }
   else if (t.Passes.Vtk)
   {
@@ -290,7 +292,7 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
   }
   else
     return NAN;
-  return std::max(m[0], m[1]) * imageHeight / t.Shadow.Resolution;
+  return std::max(m[0], m[1]) * imageHeight / resolution;
 }
 
 /// After a timed frame: what the baker did (maps rendered and kept; with --breakdown, the

@@ -681,6 +681,21 @@ ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosi
   return setup;
 }
 
+int resolutionForError(double maxAliasing, double imageHeight, double targetError, int step,
+  int ceiling)
+{
+  ceiling = std::max(ceiling, 1);
+  step = std::max(1, std::min(step, ceiling));
+  const double texels = maxAliasing * imageHeight / targetError;
+  if (!(maxAliasing > 0.0) || !(imageHeight > 0.0) || !(targetError > 0.0) ||
+    !std::isfinite(texels) || texels >= ceiling)
+  {
+    return ceiling;
+  }
+  const int steps = static_cast<int>(std::ceil(texels / step));
+  return std::min(ceiling, std::max(step, steps * step));
+}
+
 Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
   const glm::dvec3& wsLightDirection, const glm::dvec3& wsPoint)
 {

@@ -119,6 +119,15 @@ ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosi
 Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
   const glm::dvec3& wsLightDirection, const glm::dvec3& wsPoint);
 
+/// The map resolution (texels a side) at which a cascade whose worst perspective aliasing is
+/// maxAliasing (max(M_x, M_z) of Lloyd et al. 2006, Eq. 9-10, for a map of 1 texel and an image
+/// 1 pixel high) reaches the error targetError (m, a texel's width over a pixel's, Eq. 1) in an
+/// image imageHeight pixels high: maxAliasing * imageHeight / targetError, rounded up to a
+/// multiple of step and kept in [step, ceiling]. The ceiling when any input is not a finite
+/// positive number (spot lights have no M; a target of 0 means "always the ceiling").
+int resolutionForError(double maxAliasing, double imageHeight, double targetError, int step,
+  int ceiling);
+
 /// The warp of a cascade in light space (rows: map s, map t, depth, w): orthographic for an
 /// infinite n', else a perspective along ls z whose centre lies n' before the body's nearest
 /// ls z (Barroso & Celes 2007, Fig. 4 and 6).

@@ -29,6 +29,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->Lambda = baker->GetLambda();
   this->Alpha = baker->GetAlpha();
   this->Resolution = baker->GetResolution();
+  this->ErrorTarget = baker->GetErrorTarget();
   this->DepthClamp = baker->GetDepthClamp();
   this->PCF = pass->GetPCFSize();
   this->Kernel = pass->GetPCFKernel();
@@ -48,6 +49,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetLambda(o.Lambda);
   baker->SetAlpha(o.Alpha);
   baker->SetResolution(o.Resolution);
+  baker->SetErrorTarget(o.ErrorTarget);
   baker->SetDepthClamp(o.DepthClamp);
   pass->SetPCFSize(o.PCF);
   pass->SetPCFKernel(o.Kernel);

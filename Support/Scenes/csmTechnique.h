@@ -33,6 +33,7 @@ struct ShadowOptions
   double Lambda;
   double Alpha;
   int Resolution;                ///< also VTK's pass's, for technique vtk
+  double ErrorTarget;            ///< resolution from need (0: always Resolution)
   int PCF;
   int Kernel;                    ///< vtkCascadedShadowMapPass::Kernels
   double ConstantBias;

@@ -5,6 +5,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -594,4 +595,41 @@ TEST(Steps, FocusMatrixTakesTheBoundsToTheUnitCube)
   // Depth keeps 1 % of the range as room for the bias on each side: 2 / 1.02 of [-1, 1].
   EXPECT_NEAR(lo.z, -1.0 / 1.02, 1e-12);
   EXPECT_NEAR(hi.z, 1.0 / 1.02, 1e-12);
+}
+
+TEST(Steps, ResolutionForErrorMeetsTheTargetWithTheFewestTexels)
+{
+  // A plan's worst cascade error M (per texel and pixel) at the resolution chosen for m <= 1 in a
+  // 600-pixel image: the error at every body vertex is at most 1, and one step fewer texels
+  // would not reach it.
+  const csm::Camera cam = camera(1.0, 200.0, 40.0, 4.0 / 3.0);
+  const glm::dvec3 light = lightAt(cam, 60.0);
+  const csm::ShadowSetup setup = csm::computeShadowSetup(
+    cam, light, nullptr, settings(csm::WarpMode::Generalized, csm::SplitScheme::Adaptive, 2));
+  ASSERT_EQ(setup.status, csm::Status::Ok);
+  for (const csm::Cascade& c : setup.cascades)
+  {
+    const double M = std::max(c.Mx, c.Mz);
+    const int res = csm::resolutionForError(M, 600.0, 1.0, 64, 8192);
+    EXPECT_EQ(res % 64, 0);
+    EXPECT_LT(res, 8192) << "this view needs fewer texels than the ceiling";
+    double worst = 0.0;
+    for (const glm::dvec3& p : c.wsBody)
+    {
+      const csm::Aliasing a = csm::aliasingAt(c.wsToClip, cam, light, p);
+      worst = std::max({ worst, a.mx, a.mz });
+    }
+    EXPECT_NEAR(worst, M, 1e-9 * M);
+    EXPECT_LE(worst * 600.0 / res, 1.0);
+    EXPECT_GT(worst * 600.0 / (res - 64), 1.0);
+  }
+  // The ceiling where the error is undefined or not asked for, the step at the least.
+  EXPECT_EQ(csm::resolutionForError(1e9, 600.0, 1.0, 64, 2048), 2048);
+  EXPECT_EQ(csm::resolutionForError(std::nan(""), 600.0, 1.0, 64, 2048), 2048);
+  EXPECT_EQ(csm::resolutionForError(0.0, 600.0, 1.0, 64, 2048), 2048);
+  EXPECT_EQ(csm::resolutionForError(2.0, 600.0, 0.0, 64, 2048), 2048);
+  EXPECT_EQ(csm::resolutionForError(2.0, 600.0, std::nan(""), 64, 2048), 2048);
+  EXPECT_EQ(csm::resolutionForError(1e-6, 600.0, 1.0, 64, 2048), 64);
+  EXPECT_EQ(csm::resolutionForError(2.0, 600.0, 1.0, 64, 2048), 1216); // 1200 rounded up
+  EXPECT_EQ(csm::resolutionForError(2.0, 600.0, 2.0, 64, 2048), 640);  // 600 rounded up
 }

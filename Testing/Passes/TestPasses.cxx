@@ -462,14 +462,23 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
   }
   EXPECT_GT(kept, 0);         // the point of it: maps were kept
   EXPECT_EQ(rendered, 8 * 2); // the reference re-rendered both cascades every frame
-  // While dragging, the maps have InteractiveResolution texels a side.
+  // While dragging, the maps have at most InteractiveResolution texels a side.
   vtkCascadedShadowMapBakerPass* baker = a->GetShadowMapBakerPass();
-  EXPECT_EQ(baker->GetLightMaps(keep.Renderer).at(0).Resolution, baker->GetInteractiveResolution());
+  const auto& dragged = baker->GetLightMaps(keep.Renderer).at(0);
+  for (int c = 0; c < dragged.NumberOfCascades; ++c)
+  {
+    EXPECT_LE(dragged.CascadeResolution[c], baker->GetInteractiveResolution());
+  }
   // The still frame after dragging returns to tight maps (full quality): identical images.
   keep.Window->SetDesiredUpdateRate(0.0001);
   fresh.Window->SetDesiredUpdateRate(0.0001);
   EXPECT_EQ(DifferingValues(keep.Frame(), fresh.Frame()), 0);
-  EXPECT_EQ(baker->GetLightMaps(keep.Renderer).at(0).Resolution, baker->GetResolution());
+  const auto& still = baker->GetLightMaps(keep.Renderer).at(0);
+  const auto& reference = b->GetShadowMapBakerPass()->GetLightMaps(fresh.Renderer).at(0);
+  for (int c = 0; c < still.NumberOfCascades; ++c)
+  {
+    EXPECT_EQ(still.CascadeResolution[c], reference.CascadeResolution[c]);
+  }
   EXPECT_EQ(baker->GetLastCascadeRenders(), 2);
 }
 
@@ -816,4 +825,64 @@ TEST(Passes, NaNLineWidthAndPointSizeGiveNoGarbage)
   EXPECT_GT(darkened[0], 100);
   EXPECT_GE(darkened[1], darkened[0] / 2);
   EXPECT_LE(darkened[1], darkened[0] * 3 / 2);
+}
+
+// Resolution from need (issue: speed): a view that full maps oversample gets the maps its
+// predicted error needs, and the shadow stays; ErrorTarget 0 renders every map at Resolution.
+TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
+{
+  BoxOverPlane scene; // 320 x 240: 2048-texel maps oversample it several times
+  auto plain = scene.Render();
+  // Pixels in shadow: less than half as bright as without shadows (the penumbra of a texel-space
+  // filter widens on screen with the texels, the shadow's extent does not).
+  auto halfDark = [&plain](vtkImageData* shadowed) {
+    auto* a = vtkUnsignedCharArray::SafeDownCast(shadowed->GetPointData()->GetScalars());
+    auto* b = vtkUnsignedCharArray::SafeDownCast(plain->GetPointData()->GetScalars());
+    long n = 0;
+    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+    {
+      const int sa = a->GetValue(3 * i) + a->GetValue(3 * i + 1) + a->GetValue(3 * i + 2);
+      const int sb = b->GetValue(3 * i) + b->GetValue(3 * i + 1) + b->GetValue(3 * i + 2);
+      n += sb > 30 && 2 * sa < sb;
+    }
+    return n;
+  };
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->SetErrorTarget(0.0);
+  const long full = halfDark(scene.Render());
+  for (int c = 0; c < baker->GetLightMaps().at(0).NumberOfCascades; ++c)
+  {
+    EXPECT_EQ(baker->GetLightMaps().at(0).CascadeResolution[c], baker->GetResolution());
+  }
+  baker->SetErrorTarget(1.0);
+  const long needed = halfDark(scene.Render());
+  const auto& maps = baker->GetLightMaps().at(0);
+  vtkCascadedShadowMapPlanner* planner = baker->GetPlanner();
+  long texels = 0;
+  for (int c = 0; c < maps.NumberOfCascades; ++c)
+  {
+    const int r = maps.CascadeResolution[c];
+    // The planner's choice for this 240-pixel-high view, and fewer texels than the ceiling.
+    EXPECT_EQ(r, planner->GetCascadeResolution(c, 240, 1.0,
+                   vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, baker->GetResolution()));
+    EXPECT_LT(r, baker->GetResolution());
+    EXPECT_EQ(r % vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, 0);
+    // Predicted worst error at this resolution: at most the target.
+    EXPECT_LE(planner->GetCascadeMaximumAliasing(c) * 240 / r, 1.0);
+    texels += static_cast<long>(r) * r;
+  }
+  std::printf("shadowed pixels: full maps %ld, maps from need %ld (%.1f %% of the texels)\n",
+    full, needed, 100.0 * texels / (2.0 * baker->GetResolution() * baker->GetResolution()));
+  EXPECT_GT(full, 800);
+  EXPECT_NEAR(static_cast<double>(needed), static_cast<double>(full), 0.03 * full);
+  // A larger window needs more texels (up to the ceiling).
+  scene.Window->SetSize(960, 720);
+  scene.Render();
+  for (int c = 0; c < maps.NumberOfCascades; ++c)
+  {
+    EXPECT_EQ(baker->GetLightMaps().at(0).CascadeResolution[c],
+      planner->GetCascadeResolution(c, 720, 1.0, vtkCascadedShadowMapBakerPass::RESOLUTION_STEP,
+        baker->GetResolution()));
+  }
 }
