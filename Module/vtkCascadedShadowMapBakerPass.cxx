@@ -373,6 +373,7 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
     }
   }
   ++this->LastCascadeRenders;
+  this->LastTexelsRendered += double(w) * double(h);
   this->LastPropsDrawn += static_cast<int>(drawn.size());
   if (drawn.empty())
   {
@@ -489,6 +490,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   this->LastCascadeRenders = 0;
   this->LastCascadesKept = 0;
   this->LastPropsDrawn = 0;
+  this->LastTexelsRendered = 0.0;
 
   // 1. The props: casters, receivers, scene bounds (across processes when distributed).
   FrameProps props;

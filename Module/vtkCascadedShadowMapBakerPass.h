@@ -214,11 +214,12 @@ public:
   /// Number of Render() calls that rendered at least one map (not all kept); for tests.
   vtkGetMacro(BakeCount, int);
 
-  /// In the last Render(): cascades rendered, cascades kept from an earlier frame, and props
-  /// drawn into the rendered ones; for tests and benchmarks.
+  /// In the last Render(): cascades rendered, cascades kept from an earlier frame, props drawn
+  /// into the rendered ones, and their texels; for tests and benchmarks.
   vtkGetMacro(LastCascadeRenders, int);
   vtkGetMacro(LastCascadesKept, int);
   vtkGetMacro(LastPropsDrawn, int);
+  vtkGetMacro(LastTexelsRendered, double);
 
   ///@{
   /**
@@ -330,6 +331,7 @@ protected:
   int LastCascadeRenders = 0;
   int LastCascadesKept = 0;
   int LastPropsDrawn = 0;
+  double LastTexelsRendered = 0.0;
   int WarnedShadowingLights = 0; // lights over the limit last warned about: warn once
   std::set<std::string> Reported; // messages said already (ReportOnce)
 

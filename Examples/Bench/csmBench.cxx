@@ -89,6 +89,7 @@ struct Technique
   std::vector<double> InteractiveTimes; // interactive orbit
   std::vector<double> StillTimes;       // still camera
   std::vector<double> PlanMs, MapMs;    // --breakdown: per timed frame
+  double TexelsRendered = 0.0;          // map texels rendered over the timed frames
   long long MapsRendered = 0, MapsKept = 0;
   csmTruth::Classification Errors;
   std::vector<double> M;
@@ -304,6 +305,7 @@ void Account(Technique& t)
   vtkCascadedShadowMapBakerPass* baker = t.Passes.Cascaded->GetShadowMapBakerPass();
   t.MapsRendered += baker->GetLastCascadeRenders();
   t.MapsKept += baker->GetLastCascadesKept();
+  t.TexelsRendered += baker->GetLastTexelsRendered();
   if (baker->GetMeasureTimes())
   {
     t.PlanMs.push_back(1000.0 * baker->GetLastPlanSeconds());
@@ -317,6 +319,23 @@ double Median(std::vector<double> v)
     return NAN;
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
+}
+
+double Mean(const std::vector<double>& v)
+{
+  double sum = 0.0;
+  for (double x : v)
+    sum += x;
+  return v.empty() ? NAN : sum / v.size();
+}
+
+/// --breakdown: the mean time to render one map (over the timed frames that rendered any).
+double PerMap(const Technique& t)
+{
+  double sum = 0.0;
+  for (double x : t.MapMs)
+    sum += x;
+  return t.MapMs.empty() || t.MapsRendered == 0 ? NAN : sum / t.MapsRendered;
 }
 
 double Percentile(std::vector<double> v, double q)
@@ -523,7 +542,8 @@ int main(int argc, char** argv)
   std::ofstream detail(o.Out + ".views.csv");
   csv << "scene,technique,label,warp,partition,cascades,resolution,pcf,texels,memory_mb,median_ms,"
          "p10_ms,p90_ms,math_us,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m,"
-         "storage,frames,measured_pixels,interactive_ms,still_ms,plan_ms,map_ms,"
+         "storage,frames,measured_pixels,interactive_ms,still_ms,plan_ms,map_ms,map_ms_per_map,"
+         "texels_per_map,"
          "maps_rendered_per_frame,maps_kept_per_frame\n";
   detail << "scene,label,view,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m\n";
   std::vector<std::pair<std::string, std::vector<Technique>>> results;
@@ -746,7 +766,8 @@ int main(int argc, char** argv)
           << t.Errors.FalseLightPct() << "," << ms.Max << "," << ms.P95 << "," << ms.Mean << ","
           << (csm ? Median(t.Storage) : NAN) << "," << t.Times.size() << "," << measuredPixels
           << "," << Median(t.InteractiveTimes) << "," << Median(t.StillTimes) << ","
-          << Median(t.PlanMs) << "," << Median(t.MapMs) << ","
+          << Median(t.PlanMs) << "," << Mean(t.MapMs) << "," << PerMap(t) << ","
+          << (csm && t.MapsRendered > 0 ? t.TexelsRendered / t.MapsRendered : NAN) << ","
           << (csm ? double(t.MapsRendered) / timedFrames(t) : NAN) << ","
           << (csm ? double(t.MapsKept) / timedFrames(t) : NAN) << "\n";
       std::printf("  %-16s %8.1f ms  mismatch %6.3f%% (shadow %6.3f%%, light %6.3f%%)  max m %8.2f"
@@ -763,7 +784,9 @@ int main(int argc, char** argv)
           std::printf("  maps rendered %.2f kept %.2f per frame", double(t.MapsRendered) / timedFrames(t),
             double(t.MapsKept) / timedFrames(t));
         if (!t.PlanMs.empty())
-          std::printf("  plan %.3f ms  maps %.1f ms", Median(t.PlanMs), Median(t.MapMs));
+          std::printf("  plan %.3f ms  maps %.1f ms a frame, %.1f ms a map of %.0f^2 texels",
+            Median(t.PlanMs), Mean(t.MapMs), PerMap(t),
+            t.MapsRendered > 0 ? std::sqrt(t.TexelsRendered / t.MapsRendered) : 0.0);
         std::printf("\n");
       }
     }
