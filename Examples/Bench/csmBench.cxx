@@ -66,6 +66,7 @@ struct Options
   int AccuracyEvery = 10; // accuracy on every n-th path frame
   int InteractiveFrames = 30; // interactive orbit: 2 degrees a frame, as a user drags
   int StillFrames = 8;        // the default view, camera still
+  int DollyFrames = 12;       // flicker: consecutive frames of a dolly toward the focal point
   bool Breakdown = false;     // per frame: planning and map times, maps rendered
   std::vector<std::string> Scenes = { "platform", "platform-beams", "platform-2m", "towers",
     "engine" };
@@ -95,6 +96,11 @@ struct Technique
   std::vector<double> M;
   std::vector<double> Storage;
   std::vector<double> MathUs;
+  // Flicker along the dolly: compared pixels of consecutive frames, and those whose class
+  // (shadowed: factor < 0.5) changed while the truth's did not.
+  long long FlickerCompared = 0, Flickered = 0;
+  std::vector<char> LastShadowed; // previous dolly frame, per pixel (-1: not compared)
+  double FlickerPct() const { return FlickerCompared ? 100.0 * Flickered / FlickerCompared : NAN; }
 };
 
 std::vector<Technique> Techniques(const Options& o)
@@ -528,6 +534,7 @@ Options Parse(int argc, char** argv)
     o.AccuracyEvery = 6;
     o.InteractiveFrames = 10;
     o.StillFrames = 4;
+    o.DollyFrames = 6;
   }
   return o;
 }
@@ -543,7 +550,7 @@ int main(int argc, char** argv)
   csv << "scene,technique,label,warp,partition,cascades,resolution,pcf,texels,memory_mb,median_ms,"
          "p10_ms,p90_ms,math_us,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m,"
          "storage,frames,measured_pixels,interactive_ms,still_ms,plan_ms,map_ms,map_ms_per_map,"
-         "texels_per_map,"
+         "texels_per_map,flicker_pct,"
          "maps_rendered_per_frame,maps_kept_per_frame\n";
   detail << "scene,label,view,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m\n";
   std::vector<std::pair<std::string, std::vector<Technique>>> results;
@@ -749,6 +756,71 @@ int main(int argc, char** argv)
       measuredPixels += std::count(comparable.begin(), comparable.end(), 1);
     }
 
+    // Temporal stability: a dolly toward the focal point (1 % of the distance a frame) with the
+    // light 15 degrees from the view direction (behind the viewer), the hard case for cascades
+    // that follow the view; every frame measured. Flicker = compared pixels (in both frames of a
+    // consecutive pair) whose shadowed/lit class changes while the truth's does not.
+    {
+      View dolly = views[0];
+      double dir[3] = { dolly.Focal[0] - dolly.Position[0], dolly.Focal[1] - dolly.Position[1],
+        dolly.Focal[2] - dolly.Position[2] };
+      const double distance = std::sqrt(Dot(dir, dir));
+      for (double& c : dir)
+        c /= distance;
+      double up[3] = { 0, 1, 0 };
+      const double along = Dot(up, dir);
+      for (int c = 0; c < 3; ++c)
+        up[c] -= along * dir[c];
+      const double lu = std::sqrt(Dot(up, up));
+      const double gamma = 15.0 * M_PI / 180.0;
+      for (int c = 0; c < 3; ++c)
+        dolly.Light[c] = std::cos(gamma) * dir[c] - std::sin(gamma) * up[c] / lu;
+      std::vector<char> lastOccluded;
+      for (Technique& t : techniques)
+        t.LastShadowed.clear();
+      for (int frame = 0; frame < o.DollyFrames; ++frame)
+      {
+        View v = dolly;
+        for (int c = 0; c < 3; ++c)
+          v.Position[c] = dolly.Position[c] + 0.01 * frame * distance * dir[c];
+        Apply(v, renderer, key, scene);
+        if (rays.TubesFollowCamera())
+          rays.Build(renderer, o.Height);
+        renderer->SetPass(nullptr);
+        window->Render();
+        auto plain = Grab(window);
+        const auto surfaces = rays.CastPrimary(renderer->GetActiveCamera(), o.Width, o.Height);
+        const auto comparable = csmTruth::ComparablePixels(surfaces, o.Width, o.Height, v.Light);
+        std::vector<char> occluded(surfaces.size(), -1);
+        for (size_t k = 0; k < surfaces.size(); ++k)
+          if (comparable[k])
+            occluded[k] = rays.Occluded(surfaces[k], v.Light) ? 1 : 0;
+        for (Technique& t : techniques)
+        {
+          renderer->SetPass(t.Chain);
+          window->Render();
+          auto shadowed = Grab(window);
+          const auto factor = csmTruth::FactorFromRenders(shadowed, plain);
+          std::vector<char> classes(surfaces.size(), -1);
+          for (size_t k = 0; k < surfaces.size(); ++k)
+            if (comparable[k])
+              classes[k] = factor[k] < 0.5f ? 1 : 0;
+          if (!t.LastShadowed.empty())
+          {
+            for (size_t k = 0; k < classes.size(); ++k)
+            {
+              if (classes[k] < 0 || t.LastShadowed[k] < 0)
+                continue;
+              ++t.FlickerCompared;
+              t.Flickered += classes[k] != t.LastShadowed[k] && occluded[k] == lastOccluded[k];
+            }
+          }
+          t.LastShadowed = classes;
+        }
+        lastOccluded = occluded;
+      }
+    }
+
     auto timedFrames = [](const Technique& t) {
       return std::max<double>(1.0, double(t.Times.size() + t.InteractiveTimes.size() + t.StillTimes.size()));
     };
@@ -768,12 +840,13 @@ int main(int argc, char** argv)
           << "," << Median(t.InteractiveTimes) << "," << Median(t.StillTimes) << ","
           << Median(t.PlanMs) << "," << Mean(t.MapMs) << "," << PerMap(t) << ","
           << (csm && t.MapsRendered > 0 ? t.TexelsRendered / t.MapsRendered : NAN) << ","
+          << t.FlickerPct() << ","
           << (csm ? double(t.MapsRendered) / timedFrames(t) : NAN) << ","
           << (csm ? double(t.MapsKept) / timedFrames(t) : NAN) << "\n";
       std::printf("  %-16s %8.1f ms  mismatch %6.3f%% (shadow %6.3f%%, light %6.3f%%)  max m %8.2f"
-                  "  p95 m %6.2f\n",
+                  "  p95 m %6.2f  flicker %5.2f%%\n",
         t.Label.c_str(), Median(t.Times), t.Errors.MismatchPct(), t.Errors.FalseShadowPct(),
-        t.Errors.FalseLightPct(), ms.Max, ms.P95);
+        t.Errors.FalseLightPct(), ms.Max, ms.P95, t.FlickerPct());
       if (t.Label != "vtk")
       {
         const Technique& vtk = techniques.front();
