@@ -107,6 +107,7 @@ void usage()
     "  --warp W           none | psm | lispsm | generalized [%s]\n"
     "  --partition P      single | uniform | log | practical | adaptive [%s]\n"
     "  --cascades K       1..%d [%d]      --lambda L  practical weight [%g]\n"
+    "  --adaptive-cascades on|off  the fewest cascades, up to K, that meet --error-target [%s]\n"
     "  --alpha A          adaptive ratio > 1 [%g]\n"
     "  --resolution R     texels per cascade side at most, 64..8192 [%d]\n"
     "  --error-target M   each cascade's resolution for aliasing error <= M (texel/pixel);\n"
@@ -128,7 +129,7 @@ void usage()
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
     "  t technique, l light angle +15 deg\n",
     o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
-    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
+    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.AdaptiveCascades ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
     d.SlopeBias, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
     o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
@@ -213,6 +214,12 @@ Options parse(int argc, char** argv)
     else if (f == "--debug")
     {
       o.Shadow.Debug = choice(f, v, kDebug, 4);
+      next();
+    }
+    else if (f == "--adaptive-cascades")
+    {
+      const char* const names[] = { "off", "on" };
+      o.Shadow.AdaptiveCascades = choice(f, v, names, 2) == 1;
       next();
     }
     else if (f == "--depth-clamp")

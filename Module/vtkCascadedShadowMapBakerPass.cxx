@@ -660,7 +660,8 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
     LightMaps maps;
     maps.Light = light;
     maps.LightIndex = index;
-    const int count = this->Planner->Plan(camera, aspect, light, sceneBounds);
+    const int count =
+      this->Planner->Plan(camera, aspect, light, sceneBounds, imageHeight, ceiling);
     maps.NumberOfCascades = std::min(count, kMaxCascades);
     light->GetTransformedPosition(maps.LightGeometry);
     light->GetTransformedFocalPoint(maps.LightGeometry + 3);
@@ -677,8 +678,8 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       this->Planner->GetCascadeMatrix(c, m, border);
       std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
       maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
-      maps.CascadeResolution[c] = this->Planner->GetCascadeResolution(
-        c, imageHeight, this->ErrorTarget, RESOLUTION_STEP, ceiling);
+      maps.CascadeResolution[c] =
+        this->Planner->GetCascadeResolution(c, imageHeight, RESOLUTION_STEP, ceiling);
       // A kept map serves if it has at least the texels this view needs.
       const bool keep = kept &&
         (interacting || !screenSized ||
@@ -995,6 +996,8 @@ csmForwardToPlanner(SplitScheme, int)
 csmForwardToPlanner(Lambda, double)
 csmForwardToPlanner(Alpha, double)
 csmForwardToPlanner(DepthClamp, bool)
+csmForwardToPlanner(ErrorTarget, double)
+csmForwardToPlanner(AdaptiveCascades, bool)
 #undef csmForwardToPlanner
 
 vtkMTimeType vtkCascadedShadowMapBakerPass::GetMTime()
@@ -1007,7 +1010,6 @@ void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Resolution: " << this->Resolution << "\n";
   os << indent << "InteractiveResolution: " << this->InteractiveResolution << "\n";
-  os << indent << "ErrorTarget: " << this->ErrorTarget << "\n";
   os << indent << "Planner:\n";
   this->Planner->PrintSelf(os, indent.GetNextIndent());
   os << indent << "PolygonOffsetFactor: " << this->PolygonOffsetFactor << "\n";

@@ -79,21 +79,6 @@ public:
   vtkGetMacro(InteractiveResolution, int);
   ///@}
 
-  ///@{
-  /**
-   * Texels only where the view needs them: each cascade's map gets the smallest resolution (a
-   * multiple of RESOLUTION_STEP) at which the planner's predicted worst aliasing error of the
-   * cascade (Lloyd et al. 2006, Eq. 9-10: m, the width of a texel over that of a pixel, at the
-   * worst point of the cascade's receivers) is at most ErrorTarget in this renderer's viewport;
-   * Resolution (InteractiveResolution while the user drags) is the ceiling. A view that a map
-   * oversamples (a small model, a small window) renders a smaller map; 0 renders every map at
-   * the ceiling. Default 1 (one texel to a pixel where the error is largest).
-   */
-  vtkSetFiniteClampMacro(ErrorTarget, double, 0.0, 1.0e6);
-  vtkGetMacro(ErrorTarget, double);
-  ///@}
-  /// Resolutions chosen from ErrorTarget are multiples of this.
-  static constexpr int RESOLUTION_STEP = 64;
 
   ///@{
   /**
@@ -117,6 +102,24 @@ public:
   bool GetDepthClamp();
   vtkBooleanMacro(DepthClamp, bool);
   ///@}
+
+  ///@{
+  /**
+   * Texels only where the view needs them (forwarded to GetPlanner(), which documents them):
+   * each cascade's map gets the fewest texels (a multiple of RESOLUTION_STEP) at which its
+   * predicted worst aliasing error m in this renderer's viewport is at most ErrorTarget
+   * (default 1; 0: every map at the ceiling), with Resolution (InteractiveResolution while the
+   * user drags) the ceiling; with AdaptiveCascades (default off) the number of cascades is the
+   * smallest up to NumberOfCascades that meets ErrorTarget at the ceiling.
+   */
+  void SetErrorTarget(double target);
+  double GetErrorTarget();
+  void SetAdaptiveCascades(bool adaptive);
+  bool GetAdaptiveCascades();
+  vtkBooleanMacro(AdaptiveCascades, bool);
+  ///@}
+  /// Resolutions chosen from ErrorTarget are multiples of this.
+  static constexpr int RESOLUTION_STEP = 64;
 
   ///@{
   /**
@@ -311,7 +314,6 @@ protected:
 
   int Resolution = 2048;
   int InteractiveResolution = 1024;
-  double ErrorTarget = 1.0;
   double PolygonOffsetFactor = 1.1;
   double PolygonOffsetUnits = 2.0;
   double MapReuseTolerance = 1.25;

@@ -46,6 +46,8 @@ struct vtkCascadedShadowMapPlanner::Internals
     std::string Message;
   };
   std::map<const void*, Reported> ReportedErrors;
+  /// The number of cascades last planned per light (AdaptiveCascades' hysteresis).
+  std::map<const void*, int> LastCount;
   // What the last plan was made for (compares kept maps with it).
   csm::Camera Camera;
   glm::dvec3 wsLightDirection{ 0.0, -1.0, 0.0 };
@@ -116,15 +118,17 @@ csm::Bounds toBounds(const double bounds[6])
 }
 }
 
-int vtkCascadedShadowMapPlanner::Plan(
-  vtkCamera* camera, double aspect, const double lightDirection[3], const double bounds[6])
+int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect,
+  const double lightDirection[3], const double bounds[6], int imageHeight, int maximumResolution)
 {
-  this->PlanDirection(camera, aspect, lightDirection, bounds);
+  this->PlanDirection(
+    camera, aspect, lightDirection, bounds, nullptr, imageHeight, maximumResolution);
   return this->Report(nullptr, 0);
 }
 
-void vtkCascadedShadowMapPlanner::PlanDirection(
-  vtkCamera* camera, double aspect, const double lightDirection[3], const double bounds[6])
+void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect,
+  const double lightDirection[3], const double bounds[6], const void* light, int imageHeight,
+  int maximumResolution)
 {
   csm::Camera cam;
   if (!toCamera(camera, aspect, cam) || !lightDirection)
@@ -141,18 +145,31 @@ void vtkCascadedShadowMapPlanner::PlanDirection(
   settings.split.alpha = this->Alpha;
   settings.depthClamp = this->DepthClamp;
   const csm::Bounds scene = toBounds(bounds);
-  const glm::dvec3 light(lightDirection[0], lightDirection[1], lightDirection[2]);
+  const glm::dvec3 direction(lightDirection[0], lightDirection[1], lightDirection[2]);
+  const void* lightKey = light;
   const std::vector<csm::Bounds>* parts =
     this->Internal->Receivers.empty() ? nullptr : &this->Internal->Receivers;
   this->Internal->Camera = cam;
-  this->Internal->wsLightDirection = light;
+  this->Internal->wsLightDirection = direction;
   this->Internal->Directional = true;
-  this->Internal->Setup =
-    csm::computeShadowSetup(cam, light, bounds ? &scene : nullptr, settings, parts);
+  if (this->AdaptiveCascades && this->ErrorTarget > 0.0 && imageHeight > 0 &&
+    maximumResolution > 0)
+  {
+    auto last = this->Internal->LastCount.find(lightKey);
+    this->Internal->Setup = csm::computeShadowSetupForError(cam, direction,
+      bounds ? &scene : nullptr, settings, parts, imageHeight, maximumResolution,
+      this->ErrorTarget, last == this->Internal->LastCount.end() ? 0 : last->second);
+  }
+  else
+  {
+    this->Internal->Setup =
+      csm::computeShadowSetup(cam, direction, bounds ? &scene : nullptr, settings, parts);
+  }
+  this->Internal->LastCount[lightKey] = static_cast<int>(this->Internal->Setup.cascades.size());
 }
 
-int vtkCascadedShadowMapPlanner::Plan(
-  vtkCamera* camera, double aspect, vtkLight* light, const double bounds[6])
+int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight* light,
+  const double bounds[6], int imageHeight, int maximumResolution)
 {
   if (!light)
   {
@@ -165,7 +182,7 @@ int vtkCascadedShadowMapPlanner::Plan(
     focal[2] - position[2] };
   if (!light->GetPositional())
   {
-    this->PlanDirection(camera, aspect, direction, bounds);
+    this->PlanDirection(camera, aspect, direction, bounds, light, imageHeight, maximumResolution);
     return this->Report(light, light->GetMTime());
   }
   // A spot light: one perspective map fitted to the lit part of the visible scene.
@@ -280,10 +297,10 @@ double vtkCascadedShadowMapPlanner::GetCascadeMaximumAliasing(int i) const
 }
 
 int vtkCascadedShadowMapPlanner::GetCascadeResolution(
-  int i, int imageHeight, double targetError, int step, int ceiling) const
+  int i, int imageHeight, int step, int ceiling) const
 {
   return csm::resolutionForError(
-    this->GetCascadeMaximumAliasing(i), imageHeight, targetError, step, ceiling);
+    this->GetCascadeMaximumAliasing(i), imageHeight, this->ErrorTarget, step, ceiling);
 }
 
 double vtkCascadedShadowMapPlanner::GetStorageTotal() const
@@ -364,5 +381,7 @@ void vtkCascadedShadowMapPlanner::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Lambda: " << this->Lambda << "\n";
   os << indent << "Alpha: " << this->Alpha << "\n";
   os << indent << "DepthClamp: " << (this->DepthClamp ? "on" : "off") << "\n";
+  os << indent << "ErrorTarget: " << this->ErrorTarget << "\n";
+  os << indent << "AdaptiveCascades: " << (this->AdaptiveCascades ? "on" : "off") << "\n";
   os << indent << "PlannedCascades: " << this->GetNumberOfPlannedCascades() << "\n";
 }

@@ -84,6 +84,32 @@ public:
   ///@}
 
   ///@{
+  /**
+   * The aliasing error (Lloyd et al. 2006, Eq. 1: m, the width of a texel over that of a
+   * pixel) the maps are sized for: each cascade's map gets the fewest texels at which its
+   * predicted worst error is at most ErrorTarget (GetCascadeResolution()), and with
+   * AdaptiveCascades the number of cascades is the smallest that reaches it. 0: neither (every
+   * map at the ceiling, NumberOfCascades cascades). Default 1 (one texel to a pixel where the
+   * error is largest).
+   */
+  vtkSetFiniteClampMacro(ErrorTarget, double, 0.0, 1.0e6);
+  vtkGetMacro(ErrorTarget, double);
+  ///@}
+
+  ///@{
+  /**
+   * Choose the number of cascades per frame from the error model: the smallest number up to
+   * NumberOfCascades whose predicted worst error at the largest map resolution meets
+   * ErrorTarget (all NumberOfCascades when none does), changed with hysteresis from the last
+   * frame's (csm::computeShadowSetupForError). Needs the image height and the largest map
+   * resolution (see Plan()). Default off.
+   */
+  vtkSetMacro(AdaptiveCascades, bool);
+  vtkGetMacro(AdaptiveCascades, bool);
+  vtkBooleanMacro(AdaptiveCascades, bool);
+  ///@}
+
+  ///@{
   /// Fit the light depth range to the receivers only and let the GPU clamp casters in front of
   /// it (Lloyd et al. §6.4). Default on.
   vtkSetMacro(DepthClamp, bool);
@@ -98,12 +124,16 @@ public:
    * number of cascades, 0 when there is nothing to shadow or the input is invalid (see
    * GetLastMessage()).
    */
-  int Plan(vtkCamera* camera, double aspect, const double lightDirection[3], const double bounds[6]);
+  int Plan(vtkCamera* camera, double aspect, const double lightDirection[3], const double bounds[6],
+    int imageHeight = 0, int maximumResolution = 0);
 
+  /// imageHeight (pixels) and maximumResolution (texels a side of the largest map) are what
+  /// AdaptiveCascades weighs the error with; without them it plans NumberOfCascades.
   /// The same for a vtkLight: a directional light travels from its transformed position to its
   /// transformed focal point; a positional (spot) light gets one perspective map fitted to the
   /// part of the visible scene inside its cone (cone angle < 90 degrees).
-  int Plan(vtkCamera* camera, double aspect, vtkLight* light, const double bounds[6]);
+  int Plan(vtkCamera* camera, double aspect, vtkLight* light, const double bounds[6],
+    int imageHeight = 0, int maximumResolution = 0);
 
   ///@{
   /**
@@ -138,10 +168,10 @@ public:
   double GetCascadeMaximumAliasing(int i) const;
 
   /// The map resolution (texels a side) cascade i needs for an aliasing error m of at most
-  /// targetError in an image imageHeight pixels high: a multiple of step, at most ceiling; the
-  /// ceiling where the error is not defined (spot lights) or targetError is 0
+  /// ErrorTarget in an image imageHeight pixels high: a multiple of step, at most ceiling; the
+  /// ceiling where the error is not defined (spot lights) or ErrorTarget is 0
   /// (csm::resolutionForError).
-  int GetCascadeResolution(int i, int imageHeight, double targetError, int step, int ceiling) const;
+  int GetCascadeResolution(int i, int imageHeight, int step, int ceiling) const;
 
   /// Storage factor of the plan (Lloyd Eq. 12 summed over the cascades) and its optimum.
   double GetStorageTotal() const;
@@ -192,13 +222,15 @@ protected:
   double Lambda = 0.5;
   double Alpha = 2.0;
   bool DepthClamp = true;
+  double ErrorTarget = 1.0;
+  bool AdaptiveCascades = false;
 
 private:
   vtkCascadedShadowMapPlanner(const vtkCascadedShadowMapPlanner&) = delete;
   void operator=(const vtkCascadedShadowMapPlanner&) = delete;
 
-  void PlanDirection(
-    vtkCamera* camera, double aspect, const double lightDirection[3], const double bounds[6]);
+  void PlanDirection(vtkCamera* camera, double aspect, const double lightDirection[3],
+    const double bounds[6], const void* light, int imageHeight, int maximumResolution);
   /// Reports an invalid plan once per light (null: a direction) until the light or message changes.
   int Report(const void* light, vtkMTimeType lightTime);
 

@@ -92,6 +92,7 @@ struct Technique
   std::vector<double> PlanMs, MapMs;    // --breakdown: per timed frame
   double TexelsRendered = 0.0;          // map texels rendered over the timed frames
   long long MapsRendered = 0, MapsKept = 0;
+  long long CascadesPlanned = 0, FramesPlanned = 0; // k_used: cascades of the first light a frame
   csmTruth::Classification Errors;
   std::vector<double> M;
   std::vector<double> Storage;
@@ -128,6 +129,16 @@ std::vector<Technique> Techniques(const Options& o)
     t.Label = "default";
     const csmScenes::ShadowOptions& s = t.Shadow; // default-constructed: the pass's defaults
     t.Texels = static_cast<long long>(s.Cascades) * s.Resolution * s.Resolution;
+    t.MemoryMB = 4.0 * t.Texels / (1024.0 * 1024.0);
+    list.push_back(t);
+  }
+  {
+    // The fewest cascades, up to 4, that meet the error target (AdaptiveCascades).
+    Technique t;
+    t.Label = "adaptive k<=4";
+    t.Shadow.Cascades = 4;
+    t.Shadow.AdaptiveCascades = true;
+    t.Texels = static_cast<long long>(t.Shadow.Cascades) * t.Shadow.Resolution * t.Shadow.Resolution;
     t.MemoryMB = 4.0 * t.Texels / (1024.0 * 1024.0);
     list.push_back(t);
   }
@@ -312,6 +323,11 @@ void Account(Technique& t)
   t.MapsRendered += baker->GetLastCascadeRenders();
   t.MapsKept += baker->GetLastCascadesKept();
   t.TexelsRendered += baker->GetLastTexelsRendered();
+  if (!baker->GetLightMaps().empty())
+  {
+    t.CascadesPlanned += baker->GetLightMaps()[0].NumberOfCascades;
+    ++t.FramesPlanned;
+  }
   if (baker->GetMeasureTimes())
   {
     t.PlanMs.push_back(1000.0 * baker->GetLastPlanSeconds());
@@ -550,7 +566,7 @@ int main(int argc, char** argv)
   csv << "scene,technique,label,warp,partition,cascades,resolution,pcf,texels,memory_mb,median_ms,"
          "p10_ms,p90_ms,math_us,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m,"
          "storage,frames,measured_pixels,interactive_ms,still_ms,plan_ms,map_ms,map_ms_per_map,"
-         "texels_per_map,flicker_pct,"
+         "texels_per_map,flicker_pct,k_used,"
          "maps_rendered_per_frame,maps_kept_per_frame\n";
   detail << "scene,label,view,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m\n";
   std::vector<std::pair<std::string, std::vector<Technique>>> results;
@@ -841,6 +857,7 @@ int main(int argc, char** argv)
           << Median(t.PlanMs) << "," << Mean(t.MapMs) << "," << PerMap(t) << ","
           << (csm && t.MapsRendered > 0 ? t.TexelsRendered / t.MapsRendered : NAN) << ","
           << t.FlickerPct() << ","
+          << (t.FramesPlanned ? double(t.CascadesPlanned) / t.FramesPlanned : NAN) << ","
           << (csm ? double(t.MapsRendered) / timedFrames(t) : NAN) << ","
           << (csm ? double(t.MapsKept) / timedFrames(t) : NAN) << "\n";
       std::printf("  %-16s %8.1f ms  mismatch %6.3f%% (shadow %6.3f%%, light %6.3f%%)  max m %8.2f"
@@ -854,8 +871,9 @@ int main(int argc, char** argv)
           Median(t.Times) / Median(vtk.Times), Median(t.InteractiveTimes) / Median(vtk.InteractiveTimes),
           Median(t.StillTimes) / Median(vtk.StillTimes));
         if (csm)
-          std::printf("  maps rendered %.2f kept %.2f per frame", double(t.MapsRendered) / timedFrames(t),
-            double(t.MapsKept) / timedFrames(t));
+          std::printf("  k %.2f  maps rendered %.2f kept %.2f per frame",
+            t.FramesPlanned ? double(t.CascadesPlanned) / t.FramesPlanned : 0.0,
+            double(t.MapsRendered) / timedFrames(t), double(t.MapsKept) / timedFrames(t));
         if (!t.PlanMs.empty())
           std::printf("  plan %.3f ms  maps %.1f ms a frame, %.1f ms a map of %.0f^2 texels",
             Median(t.PlanMs), Mean(t.MapMs), PerMap(t),

@@ -681,6 +681,64 @@ ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosi
   return setup;
 }
 
+double predictedError(const ShadowSetup& setup, double imageHeight, int resolution)
+{
+  if (setup.cascades.empty() || resolution <= 0)
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  double worst = 0.0;
+  for (const Cascade& c : setup.cascades)
+  {
+    worst = std::max({ worst, c.Mx, c.Mz });
+  }
+  return worst * imageHeight / resolution;
+}
+
+ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& wsLightDirection,
+  const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
+  double imageHeight, int maximumResolution, double targetError, int kPrevious)
+{
+  const int kMax = std::max(1, settings.split.k);
+  std::vector<ShadowSetup> plans;
+  std::vector<double> errors;
+  int chosen = 0; // 1-based; 0: none meets the target
+  for (int k = 1; k <= kMax; ++k)
+  {
+    Settings s = settings;
+    s.split.k = k;
+    plans.push_back(computeShadowSetup(camera, wsLightDirection, sceneBounds, s, receiverParts));
+    if (plans.back().status != Status::Ok)
+    {
+      return plans.back(); // the same for every count
+    }
+    errors.push_back(predictedError(plans.back(), imageHeight, maximumResolution));
+    if (!(errors.back() <= targetError))
+    {
+      continue;
+    }
+    chosen = k;
+    break;
+  }
+  if (chosen == 0)
+  {
+    return plans.back(); // none meets the target: the most cascades
+  }
+  if (kPrevious > chosen && kPrevious <= kMax && !(errors.back() <= kCountHysteresis * targetError))
+  {
+    // Fewer cascades would do, but not by a margin: keep the previous count if it still does.
+    Settings s = settings;
+    s.split.k = kPrevious;
+    ShadowSetup previous =
+      computeShadowSetup(camera, wsLightDirection, sceneBounds, s, receiverParts);
+    if (predictedError(previous, imageHeight, maximumResolution) <= targetError)
+    {
+      return previous;
+    }
+  }
+  return plans.back();
+}
+
 int resolutionForError(double maxAliasing, double imageHeight, double targetError, int step,
   int ceiling)
 {

@@ -106,6 +106,24 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
   const Bounds* sceneBounds, const Settings& settings,
   const std::vector<Bounds>* receiverParts = nullptr);
 
+/// The number of cascades from the error model: the smallest k in [1, settings.split.k] whose
+/// plan's predicted worst error, max over its cascades of max(M_x, M_z) (Lloyd et al. 2006,
+/// Eq. 9-10) times imageHeight / maximumResolution, is at most targetError; settings.split.k when
+/// none is. Changing the partitioning from frame to frame can pop (Lloyd et al. 2006, §5.2): from
+/// a previous count kPrevious (0: none) that still meets the target, a smaller count is taken
+/// only where it meets kCountHysteresis times the target. Returns the plan for the chosen count
+/// (its cascades.size() may be smaller where partitions are empty); the same input errors as
+/// computeShadowSetup.
+ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& wsLightDirection,
+  const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
+  double imageHeight, int maximumResolution, double targetError, int kPrevious);
+
+/// Share of the error target a smaller cascade count must meet to replace a previous count.
+constexpr double kCountHysteresis = 0.8;
+
+/// The predicted worst error of a plan (see computeShadowSetupForError): +infinity without cascades.
+double predictedError(const ShadowSetup& setup, double imageHeight, int resolution);
+
 /// One perspective map for a spot light at wsLightPosition shining along wsLightAxis with the
 /// given cone half-angle (< 90 degrees), fitted to what the view needs: the part of the visible
 /// scene (view frustum clipped by the scene bounds, may be null) inside the cone's bounding

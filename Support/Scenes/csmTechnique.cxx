@@ -30,6 +30,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->Alpha = baker->GetAlpha();
   this->Resolution = baker->GetResolution();
   this->ErrorTarget = baker->GetErrorTarget();
+  this->AdaptiveCascades = baker->GetAdaptiveCascades();
   this->DepthClamp = baker->GetDepthClamp();
   this->PCF = pass->GetPCFSize();
   this->Kernel = pass->GetPCFKernel();
@@ -50,6 +51,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetAlpha(o.Alpha);
   baker->SetResolution(o.Resolution);
   baker->SetErrorTarget(o.ErrorTarget);
+  baker->SetAdaptiveCascades(o.AdaptiveCascades);
   baker->SetDepthClamp(o.DepthClamp);
   pass->SetPCFSize(o.PCF);
   pass->SetPCFKernel(o.Kernel);

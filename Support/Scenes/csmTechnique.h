@@ -34,6 +34,7 @@ struct ShadowOptions
   double Alpha;
   int Resolution;                ///< also VTK's pass's, for technique vtk
   double ErrorTarget;            ///< resolution from need (0: always Resolution)
+  bool AdaptiveCascades;         ///< Cascades: the most; fewer where they meet ErrorTarget
   int PCF;
   int Kernel;                    ///< vtkCascadedShadowMapPass::Kernels
   double ConstantBias;

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 namespace
@@ -632,4 +633,70 @@ TEST(Steps, ResolutionForErrorMeetsTheTargetWithTheFewestTexels)
   EXPECT_EQ(csm::resolutionForError(1e-6, 600.0, 1.0, 64, 2048), 64);
   EXPECT_EQ(csm::resolutionForError(2.0, 600.0, 1.0, 64, 2048), 1216); // 1200 rounded up
   EXPECT_EQ(csm::resolutionForError(2.0, 600.0, 2.0, 64, 2048), 640);  // 600 rounded up
+}
+
+TEST(Steps, CascadeCountFromTheErrorModel)
+{
+  // Lloyd et al. 2006: the storage factor grows with f/n and toward parallel light and view.
+  // With an error target of 1.5 texels a pixel, a 600-pixel image and 2048-texel maps: a short
+  // view (f/n = 10) with the light overhead needs one cascade; a 1:10^4 view with the light
+  // behind the viewer more than two (none of up to 8 reaches the target: the most are taken).
+  const auto settingsUpTo8 = settings(csm::WarpMode::Generalized, csm::SplitScheme::Adaptive, 8);
+  const csm::Camera shortView = camera(1.0, 10.0, 40.0, 4.0 / 3.0);
+  const csm::ShadowSetup overhead = csm::computeShadowSetupForError(
+    shortView, lightAt(shortView, 90.0), nullptr, settingsUpTo8, nullptr, 600.0, 2048, 1.5, 0);
+  ASSERT_EQ(overhead.status, csm::Status::Ok);
+  EXPECT_EQ(overhead.cascades.size(), 1u);
+  EXPECT_LE(csm::predictedError(overhead, 600.0, 2048), 1.5);
+  const csm::Camera longView = camera(1.0, 1.0e4, 40.0, 4.0 / 3.0);
+  const csm::ShadowSetup behind = csm::computeShadowSetupForError(
+    longView, lightAt(longView, 0.0), nullptr, settingsUpTo8, nullptr, 600.0, 2048, 1.5, 0);
+  ASSERT_EQ(behind.status, csm::Status::Ok);
+  EXPECT_GT(behind.cascades.size(), 2u);
+  // The count is the smallest that meets the target: one fewer does not (f/n = 100, behind).
+  const csm::Camera midView = camera(1.0, 100.0, 40.0, 4.0 / 3.0);
+  const csm::ShadowSetup enough = csm::computeShadowSetupForError(
+    midView, lightAt(midView, 0.0), nullptr, settingsUpTo8, nullptr, 600.0, 2048, 1.5, 0);
+  ASSERT_EQ(enough.status, csm::Status::Ok);
+  auto fewer = settingsUpTo8;
+  fewer.split.k = static_cast<int>(enough.cascades.size()) - 1;
+  const csm::ShadowSetup oneFewer =
+    csm::computeShadowSetup(midView, lightAt(midView, 0.0), nullptr, fewer, nullptr);
+  EXPECT_GT(enough.cascades.size(), 2u);
+  EXPECT_LE(csm::predictedError(enough, 600.0, 2048), 1.5);
+  EXPECT_GT(csm::predictedError(oneFewer, 600.0, 2048), 1.5);
+  std::printf("cascades: overhead f/n 10: %zu (error %.3f); behind f/n 100: %zu (error %.3f, "
+              "with one fewer %.3f); behind f/n 1e4: %zu (error %.1f)\n",
+    overhead.cascades.size(), csm::predictedError(overhead, 600.0, 2048), enough.cascades.size(),
+    csm::predictedError(enough, 600.0, 2048), csm::predictedError(oneFewer, 600.0, 2048),
+    behind.cascades.size(), csm::predictedError(behind, 600.0, 2048));
+  // None meets an unreachable target: the most cascades.
+  const csm::ShadowSetup most = csm::computeShadowSetupForError(
+    longView, lightAt(longView, 0.0), nullptr, settingsUpTo8, nullptr, 600.0, 2048, 1e-6, 0);
+  EXPECT_EQ(most.cascades.size(), 8u);
+  // Hysteresis: where one cascade meets the target only within the margin, a previous count of
+  // two that meets it stays; without a previous count, one is taken.
+  const csm::Camera mid = camera(1.0, 100.0, 40.0, 4.0 / 3.0);
+  const glm::dvec3 light = lightAt(mid, 60.0);
+  auto one = settingsUpTo8;
+  one.split.k = 1;
+  auto two = settingsUpTo8;
+  two.split.k = 2;
+  const double e1 =
+    csm::predictedError(csm::computeShadowSetup(mid, light, nullptr, one, nullptr), 1000.0, 2048);
+  const double e2 =
+    csm::predictedError(csm::computeShadowSetup(mid, light, nullptr, two, nullptr), 1000.0, 2048);
+  ASSERT_LT(e2, e1);
+  const double target = e1 / 0.9; // one cascade meets it, not by the hysteresis margin
+  EXPECT_EQ(csm::computeShadowSetupForError(mid, light, nullptr, two, nullptr, 1000.0, 2048,
+              target, 0).cascades.size(), 1u);
+  EXPECT_EQ(csm::computeShadowSetupForError(mid, light, nullptr, two, nullptr, 1000.0, 2048,
+              target, 2).cascades.size(), 2u);
+  EXPECT_EQ(csm::computeShadowSetupForError(mid, light, nullptr, two, nullptr, 1000.0, 2048,
+              e1 / 0.7, 2).cascades.size(), 1u);
+  // Bad input: the same message as a plain plan, no cascades.
+  const csm::ShadowSetup bad = csm::computeShadowSetupForError(mid,
+    glm::dvec3(std::nan(""), 1.0, 0.0), nullptr, two, nullptr, 1000.0, 2048, 1.0, 0);
+  EXPECT_EQ(bad.status, csm::Status::InvalidInput);
+  EXPECT_TRUE(bad.cascades.empty());
 }

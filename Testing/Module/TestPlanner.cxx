@@ -194,3 +194,38 @@ TEST(Planner, CascadeReachesBoxAndCascadeAtDepth)
   EXPECT_EQ(vtkCascadedShadowMapPlanner::GetCascadeAtDepth(5.0, 1.0, far, 2), 1);
   EXPECT_EQ(vtkCascadedShadowMapPlanner::GetCascadeAtDepth(50.0, 1.0, far, 2), -1);
 }
+
+TEST(Planner, AdaptiveCascadesTakeTheFewestThatMeetTheTarget)
+{
+  // A short view (f/n = 10) with the light overhead: one cascade meets m <= 1.5 in a 600-pixel
+  // image with 2048-texel maps (csm::computeShadowSetupForError); a long one (f/n = 100) with
+  // the light behind the viewer needs more than two. Without the image, NumberOfCascades.
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0, 0, 0);
+  camera->SetFocalPoint(0, 0, -1);
+  camera->SetViewAngle(40);
+  camera->SetClippingRange(1, 10);
+  const double down[3] = { 0, -1, 0 };
+  const double behind[3] = { 0, 0, -1 };
+  vtkNew<vtkCascadedShadowMapPlanner> planner;
+  planner->SetNumberOfCascades(8);
+  planner->SetErrorTarget(1.5);
+  EXPECT_FALSE(planner->GetAdaptiveCascades());
+  planner->AdaptiveCascadesOn();
+  EXPECT_EQ(planner->Plan(camera, 4.0 / 3.0, down, nullptr, 600, 2048), 1);
+  EXPECT_EQ(planner->Plan(camera, 4.0 / 3.0, down, nullptr), 8); // no image: no error model
+  // Hysteresis: after 8, one cascade (error 1.24) does not meet the target by the margin
+  // (0.8 x 1.5); 8 still meet it and stay.
+  EXPECT_EQ(planner->Plan(camera, 4.0 / 3.0, down, nullptr, 600, 2048), 8);
+  planner->AdaptiveCascadesOff();
+  EXPECT_EQ(planner->Plan(camera, 4.0 / 3.0, down, nullptr, 600, 2048), 8);
+  planner->AdaptiveCascadesOn();
+  camera->SetClippingRange(1, 100);
+  const int count = planner->Plan(camera, 4.0 / 3.0, behind, nullptr, 600, 2048);
+  EXPECT_GT(count, 2);
+  EXPECT_LE(count, 8);
+  for (int i = 0; i < count; ++i)
+  {
+    EXPECT_LE(planner->GetCascadeMaximumAliasing(i) * 600.0 / 2048.0, 1.5);
+  }
+}

@@ -864,8 +864,8 @@ TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
   {
     const int r = maps.CascadeResolution[c];
     // The planner's choice for this 240-pixel-high view, and fewer texels than the ceiling.
-    EXPECT_EQ(r, planner->GetCascadeResolution(c, 240, 1.0,
-                   vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, baker->GetResolution()));
+    EXPECT_EQ(r, planner->GetCascadeResolution(
+                   c, 240, vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, baker->GetResolution()));
     EXPECT_LT(r, baker->GetResolution());
     EXPECT_EQ(r % vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, 0);
     // Predicted worst error at this resolution: at most the target.
@@ -882,7 +882,7 @@ TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
   for (int c = 0; c < maps.NumberOfCascades; ++c)
   {
     EXPECT_EQ(baker->GetLightMaps().at(0).CascadeResolution[c],
-      planner->GetCascadeResolution(c, 720, 1.0, vtkCascadedShadowMapBakerPass::RESOLUTION_STEP,
-        baker->GetResolution()));
+      planner->GetCascadeResolution(
+        c, 720, vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, baker->GetResolution()));
   }
 }
