@@ -680,11 +680,12 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
       maps.CascadeResolution[c] =
         this->Planner->GetCascadeResolution(c, imageHeight, RESOLUTION_STEP, ceiling);
-      // A kept map serves if it has at least the texels this view needs.
+      // A kept map serves if it has the texels this view needs (or all its tile holds, where the
+      // GL's texture size limit made the tiles smaller than Resolution).
       const bool keep = kept &&
         (interacting || !screenSized ||
           std::equal(viewKey, viewKey + 18, kept->CasterView[c])) &&
-        kept->CascadeResolution[c] >= maps.CascadeResolution[c] &&
+        kept->CascadeResolution[c] >= std::min(maps.CascadeResolution[c], kept->Resolution) &&
         this->Planner->CompareKeptMap(c, kept->WorldToMap[c], kReuseMarginTexels,
           kept->CascadeResolution[c]) <= tolerance;
       if (keep)
