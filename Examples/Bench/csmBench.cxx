@@ -96,6 +96,8 @@ struct Technique
   csmTruth::Classification Errors;
   std::vector<double> M;
   std::vector<double> Storage;
+  std::vector<double> StorageOverOptimal; // Lloyd et al. 2006: S / S_opt (App. C) per measured view
+  std::vector<double> NearFit;            // first cascade's near / camera near, per timed frame
   std::vector<double> MathUs;
   // Flicker along the dolly: compared pixels of consecutive frames, and those whose class
   // (shadowed: factor < 0.5) changed while the truth's did not.
@@ -315,7 +317,7 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
 
 /// After a timed frame: what the baker did (maps rendered and kept; with --breakdown, the
 /// planning and map times).
-void Account(Technique& t)
+void Account(Technique& t, vtkRenderer* renderer)
 {
   if (!t.Passes.Cascaded)
     return;
@@ -327,6 +329,9 @@ void Account(Technique& t)
   {
     t.CascadesPlanned += baker->GetLightMaps()[0].NumberOfCascades;
     ++t.FramesPlanned;
+    const double cameraNear = renderer->GetActiveCamera()->GetClippingRange()[0];
+    if (cameraNear > 0.0 && baker->GetLightMaps()[0].NumberOfCascades > 0)
+      t.NearFit.push_back(baker->GetLightMaps()[0].SplitNear / cameraNear);
   }
   if (baker->GetMeasureTimes())
   {
@@ -566,7 +571,7 @@ int main(int argc, char** argv)
   csv << "scene,technique,label,warp,partition,cascades,resolution,pcf,texels,memory_mb,median_ms,"
          "p10_ms,p90_ms,math_us,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m,"
          "storage,frames,measured_pixels,interactive_ms,still_ms,plan_ms,map_ms,map_ms_per_map,"
-         "texels_per_map,flicker_pct,k_used,"
+         "texels_per_map,flicker_pct,k_used,near_fit,storage_over_optimal,"
          "maps_rendered_per_frame,maps_kept_per_frame\n";
   detail << "scene,label,view,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m\n";
   std::vector<std::pair<std::string, std::vector<Technique>>> results;
@@ -650,7 +655,7 @@ int main(int argc, char** argv)
           window->WaitForCompletion(); // glFinish: the frame is done
           timer->StopTimer();
           t.Times.push_back(1000.0 * timer->GetElapsedTime());
-          Account(t);
+          Account(t, renderer);
         }
       }
     }
@@ -686,7 +691,7 @@ int main(int argc, char** argv)
             window->WaitForCompletion();
             timer->StopTimer();
             (interactive ? t.InteractiveTimes : t.StillTimes).push_back(1000.0 * timer->GetElapsedTime());
-            Account(t);
+            Account(t, renderer);
           }
           window->SetDesiredUpdateRate(0.0001);
         }
@@ -767,6 +772,7 @@ int main(int argc, char** argv)
           timer->StopTimer();
           t.MathUs.push_back(1e6 * timer->GetElapsedTime() / 20.0);
           t.Storage.push_back(planner->GetStorageTotal());
+          t.StorageOverOptimal.push_back(planner->GetStorageTotal() / planner->GetStorageOptimal());
         }
       }
       measuredPixels += std::count(comparable.begin(), comparable.end(), 1);
@@ -858,6 +864,7 @@ int main(int argc, char** argv)
           << (csm && t.MapsRendered > 0 ? t.TexelsRendered / t.MapsRendered : NAN) << ","
           << t.FlickerPct() << ","
           << (t.FramesPlanned ? double(t.CascadesPlanned) / t.FramesPlanned : NAN) << ","
+          << Median(t.NearFit) << "," << Median(t.StorageOverOptimal) << ","
           << (csm ? double(t.MapsRendered) / timedFrames(t) : NAN) << ","
           << (csm ? double(t.MapsKept) / timedFrames(t) : NAN) << "\n";
       std::printf("  %-16s %8.1f ms  mismatch %6.3f%% (shadow %6.3f%%, light %6.3f%%)  max m %8.2f"

@@ -886,3 +886,19 @@ TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
         c, 720, vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, baker->GetResolution()));
   }
 }
+
+// Temporal stability (issue: accuracy): a still camera shows the same shadow every frame, the
+// dithered blend band included (its pattern is fixed on the screen).
+TEST(Passes, AStillCameraDoesNotFlicker)
+{
+  BoxOverPlane scene;
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  pass->SetBlendBand(0.5); // a wide band: half of each cascade is dithered
+  auto first = scene.Frame();
+  EXPECT_GT(DarkenedPixels(first, plain), 800);
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    EXPECT_EQ(DifferingValues(scene.Frame(), first, 0), 0) << "frame " << frame;
+  }
+}
