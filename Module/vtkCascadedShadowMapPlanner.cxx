@@ -165,6 +165,10 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
     this->Internal->Setup =
       csm::computeShadowSetup(cam, direction, bounds ? &scene : nullptr, settings, parts);
   }
+  if (this->Internal->LastCount.size() > 64)
+  {
+    this->Internal->LastCount.clear(); // lights come and go: keep the memory bounded
+  }
   this->Internal->LastCount[lightKey] = static_cast<int>(this->Internal->Setup.cascades.size());
 }
 
