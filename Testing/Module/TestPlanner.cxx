@@ -137,13 +137,17 @@ TEST(Planner, NonFiniteOptionsAreRefused)
   planner->SetLambda(NAN);
   planner->SetAlpha(NAN);
   planner->SetAlpha(INFINITY);
+  planner->SetErrorTarget(NAN);
   EXPECT_DOUBLE_EQ(planner->GetLambda(), 0.25);
   EXPECT_DOUBLE_EQ(planner->GetAlpha(), 3.0);
-  EXPECT_EQ(errors.Count, 3);
+  EXPECT_DOUBLE_EQ(planner->GetErrorTarget(), 1.0);
+  EXPECT_EQ(errors.Count, 4);
   EXPECT_EQ(planner->GetMTime(), time);
   planner->SetLambda(7.0); // finite values are still clamped, without a message
   EXPECT_DOUBLE_EQ(planner->GetLambda(), 1.0);
-  EXPECT_EQ(errors.Count, 3);
+  planner->SetErrorTarget(-2.0);
+  EXPECT_DOUBLE_EQ(planner->GetErrorTarget(), 0.0);
+  EXPECT_EQ(errors.Count, 4);
 }
 
 // Issue 9 (12): a degenerate light beside a good one was reported on every plan.
