@@ -675,11 +675,11 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
     vtkNew<vtkMatrix4x4> m;
     for (int c = 0; c < maps.NumberOfCascades; ++c)
     {
-      this->Planner->GetCascadeMatrix(c, m, border);
-      std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
-      maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
       maps.CascadeResolution[c] =
         this->Planner->GetCascadeResolution(c, imageHeight, RESOLUTION_STEP, ceiling);
+      this->Planner->GetCascadeMatrix(c, m, border, maps.CascadeResolution[c]);
+      std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
+      maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
       // A kept map serves if it has the texels this view needs (or all its tile holds, where the
       // GL's texture size limit made the tiles smaller than Resolution).
       const bool keep = kept &&

@@ -144,6 +144,7 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   settings.split.lambda = this->Lambda;
   settings.split.alpha = this->Alpha;
   settings.depthClamp = this->DepthClamp;
+  settings.stableOrthographic = true; // with GetCascadeMatrix(..., resolution)'s snap
   const csm::Bounds scene = toBounds(bounds);
   const glm::dvec3 direction(lightDirection[0], lightDirection[1], lightDirection[2]);
   const void* lightKey = light;
@@ -257,6 +258,12 @@ void vtkCascadedShadowMapPlanner::GetCascadeMatrix(int i, vtkMatrix4x4* matrix) 
 
 void vtkCascadedShadowMapPlanner::GetCascadeMatrix(int i, vtkMatrix4x4* matrix, double border) const
 {
+  this->GetCascadeMatrix(i, matrix, border, 0);
+}
+
+void vtkCascadedShadowMapPlanner::GetCascadeMatrix(
+  int i, vtkMatrix4x4* matrix, double border, int resolution) const
+{
   if (!matrix)
   {
     return;
@@ -266,7 +273,11 @@ void vtkCascadedShadowMapPlanner::GetCascadeMatrix(int i, vtkMatrix4x4* matrix, 
     matrix->Identity();
     return;
   }
-  const glm::dmat4 m = csm::withBorder(this->Internal->Setup.cascades[i].wsToClip, border);
+  glm::dmat4 m = csm::withBorder(this->Internal->Setup.cascades[i].wsToClip, border);
+  if (this->WarpMode == WARP_NONE && resolution > 0)
+  {
+    m = csm::snapToTexels(m, resolution);
+  }
   for (int row = 0; row < 4; ++row)
   {
     for (int column = 0; column < 4; ++column)

@@ -155,6 +155,11 @@ public:
   /// (0: none), so that a camera that moves a little stays covered (see csm::withBorder).
   void GetCascadeMatrix(int i, vtkMatrix4x4* worldToLightClip, double border) const;
 
+  /// The same for a map of the given resolution: with WARP_NONE (orthographic cascades, whose
+  /// width is quantized) its texel grid is fixed in the world (csm::snapToTexels), so that the
+  /// shadow edges of a translating camera do not crawl. Other warp modes: as above.
+  void GetCascadeMatrix(int i, vtkMatrix4x4* worldToLightClip, double border, int resolution) const;
+
   /// Split depths of cascade i along the view direction.
   double GetCascadeNear(int i) const;
   double GetCascadeFar(int i) const;

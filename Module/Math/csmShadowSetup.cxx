@@ -410,7 +410,8 @@ glm::dmat4 warpMatrix(double nPrime, double lsZMin)
   return fromRows({ 1, 0, 0, 0 }, { 0, 0, 0, -1 }, { 0, 1, 0, 0 }, { 0, 0, 1, -zCentre });
 }
 
-glm::dmat4 focusMatrix(const std::vector<glm::dvec3>& lsPoints, const glm::dmat4& lsToWarped)
+glm::dmat4 focusMatrix(const std::vector<glm::dvec3>& lsPoints, const glm::dmat4& lsToWarped,
+  bool quantizeExtent)
 {
   glm::dvec3 lo(kInf), hi(-kInf);
   for (const glm::dvec3& p : lsPoints)
@@ -423,10 +424,50 @@ glm::dmat4 focusMatrix(const std::vector<glm::dvec3>& lsPoints, const glm::dmat4
   const double depthMargin = 0.01 * (hi.z - lo.z); // Lloyd et al. 2006, §6.4: room for the bias
   lo.z -= depthMargin;
   hi.z += depthMargin;
+  if (quantizeExtent)
+  {
+    for (int a = 0; a < 2; ++a)
+    {
+      const double size = hi[a] - lo[a];
+      if (size > 0.0 && std::isfinite(size))
+      {
+        const double quantized = std::exp2(std::ceil(4.0 * std::log2(1.04 * size)) / 4.0);
+        const double centre = 0.5 * (lo[a] + hi[a]);
+        lo[a] = centre - 0.5 * quantized;
+        hi[a] = centre + 0.5 * quantized;
+      }
+    }
+  }
   const glm::dvec3 scale = 2.0 / (hi - lo);
   return fromRows({ scale.x, 0, 0, -scale.x * 0.5 * (lo.x + hi.x) },
     { 0, scale.y, 0, -scale.y * 0.5 * (lo.y + hi.y) },
     { 0, 0, scale.z, -scale.z * 0.5 * (lo.z + hi.z) }, { 0, 0, 0, 1 });
+}
+
+glm::dmat4 snapToTexels(const glm::dmat4& wsToClip, int resolution)
+{
+  // Affine: the last row is (0, 0, 0, 1).
+  if (resolution <= 0 || wsToClip[0][3] != 0.0 || wsToClip[1][3] != 0.0 ||
+    wsToClip[2][3] != 0.0 || wsToClip[3][3] != 1.0)
+  {
+    return wsToClip;
+  }
+  glm::dmat4 snapped = wsToClip;
+  for (int row = 0; row < 2; ++row)
+  {
+    // clip = s u + b with u the world coordinate along the row's unit axis; the texel edges are
+    // at u = (k 2 / R - 1 - b) / s: fixed in the world when b / (2 / R) is a whole number (R
+    // even) or a half (R odd).
+    const double texel = 2.0 / resolution;
+    const double shift = resolution % 2 == 0 ? 0.0 : 0.5;
+    const double b = wsToClip[3][row];
+    const double snappedB = (std::round(b / texel - shift) + shift) * texel;
+    if (std::isfinite(snappedB))
+    {
+      snapped[3][row] = snappedB;
+    }
+  }
+  return snapped;
 }
 
 ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDirection,
@@ -530,7 +571,11 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
     warp = std::max(warp, 1e-9 * lsDepth);
     cascade.nPrime = warp;
     const glm::dmat4 lsToWarped = warpMatrix(warp, lsZMin);
-    cascade.wsToClip = focusMatrix(lsPoints, lsToWarped) * lsToWarped * wsToLs;
+    // Orthographic maps of WarpMode::None keep their texel size while the camera moves a little
+    // (and snapToTexels() fixes their texel grid in the world).
+    const bool stable =
+      settings.stableOrthographic && settings.warp == WarpMode::None && std::isinf(warp);
+    cascade.wsToClip = focusMatrix(lsPoints, lsToWarped, stable) * lsToWarped * wsToLs;
     cascadeError(cascade, camera, ls.y);
     setup.storageTotal += cascade.storage;
     setup.cascades.push_back(std::move(cascade));

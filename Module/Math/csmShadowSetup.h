@@ -53,6 +53,10 @@ struct Settings
   WarpMode warp = WarpMode::Generalized;
   SplitParameters split;       ///< defaults: adaptive, k = 2, alpha = 2 (Barroso & Celes 2007, §4)
   bool depthClamp = true;      ///< Lloyd et al. 2006, §6.4: fit the depth range to the receivers only
+  /// Orthographic cascades of WarpMode::None get a quantized width and height (focusMatrix), so
+  /// that snapToTexels() can fix their texel grid in the world. Off for the analysis (the
+  /// papers' storage factors); the render passes turn it on.
+  bool stableOrthographic = false;
 };
 
 /// Perspective aliasing at one point (Lloyd et al. 2006, Eq. 1-4 with all resolutions set to 1).
@@ -153,7 +157,18 @@ glm::dmat4 warpMatrix(double nPrime, double lsZMin);
 
 /// The focus: the scale and offset that take the warped light-space points' bounds to
 /// [-1, 1]^3, with 1 % of room in depth for the bias (Lloyd et al. 2006, §6.4).
-glm::dmat4 focusMatrix(const std::vector<glm::dvec3>& lsPoints, const glm::dmat4& lsToWarped);
+/// With quantizeExtent (orthographic cascades of WarpMode::None), the map's width and height
+/// are rounded up to the next quarter power of two with 4 % of room, so that a camera moving a
+/// little keeps the same texel size (see snapToTexels()).
+glm::dmat4 focusMatrix(const std::vector<glm::dvec3>& lsPoints, const glm::dmat4& lsToWarped,
+  bool quantizeExtent = false);
+
+/// An orthographic (affine) world -> clip matrix moved by less than half a texel of a map of
+/// the given resolution so that its texel grid is fixed in the world: the texel edges of two
+/// frames of a translating camera coincide, and shadow edges do not crawl (the cascaded-maps
+/// stabilisation of Vázquez's and King's slides). Unchanged when the matrix is projective or the
+/// resolution is not positive.
+glm::dmat4 snapToTexels(const glm::dmat4& wsToClip, int resolution);
 
 /// True when no point of the box can land inside the light clip volume (conservative test in
 /// homogeneous clip space). With depthClamp, points nearer than the near plane count as inside.

@@ -700,3 +700,76 @@ TEST(Steps, CascadeCountFromTheErrorModel)
   EXPECT_EQ(bad.status, csm::Status::InvalidInput);
   EXPECT_TRUE(bad.cascades.empty());
 }
+
+TEST(Steps, OrthographicMapsKeepTheirTexelGridWhileTheCameraTranslates)
+{
+  // A camera sliding sideways and forward over a fixed scene, orthographic cascades (no warp):
+  // the maps keep their texel size (quantized width) and, snapped, their texel edges stay where
+  // they were in the world, so shadow edges do not crawl. Without the snap they do.
+  csm::Bounds scene;
+  scene.wsMin = { -50.0, -1.0, -150.0 };
+  scene.wsMax = { 50.0, 10.0, 10.0 };
+  const glm::dvec3 light = glm::normalize(glm::dvec3(-0.4, -1.0, -0.3));
+  auto ortho = settings(csm::WarpMode::None, csm::SplitScheme::Practical, 2);
+  ortho.stableOrthographic = true;
+  struct Frame
+  {
+    glm::dmat4 raw, snapped;
+    int resolution;
+  };
+  std::vector<std::vector<Frame>> frames(2);
+  for (int step = 0; step < 40; ++step)
+  {
+    csm::Camera cam = camera(1.0, 200.0, 40.0, 4.0 / 3.0);
+    cam.wsPosition = { 0.37 * step, 5.0, -0.21 * step };
+    cam.wsDirection = { 0.0, -0.2, -1.0 };
+    const csm::ShadowSetup setup = csm::computeShadowSetup(cam, light, &scene, ortho, nullptr);
+    ASSERT_EQ(setup.status, csm::Status::Ok);
+    ASSERT_EQ(setup.cascades.size(), 2u);
+    for (size_t c = 0; c < 2; ++c)
+    {
+      const csm::Cascade& cascade = setup.cascades[c];
+      ASSERT_TRUE(std::isinf(cascade.nPrime));
+      const int r = csm::resolutionForError(std::max(cascade.Mx, cascade.Mz), 600.0, 1.0, 64, 2048);
+      const glm::dmat4 snapped = csm::snapToTexels(cascade.wsToClip, r);
+      for (const glm::dvec3& p : cascade.wsBody) // still covers its body
+      {
+        const glm::dvec3 q = toNdc(snapped, p);
+        EXPECT_LE(std::abs(q.x), 1.0 + 1e-9);
+        EXPECT_LE(std::abs(q.y), 1.0 + 1e-9);
+      }
+      frames[c].push_back({ cascade.wsToClip, snapped, r });
+    }
+  }
+  int sameSize = 0, compared = 0, rawAligned = 0;
+  for (const auto& cascadeFrames : frames)
+  {
+    for (size_t i = 1; i < cascadeFrames.size(); ++i)
+    {
+      const Frame& a = cascadeFrames[i - 1];
+      const Frame& b = cascadeFrames[i];
+      ++compared;
+      const bool same = a.resolution == b.resolution &&
+        std::abs(a.snapped[0][0] - b.snapped[0][0]) < 1e-12 &&
+        std::abs(a.snapped[1][1] - b.snapped[1][1]) < 1e-12 &&
+        std::abs(a.snapped[2][0] - b.snapped[2][0]) < 1e-12;
+      if (!same)
+        continue;
+      ++sameSize;
+      // Same texel size: the offsets differ by whole texels (2 / R in clip units).
+      const double texel = 2.0 / a.resolution;
+      for (int row = 0; row < 2; ++row)
+      {
+        const double shift = (b.snapped[3][row] - a.snapped[3][row]) / texel;
+        EXPECT_NEAR(shift, std::round(shift), 1e-6) << "frame " << i << " row " << row;
+        const double rawShift = (b.raw[3][row] - a.raw[3][row]) / texel;
+        rawAligned += std::abs(rawShift - std::round(rawShift)) < 1e-6;
+      }
+    }
+  }
+  std::printf("orthographic cascades: %d of %d consecutive frames keep their texel size; raw "
+              "offsets on whole texels in %d of %d rows\n",
+    sameSize, compared, rawAligned, 2 * sameSize);
+  EXPECT_GE(sameSize, compared * 3 / 4);
+  EXPECT_LT(rawAligned, sameSize); // without the snap, the grid slides
+}
