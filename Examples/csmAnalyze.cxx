@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // csm-analyze: the analytic planner. For a view frustum and a light angle it prints the split
 // depths, warp parameters and perspective aliasing error (Lloyd et al. 2006) of each cascade.
+// With --partition face it prints the face partitions (Lloyd et al. 2006, §5.1) instead: one warped
+// map per side face the light enters, z-partitioned along the face with --cascades K (FP+ZP+W).
 // With --table it prints a speed-against-error table for a CAD-like configuration.
+#include "csmFacePartition.h"
 #include "csmShadowSetup.h"
 
 #include <glm/geometric.hpp>
@@ -29,6 +32,7 @@ struct Options
   csm::Settings settings;
   bool json = false;
   bool table = false;
+  bool face = false; ///< --partition face: face partitioning instead of z-partitioning alone
 };
 
 [[noreturn]] void fail(const std::string& message)
@@ -48,8 +52,10 @@ void usage()
     "  --gamma DEG       angle between light and view, [0, 180]: 0 light from behind,\n"
     "                    90 perpendicular, 180 facing the viewer [90]\n"
     "  --warp MODE       none | psm | lispsm | generalized     [generalized]\n"
-    "  --partition S     single | uniform | log | practical | adaptive [adaptive]\n"
-    "  --cascades K      number of partitions (>= 1)           [2]\n"
+    "  --partition S     single | uniform | log | practical | adaptive | face [adaptive]\n"
+    "                    face: one map per side face of the view frustum the light enters\n"
+    "                    (Lloyd et al. 2006, 5.1), each z-partitioned into K log partitions\n"
+    "  --cascades K      number of partitions (>= 1), per face with --partition face [2]\n"
     "  --alpha A         adaptive: far partitions' f/n at gamma 0 (> 1) [2]\n"
     "  --lambda L        practical: weight of the log splits, [0, 1] [0.5]\n"
     "  --json            print one JSON object instead of a table\n"
@@ -117,8 +123,9 @@ Options parse(int argc, char** argv)
     }
     else if (flag == "--partition")
     {
-      if (!csm::parseSplitScheme(value, o.settings.split.scheme))
-        fail("--partition must be one of single, uniform, log, practical, adaptive");
+      o.face = value && std::strcmp(value, "face") == 0;
+      if (!o.face && !csm::parseSplitScheme(value, o.settings.split.scheme))
+        fail("--partition must be one of single, uniform, log, practical, adaptive, face");
       ++i;
     }
     else
@@ -215,6 +222,52 @@ void printText(const Options& o, const csm::ShadowSetup& s)
     s.storageOptimal, s.storageTotal / s.storageOptimal);
 }
 
+void printFaceJson(const Options& o, const csm::FacePartitioning& s)
+{
+  std::printf("{\"inputs\": {\"near\": %s, \"far\": %s, \"fovy\": %s, \"aspect\": %s, "
+              "\"gamma\": %s, \"warp\": \"%s\", \"partition\": \"face\", \"cascades\": %d},\n",
+    jsonNumber(o.near).c_str(), jsonNumber(o.far).c_str(), jsonNumber(o.fovy).c_str(),
+    jsonNumber(o.aspect).c_str(), jsonNumber(o.gamma).c_str(), csm::toString(o.settings.warp),
+    o.settings.split.k);
+  std::printf(" \"status\": \"%s\",\n \"partitions\": [", csm::toString(s.status));
+  for (size_t i = 0; i < s.partitions.size(); ++i)
+  {
+    const csm::FacePartition& p = s.partitions[i];
+    const csm::Cascade& c = p.map;
+    std::printf("%s\n  {\"face\": \"%s\", \"z_index\": %d, \"near\": %s, \"far\": %s, "
+                "\"n_prime\": %s, \"Mx\": %s, \"Mz\": %s, \"storage\": %s}",
+      i ? "," : "", csm::toString(p.face), p.zIndex, jsonNumber(c.vsNear).c_str(),
+      jsonNumber(c.vsFar).c_str(), jsonNumber(c.nPrime).c_str(), jsonNumber(c.Mx).c_str(),
+      jsonNumber(c.Mz).c_str(), jsonNumber(c.storage).c_str());
+  }
+  std::printf("],\n \"storage_total\": %s, \"storage_optimal\": %s}\n",
+    jsonNumber(s.storageTotal).c_str(), jsonNumber(s.storageOptimal).c_str());
+}
+
+void printFaceText(const Options& o, const csm::FacePartitioning& s)
+{
+  std::printf("view: near %g far %g (f/n %g), fovy %g deg, aspect %g; light at gamma %g deg\n",
+    o.near, o.far, o.far / o.near, o.fovy, o.aspect, o.gamma);
+  std::printf("face partitioning (Lloyd et al. 2006, 5.1), warp %s, %d log partition(s) per face; "
+              "%zu maps\n",
+    csm::toString(o.settings.warp), o.settings.split.k, s.partitions.size());
+  std::printf("%-7s %-3s %14s %14s %14s %12s %12s %12s\n", "face", "i", "near", "far", "n'", "Mx",
+    "Mz", "storage");
+  for (const csm::FacePartition& p : s.partitions)
+  {
+    const csm::Cascade& c = p.map;
+    char np[32];
+    if (std::isfinite(c.nPrime))
+      std::snprintf(np, sizeof np, "%14.6g", c.nPrime);
+    else
+      std::snprintf(np, sizeof np, "%14s", "inf (ortho)");
+    std::printf("%-7s %-3d %14.6g %14.6g %s %12.5g %12.5g %12.5g\n", csm::toString(p.face),
+      p.zIndex, c.vsNear, c.vsFar, np, c.Mx, c.Mz, c.storage);
+  }
+  std::printf("storage total %.6g, optimal %.6g (ratio %.3g)\n", s.storageTotal,
+    s.storageOptimal, s.storageTotal / s.storageOptimal);
+}
+
 // Speed against error for common settings: maps rendered per frame (the cost on the GPU), the
 // time of the math per frame, and the storage factor S (critical texels / image pixels) over
 // light angles. Lower S is better; S_opt is the logarithmic optimum.
@@ -292,6 +345,21 @@ int main(int argc, char** argv)
   if (o.table)
   {
     printTable();
+    return 0;
+  }
+  if (o.face)
+  {
+    csm::FacePartitionSettings settings;
+    settings.warp = o.settings.warp;
+    settings.k = o.settings.split.k;
+    const csm::FacePartitioning s =
+      csm::computeFacePartitions(makeCamera(o), lightDirection(o.gamma), settings);
+    if (s.status != csm::Status::Ok)
+      fail(s.message);
+    if (o.json)
+      printFaceJson(o, s);
+    else
+      printFaceText(o, s);
     return 0;
   }
   const csm::ShadowSetup s =

@@ -802,8 +802,14 @@ int resolutionForError(double maxAliasing, double imageHeight, double targetErro
 Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
   const glm::dvec3& wsLightDirection, const glm::dvec3& wsPoint)
 {
+  const LightBasis ls = lightBasis(cameraFrame(camera), wsLightDirection);
+  return aliasingAt(wsToClip, camera, ls.x, ls.z, wsPoint);
+}
+
+Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera, const glm::dvec3& wsMapX,
+  const glm::dvec3& wsMapZ, const glm::dvec3& wsPoint)
+{
   const CameraFrame frame = cameraFrame(camera);
-  const LightBasis ls = lightBasis(frame, wsLightDirection);
   // Lloyd et al. 2006, Eq. 2 with res_i = 1: width of the image beam at the point.
   const double depth = std::max(glm::dot(wsPoint - camera.wsPosition, frame.view), camera.vsNear);
   const double wi = camera.parallel ? 2.0 * camera.parallelScale : 2.0 * frame.tanY * depth;
@@ -814,12 +820,17 @@ Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
     return (glm::dvec3(t[row]) * h.w - glm::dvec3(t[3]) * h[row]) / (h.w * h.w);
   };
   // Lloyd et al. 2006, Eq. 3-4 with res = 1: s, t in [0, 1] are half the NDC.
-  const double dsdx = 0.5 * std::abs(glm::dot(gradient(0), ls.x));
-  const double dtdz = 0.5 * std::abs(glm::dot(gradient(1), ls.z));
+  const double dsdx = 0.5 * std::abs(glm::dot(gradient(0), wsMapX));
+  const double dtdz = 0.5 * std::abs(glm::dot(gradient(1), wsMapZ));
   Aliasing m;
   m.mx = (dsdx > 0.0 ? 1.0 / dsdx : kInf) / wi;
   m.mz = (dtdz > 0.0 ? 1.0 / dtdz : kInf) / wi;
   return m;
+}
+
+std::string cameraError(const Camera& camera)
+{
+  return validateCamera(camera, nullptr);
 }
 
 bool boxOutsideClipVolume(const glm::dmat4& wsToClip, const Bounds& box, bool depthClamp)

@@ -141,6 +141,15 @@ ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosi
 Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
   const glm::dvec3& wsLightDirection, const glm::dvec3& wsPoint);
 
+/// The same for a map whose s and t axes follow the unit vectors wsMapX and wsMapZ, both
+/// perpendicular to the light (a face partition's map, whose z axis is not the projected view
+/// direction: Lloyd et al. 2006, §5.1).
+Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera, const glm::dvec3& wsMapX,
+  const glm::dvec3& wsMapZ, const glm::dvec3& wsPoint);
+
+/// Why computeShadowSetup would refuse this camera; empty when it is valid.
+std::string cameraError(const Camera& camera);
+
 /// The map resolution (texels a side) at which a cascade whose worst perspective aliasing is
 /// maxAliasing (max(M_x, M_z) of Lloyd et al. 2006, Eq. 9-10, for a map of 1 texel and an image
 /// 1 pixel high) reaches the error targetError (m, a texel's width over a pixel's, Eq. 1) in an
