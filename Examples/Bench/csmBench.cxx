@@ -125,25 +125,22 @@ std::vector<Technique> Techniques(const Options& o)
     list.push_back(t);
   };
   add("vtk", "vtk", 0, 0, 1, 1);
-  // The pass as a user gets it: every option at the pass's default.
-  {
-    Technique t;
-    t.Label = "default";
-    const csmScenes::ShadowOptions& s = t.Shadow; // default-constructed: the pass's defaults
-    t.Texels = static_cast<long long>(s.Cascades) * s.Resolution * s.Resolution;
-    t.MemoryMB = 4.0 * t.Texels / (1024.0 * 1024.0);
-    list.push_back(t);
-  }
-  {
-    // The fewest cascades, up to 4, that meet the error target (AdaptiveCascades).
-    Technique t;
-    t.Label = "adaptive k<=4";
-    t.Shadow.Cascades = 4;
-    t.Shadow.AdaptiveCascades = true;
+  // The pass as a user gets it (every option at the pass's default), and the same with the
+  // fewest cascades, up to 4, that meet the error target (AdaptiveCascades).
+  auto addDefaults = [&](const std::string& label, int maximumCascades, bool adaptive) {
+    Technique t; // default-constructed ShadowOptions: the pass's defaults
+    t.Label = label;
+    if (adaptive)
+    {
+      t.Shadow.Cascades = maximumCascades;
+      t.Shadow.AdaptiveCascades = true;
+    }
     t.Texels = static_cast<long long>(t.Shadow.Cascades) * t.Shadow.Resolution * t.Shadow.Resolution;
     t.MemoryMB = 4.0 * t.Texels / (1024.0 * 1024.0);
     list.push_back(t);
-  }
+  };
+  addDefaults("default", 0, false);
+  addDefaults("adaptive k<=4", 4, true);
   if (!o.Quick)
   {
     using P = vtkCascadedShadowMapPlanner;

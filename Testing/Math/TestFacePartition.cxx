@@ -2,6 +2,7 @@
 // Face partitioning (Lloyd et al. 2006, §5.1): the partitions tile the view frustum, their storage
 // factors are the maxima of Lloyd's m over them, and Fig. 12's comparison with one warped map.
 #include "csmFacePartition.h"
+#include "csmMathTestHelpers.h"
 #include "csmShadowSetup.h"
 
 #include <glm/geometric.hpp>
@@ -18,16 +19,7 @@ namespace
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
-// Eye at the origin looking down -z, up +y (as TestShadowSetup.cxx).
-csm::Camera camera(double n, double f, double fovyDeg, double aspect = 1.0)
-{
-  csm::Camera c;
-  c.vsNear = n;
-  c.vsFar = f;
-  c.fovyDeg = fovyDeg;
-  c.aspect = aspect;
-  return c;
-}
+using csmMathTest::camera; // eye at the origin looking down -z, up +y
 
 // gammaDeg: 0 light from behind, 90 overhead, 180 facing the viewer; sideways tilts it toward +x.
 glm::dvec3 lightAt(double gammaDeg, double sideways = 0.0)

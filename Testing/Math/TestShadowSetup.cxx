@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Light space, body B, per-cascade matrices and the aliasing error of 003.
 #include "csmShadowSetup.h"
+#include "csmMathTestHelpers.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -15,17 +16,9 @@ namespace
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
-// Eye at the origin looking down -z, up +y. gammaDeg: 0 light from behind, 90 overhead, 180 facing.
-csm::Camera camera(double n, double f, double fovyDeg, double aspect = 1.0)
-{
-  csm::Camera c;
-  c.vsNear = n;
-  c.vsFar = f;
-  c.fovyDeg = fovyDeg;
-  c.aspect = aspect;
-  return c;
-}
+using csmMathTest::camera; // eye at the origin looking down -z, up +y
 
+// gammaDeg: 0 light from behind, 90 overhead, 180 facing.
 glm::dvec3 lightAt(const csm::Camera& c, double gammaDeg)
 {
   const glm::dvec3 v = glm::normalize(c.wsDirection);
