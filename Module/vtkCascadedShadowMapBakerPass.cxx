@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapBakerPass.h"
 
+#include "csmClosedSurface.h"
 #include "csmCaster.h"       // the GLSL of Module/glsl/csmCaster.glsl
 #include "csmCasterLineGS.h" // the GLSL of Module/glsl/csmCasterLineGS.glsl
 
 #include "vtkActor.h"
+#include "vtkCellArray.h"
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapPlanner.h"
 #include "vtkInformation.h"
@@ -345,10 +347,10 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(vtkOpenGLRenderWindow* window,
 }
 
 void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
-  vtkOpenGLFramebufferObject* frameBuffer, LightMaps& maps, int c,
-  const std::vector<vtkProp*>& casters, const std::vector<std::array<double, 6>>& casterBounds,
+  vtkOpenGLFramebufferObject* frameBuffer, LightMaps& maps, int c, const FrameProps& props,
   bool depthClamp)
 {
+  const std::vector<vtkProp*>& casters = props.Casters;
   vtkOpenGLState* ostate = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow())->GetState();
   const int width = static_cast<int>(maps.Atlas->GetWidth());
   const int height = static_cast<int>(maps.Atlas->GetHeight());
@@ -367,9 +369,23 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   for (size_t i = 0; i < casters.size(); ++i)
   {
     if (vtkCascadedShadowMapPlanner::CascadeReachesBox(
-          maps.WorldToMap[c], casterBounds[i].data(), depthClamp))
+          maps.WorldToMap[c], props.CasterBounds[i].data(), depthClamp))
     {
       drawn.push_back(casters[i]);
+    }
+  }
+  // Closed casters: cull the faces turned toward the light. VTK's projections turn a
+  // counter-clockwise face toward the eye into a front face when their determinant is negative
+  // (as glFrustum's and glOrtho's are); a positive one swaps the sides.
+  this->CullFaces.clear();
+  this->CullState = ostate;
+  const double mapDeterminant = vtkMatrix4x4::Determinant(maps.WorldToMap[c]);
+  for (size_t i = 0; i < casters.size() && std::isfinite(mapDeterminant); ++i)
+  {
+    const int outward = props.CasterClosure[i] * (mapDeterminant < 0.0 ? 1 : -1);
+    if (outward != 0 && std::find(drawn.begin(), drawn.end(), casters[i]) != drawn.end())
+    {
+      this->CullFaces[casters[i]] = outward > 0 ? GL_FRONT : GL_BACK;
     }
   }
   ++this->LastCascadeRenders;
@@ -392,6 +408,8 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
     this->NumberOfRenderedProps += prop->RenderOpaqueGeometry(renderer);
   }
   this->PostRender(&casterState);
+  this->CullFaces.clear();
+  this->CullState = nullptr;
   renderer->SetActiveCamera(realCamera);
 }
 
@@ -491,6 +509,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   this->LastCascadesKept = 0;
   this->LastPropsDrawn = 0;
   this->LastTexelsRendered = 0.0;
+  this->LastClosedCasters = 0;
 
   // 1. The props: casters, receivers, scene bounds (across processes when distributed).
   FrameProps props;
@@ -553,9 +572,88 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
       {
         props.Casters.push_back(prop);
         props.CasterBounds.push_back(b);
+        props.CasterClosure.push_back(this->ClosureOf(prop));
+        this->LastClosedCasters += props.CasterClosure.back() != 0 ? 1 : 0;
       }
     }
   }
+}
+
+namespace
+{
+/// The triangles of a polydata's polygons (fans) and strips, for csm::classifySurface.
+csm::SurfaceClosure classifyPolyData(vtkPolyData* data)
+{
+  vtkPoints* points = data->GetPoints();
+  if (!points || points->GetNumberOfPoints() == 0)
+  {
+    return csm::SurfaceClosure();
+  }
+  std::vector<glm::dvec3> positions(static_cast<size_t>(points->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    positions[static_cast<size_t>(i)] = glm::dvec3(p[0], p[1], p[2]);
+  }
+  std::vector<std::array<std::int64_t, 3>> triangles;
+  triangles.reserve(static_cast<size_t>(data->GetPolys()->GetNumberOfConnectivityIds()));
+  vtkIdType n;
+  const vtkIdType* ids;
+  vtkCellArray* polys = data->GetPolys();
+  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
+  {
+    for (vtkIdType k = 2; k < n; ++k)
+    {
+      triangles.push_back({ ids[0], ids[k - 1], ids[k] });
+    }
+  }
+  vtkCellArray* strips = data->GetStrips();
+  for (strips->InitTraversal(); strips->GetNextCell(n, ids);)
+  {
+    for (vtkIdType k = 2; k < n; ++k)
+    {
+      // Every other triangle of a strip is wound the other way round.
+      triangles.push_back(k % 2 == 0 ? std::array<std::int64_t, 3>{ ids[k - 2], ids[k - 1], ids[k] }
+                                     : std::array<std::int64_t, 3>{ ids[k - 1], ids[k - 2], ids[k] });
+    }
+  }
+  return csm::classifySurface(positions, triangles);
+}
+}
+
+int vtkCascadedShadowMapBakerPass::ClosureOf(vtkProp* prop)
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkPolyDataMapper* mapper = actor ? vtkPolyDataMapper::SafeDownCast(actor->GetMapper()) : nullptr;
+  vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
+  vtkProperty* property = actor ? actor->GetProperty() : nullptr;
+  if (!this->CullClosedCasters || !data || !property ||
+    property->GetRepresentation() != VTK_SURFACE || property->GetBackfaceCulling() ||
+    property->GetFrontfaceCulling() || mapper->GetNumberOfClippingPlanes() > 0 ||
+    data->GetNumberOfVerts() > 0 || data->GetNumberOfLines() > 0)
+  {
+    return 0;
+  }
+  // Forget the answers for data that is gone.
+  for (auto it = this->Closures.begin(); it != this->Closures.end();)
+  {
+    it = it->second.Data ? std::next(it) : this->Closures.erase(it);
+  }
+  Closure& closure = this->Closures[data];
+  if (closure.Data != data || closure.Time != data->GetMTime())
+  {
+    const csm::SurfaceClosure c = classifyPolyData(data);
+    closure.Data = data;
+    closure.Time = data->GetMTime();
+    closure.Orientation = c.closed && c.volume != 0.0 ? (c.volume > 0.0 ? 1 : -1) : 0;
+  }
+  const double determinant = actor->GetMatrix()->Determinant();
+  if (closure.Orientation == 0 || !std::isfinite(determinant) || determinant == 0.0)
+  {
+    return 0;
+  }
+  return determinant > 0.0 ? closure.Orientation : -closure.Orientation;
 }
 
 void vtkCascadedShadowMapBakerPass::GatherAcrossProcesses(FrameProps& props)
@@ -746,6 +844,9 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
   vtkOpenGLState::ScopedglEnableDisable savedDepthTest(ostate, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable savedDepthClamp(ostate, GL_DEPTH_CLAMP);
   vtkOpenGLState::ScopedglEnableDisable savedOffset(ostate, GL_POLYGON_OFFSET_FILL);
+  vtkOpenGLState::ScopedglEnableDisable savedCulling(ostate, GL_CULL_FACE);
+  GLint savedCullFace = GL_BACK;
+  glGetIntegerv(GL_CULL_FACE_MODE, &savedCullFace);
   ostate->PushFramebufferBindings();
 
   const bool automaticLights = renderer->GetAutomaticLightCreation() != 0;
@@ -818,8 +919,7 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
       if (renderCascade[c])
       {
         --this->LastCascadesKept;
-        this->RenderCascade(
-          renderer, state.FrameBuffer, maps, c, props.Casters, props.CasterBounds, depthClamp);
+        this->RenderCascade(renderer, state.FrameBuffer, maps, c, props, depthClamp);
       }
     }
     glDisable(GL_PROGRAM_POINT_SIZE);
@@ -830,6 +930,7 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
     }
   }
   ostate->PopFramebufferBindings();
+  ostate->vtkglCullFace(static_cast<unsigned int>(savedCullFace));
   renderer->SetAutomaticLightCreation(automaticLights);
 }
 
@@ -942,6 +1043,13 @@ void vtkCascadedShadowMapBakerPass::GetScreenSizes(vtkProp* prop, float sizes[2]
 bool vtkCascadedShadowMapBakerPass::SetShaderParameters(
   vtkShaderProgram* program, vtkAbstractMapper*, vtkProp* prop, vtkOpenGLVertexArrayObject*)
 {
+  // Closed casters: only their exit layer (the property has just set its own culling).
+  const auto cull = this->CullState ? this->CullFaces.find(prop) : this->CullFaces.end();
+  if (cull != this->CullFaces.end())
+  {
+    this->CullState->vtkglCullFace(cull->second);
+    this->CullState->vtkglEnable(GL_CULL_FACE);
+  }
   if (!program->IsUniformUsed("csmCasterWidth"))
   {
     return true;
@@ -1018,6 +1126,7 @@ void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MapReuseTolerance: " << this->MapReuseTolerance << "\n";
   os << indent << "InteractiveMapBorder: " << this->InteractiveMapBorder << "\n";
   os << indent << "MeasureTimes: " << (this->MeasureTimes ? "on" : "off") << "\n";
+  os << indent << "CullClosedCasters: " << (this->CullClosedCasters ? "on" : "off") << "\n";
   os << indent << "Renderers: " << this->Renderers.size() << "\n";
   os << indent << "ShadowedLights: " << this->GetLightMaps().size() << "\n";
   os << indent << "Controller: " << this->Controller << "\n";

@@ -39,6 +39,7 @@
 #include "vtkWeakPointer.h"                    // for members
 
 #include <array>  // for members
+#include <map>    // for members
 #include <set>    // for members
 #include <string> // for members
 #include <vector> // for members
@@ -50,6 +51,8 @@ class vtkMultiProcessController;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
 class vtkOpenGLRenderer;
+class vtkOpenGLState;
+class vtkPolyData;
 class vtkProp;
 class vtkRenderWindow;
 class vtkRenderer;
@@ -139,6 +142,27 @@ public:
   vtkGetMacro(InteractiveMapBorder, double);
   vtkSetFiniteClampMacro(MapReuseTolerance, double, 1.0, 100.0);
   vtkGetMacro(MapReuseTolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Closed casters drawn from behind. A prop whose polydata bounds solids (every edge, its
+   * vertices welded by position, traversed as often in each direction: csm::classifySurface,
+   * checked once per change of the data) is drawn into the maps with only its faces turned away
+   * from the light. Any ray that enters a solid leaves it, so this exit layer shadows exactly
+   * what the whole surface does (Wang & Molnar's second-depth shadow maps) with about half the
+   * fragments, and the lit side no longer shadows itself. Props that are open (a sheet, a tube
+   * without caps), drawn as wireframe or points, with lines or vertices, with clipping planes,
+   * or with the user's own face culling are drawn with both sides, as before. Default on.
+   */
+  vtkSetMacro(CullClosedCasters, bool);
+  vtkGetMacro(CullClosedCasters, bool);
+  vtkBooleanMacro(CullClosedCasters, bool);
+  ///@}
+
+  ///@{
+  /// For tests and benchmarks: casters drawn with their exit layer only in the last Render().
+  vtkGetMacro(LastClosedCasters, int);
   ///@}
 
   /// The planner that holds the options above and computes the cascades.
@@ -278,6 +302,9 @@ protected:
     bool Changed = true; ///< a prop, light, option or the window size changed: render every map
     std::vector<vtkProp*> Casters;
     std::vector<std::array<double, 6>> CasterBounds;
+    /// Per caster: 0 draw both sides; +1 / -1 closed, its counter-clockwise faces (after the
+    /// actor's matrix) turned outward / inward.
+    std::vector<int> CasterClosure;
     std::vector<std::array<double, 6>> Receivers;
   };
   /// The steps of Render(): collect the props, share them across processes, plan the lights
@@ -300,8 +327,10 @@ protected:
   bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles, int resolution,
     bool& reallocated);
   void RenderCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebufferObject* frameBuffer,
-    LightMaps& maps, int cascade, const std::vector<vtkProp*>& casters,
-    const std::vector<std::array<double, 6>>& casterBounds, bool depthClamp);
+    LightMaps& maps, int cascade, const FrameProps& props, bool depthClamp);
+  /// +1 / -1: the prop's data is closed, its counter-clockwise faces turned outward / inward in
+  /// world space; 0: draw both sides (CullClosedCasters).
+  int ClosureOf(vtkProp* prop);
   /// vtkErrorMacro / vtkWarningMacro, once per distinct message.
   void ReportOnce(bool error, const std::string& message);
   /// The light camera for a cascade: the light's rotation as view, the rest as projection.
@@ -319,6 +348,7 @@ protected:
   double MapReuseTolerance = 1.25;
   double InteractiveMapBorder = 0.2;
   bool MeasureTimes = false;
+  bool CullClosedCasters = true;
 
   std::vector<RendererMaps> Renderers;
   vtkWeakPointer<vtkRenderer> LastRenderer;
@@ -334,6 +364,19 @@ protected:
   int LastCascadesKept = 0;
   int LastPropsDrawn = 0;
   double LastTexelsRendered = 0.0;
+  int LastClosedCasters = 0;
+  /// csm::classifySurface's answer per polydata, kept while the data does not change.
+  struct Closure
+  {
+    vtkWeakPointer<vtkPolyData> Data;
+    vtkMTimeType Time = 0;
+    int Orientation = 0; ///< +1 outward, -1 inward, 0 open
+  };
+  std::map<vtkPolyData*, Closure> Closures;
+  /// While a cascade renders: the face (GL_FRONT / GL_BACK) to cull per closed caster, and the
+  /// state to cull it with (SetShaderParameters runs after the property set its own culling).
+  std::map<vtkProp*, unsigned int> CullFaces;
+  vtkOpenGLState* CullState = nullptr;
   int WarnedShadowingLights = 0; // lights over the limit last warned about: warn once
   std::set<std::string> Reported; // messages said already (ReportOnce)
 

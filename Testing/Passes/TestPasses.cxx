@@ -33,6 +33,7 @@
 #include "vtkSphereSource.h"
 #include "vtkTextureObject.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtk_glew.h"
 
 #include "csmTestHelpers.h"
 
@@ -900,5 +901,118 @@ TEST(Passes, AStillCameraDoesNotFlicker)
   for (int frame = 0; frame < 3; ++frame)
   {
     EXPECT_EQ(DifferingValues(scene.Frame(), first, 0), 0) << "frame " << frame;
+  }
+}
+
+namespace
+{
+/// The depth a light's map holds at the atlas texel where a world point falls, and the map depth
+/// of two world points (all in [0, 1]), from the cascade whose map contains the point.
+struct MapDepths
+{
+  bool Found = false;
+  float Held = 0.0f;
+  double Of[2] = { 0.0, 0.0 };
+};
+
+MapDepths DepthsInMap(vtkRenderWindow* window, const vtkCascadedShadowMapBakerPass::LightMaps& maps,
+  const double at[3], const double points[2][3])
+{
+  MapDepths result;
+  const auto project = [](const double* m, const double p[3], double ndc[3])
+  {
+    double clip[4];
+    for (int r = 0; r < 4; ++r)
+      clip[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+    for (int k = 0; k < 3; ++k)
+      ndc[k] = clip[k] / clip[3];
+  };
+  for (int c = 0; c < maps.NumberOfCascades && !result.Found; ++c)
+  {
+    double ndc[3];
+    project(maps.WorldToMap[c], at, ndc);
+    if (std::abs(ndc[0]) > 0.9 || std::abs(ndc[1]) > 0.9)
+      continue;
+    const int width = static_cast<int>(maps.Atlas->GetWidth());
+    const int height = static_cast<int>(maps.Atlas->GetHeight());
+    std::vector<float> depth(static_cast<size_t>(width) * height);
+    window->MakeCurrent();
+    maps.Atlas->Bind();
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+    const int x = static_cast<int>((maps.Tile[c][0] + (0.5 * ndc[0] + 0.5) * maps.Tile[c][2]) * width);
+    const int y = static_cast<int>((maps.Tile[c][1] + (0.5 * ndc[1] + 0.5) * maps.Tile[c][3]) * height);
+    result.Held = depth[static_cast<size_t>(y) * width + x];
+    for (int i = 0; i < 2; ++i)
+    {
+      project(maps.WorldToMap[c], points[i], ndc);
+      result.Of[i] = 0.5 * ndc[2] + 0.5;
+    }
+    result.Found = true;
+  }
+  return result;
+}
+} // namespace
+
+TEST(Passes, ClosedCastersCastTheSameShadowsFromTheirExitLayer)
+{
+  // The box (closed) hangs over the ground (an open plane); beside it an open sheet faces the
+  // light. Closed casters are drawn with the faces turned away from the light only: the same
+  // shadows, the map holding the box's bottom (its exit layer) instead of its top. A mirrored
+  // box (negative determinant) and a box wound inside out keep the same layer.
+  for (int variant = 0; variant < 3; ++variant)
+  {
+    SCOPED_TRACE(variant == 0 ? "box" : variant == 1 ? "mirrored box" : "inside-out box");
+    BoxOverPlane scene;
+    vtkNew<vtkPlaneSource> sheet;
+    sheet->SetOrigin(3.0, 3.0, -1.0);
+    sheet->SetPoint1(3.0, 3.0, 1.0); // (Point1 - Origin) x (Point2 - Origin) = +y: toward the light
+    sheet->SetPoint2(5.0, 3.0, -1.0);
+    vtkNew<vtkPolyDataMapper> sheetMapper;
+    sheetMapper->SetInputConnection(sheet->GetOutputPort());
+    vtkNew<vtkActor> sheetActor;
+    sheetActor->SetMapper(sheetMapper);
+    scene.Renderer->AddActor(sheetActor);
+    if (variant == 1)
+    {
+      scene.Box->SetScale(-1.0, 1.0, 1.0); // the box is centred on x = 0: same place
+    }
+    if (variant == 2)
+    {
+      vtkNew<vtkCubeSource> cube;
+      cube->SetBounds(-1, 1, 2, 4, -1, 1);
+      cube->Update();
+      vtkNew<vtkPolyData> inverted;
+      inverted->DeepCopy(cube->GetOutput());
+      inverted->ReverseCell(0);
+      for (vtkIdType i = 1; i < inverted->GetNumberOfCells(); ++i)
+        inverted->ReverseCell(i);
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputData(inverted);
+      scene.Box->SetMapper(mapper);
+    }
+    auto plain = scene.Render();
+    vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+    vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+    const double centre[3] = { 0.0, 3.0, 0.0 };
+    const double faces[2][3] = { { 0.0, 2.0, 0.0 }, { 0.0, 4.0, 0.0 } }; // bottom, top
+
+    baker->CullClosedCastersOff();
+    const long bothSides = DarkenedPixels(scene.Render(), plain);
+    EXPECT_EQ(baker->GetLastClosedCasters(), 0);
+    const MapDepths before = DepthsInMap(scene.Window, baker->GetLightMaps()[0], centre, faces);
+
+    baker->CullClosedCastersOn();
+    const long exitLayer = DarkenedPixels(scene.Render(), plain);
+    EXPECT_EQ(baker->GetLastClosedCasters(), 1); // the box; not the plane, not the sheet
+    const MapDepths after = DepthsInMap(scene.Window, baker->GetLightMaps()[0], centre, faces);
+
+    EXPECT_GT(bothSides, 1200); // the box's and the sheet's shadows
+    EXPECT_LE(std::abs(exitLayer - bothSides), bothSides / 100);
+    ASSERT_TRUE(before.Found && after.Found);
+    // Both sides: the top (nearest the light); exit layer: the bottom. Within the polygon offset.
+    const double gap = std::abs(before.Of[0] - before.Of[1]);
+    EXPECT_GT(gap, 1e-4);
+    EXPECT_LT(std::abs(before.Held - before.Of[1]), 0.1 * gap);
+    EXPECT_LT(std::abs(after.Held - after.Of[0]), 0.1 * gap);
   }
 }

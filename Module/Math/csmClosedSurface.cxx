@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "csmClosedSurface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace csm
+{
+
+namespace
+{
+/// One id per distinct position (positions sorted lexicographically, equal runs share an id).
+/// Returns false when a position is not finite.
+bool weld(const std::vector<glm::dvec3>& positions, std::vector<std::uint32_t>& ids)
+{
+  std::vector<glm::dvec3> p(positions.size());
+  for (size_t i = 0; i < positions.size(); ++i)
+  {
+    const glm::dvec3& q = positions[i];
+    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+    {
+      return false;
+    }
+    p[i] = q + glm::dvec3(0.0); // -0 becomes +0
+  }
+  std::vector<std::uint32_t> order(p.size());
+  std::iota(order.begin(), order.end(), 0u);
+  const auto less = [&p](std::uint32_t a, std::uint32_t b)
+  {
+    return p[a].x != p[b].x ? p[a].x < p[b].x
+      : p[a].y != p[b].y    ? p[a].y < p[b].y
+                            : p[a].z < p[b].z;
+  };
+  std::sort(order.begin(), order.end(), less);
+  ids.assign(p.size(), 0u);
+  std::uint32_t id = 0;
+  for (size_t i = 0; i < order.size(); ++i)
+  {
+    if (i > 0 && p[order[i]] != p[order[i - 1]])
+    {
+      ++id;
+    }
+    ids[order[i]] = id;
+  }
+  return true;
+}
+} // namespace
+
+SurfaceClosure classifySurface(
+  const std::vector<glm::dvec3>& positions, const std::vector<std::array<std::int64_t, 3>>& triangles)
+{
+  SurfaceClosure result;
+  std::vector<std::uint32_t> ids;
+  if (positions.empty() || positions.size() > 0xffffffffu || !weld(positions, ids))
+  {
+    return result;
+  }
+  // Directed edges a -> b with a < b, and those with a > b (stored as b -> a): the boundary is
+  // empty exactly when the two lists are equal as multisets.
+  std::vector<std::uint64_t> forward, backward;
+  forward.reserve(3 * triangles.size() / 2 + 1);
+  backward.reserve(3 * triangles.size() / 2 + 1);
+  const glm::dvec3 origin = positions[0]; // volumes relative to a point of the mesh: no
+                                          // cancellation far from the world's origin
+  double volume = 0.0;
+  size_t counted = 0;
+  for (const auto& t : triangles)
+  {
+    std::uint32_t v[3];
+    for (int k = 0; k < 3; ++k)
+    {
+      if (t[k] < 0 || static_cast<std::uint64_t>(t[k]) >= positions.size())
+      {
+        return SurfaceClosure();
+      }
+      v[k] = ids[static_cast<size_t>(t[k])];
+    }
+    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
+    {
+      continue; // degenerate: no area, no boundary
+    }
+    ++counted;
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::uint32_t a = v[k], b = v[(k + 1) % 3];
+      (a < b ? forward : backward)
+        .push_back((std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b)));
+    }
+    const glm::dvec3 a = positions[static_cast<size_t>(t[0])] - origin;
+    const glm::dvec3 b = positions[static_cast<size_t>(t[1])] - origin;
+    const glm::dvec3 c = positions[static_cast<size_t>(t[2])] - origin;
+    volume += glm::dot(a, glm::cross(b, c)) / 6.0;
+  }
+  if (counted == 0 || forward.size() != backward.size())
+  {
+    return result;
+  }
+  std::sort(forward.begin(), forward.end());
+  std::sort(backward.begin(), backward.end());
+  result.closed = forward == backward;
+  result.volume = result.closed ? volume : 0.0;
+  return result;
+}
+
+} // namespace csm

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Whether a triangle mesh bounds solids, so that a shadow map may hold only its faces turned away
+// from the light. Pure math, no VTK, no GL.
+//
+// A ray that enters a closed surface leaves it again. If every edge of a mesh (its vertices welded
+// by position) is traversed as often in one direction as in the other (the oriented boundary of the
+// mesh is empty), then along any ray the faces the ray crosses toward the light and away from it
+// alternate in number, and a ray that crosses a face turned toward the light also crosses one turned
+// away. A map of only the faces turned away from the light (the exit layer; Wang & Molnar's
+// second-depth shadow maps) therefore shadows exactly the points the whole mesh shadows, with half
+// the fragments, and the lit side's own depth no longer competes with it (no acne on lit faces).
+// Open meshes (a sheet, a tube without caps, a mesh with one flipped triangle) fail the test and are
+// drawn with both sides.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace csm
+{
+
+struct SurfaceClosure
+{
+  /// Every edge is traversed as often in each direction (at least one non-degenerate triangle).
+  bool closed = false;
+  /// The enclosed signed volume (positive when the triangles wind counter-clockwise seen from
+  /// outside, as VTK's outward normals do); meaningful when closed.
+  double volume = 0.0;
+};
+
+/// Classify a triangle mesh. Vertices at bitwise-equal positions (+0 and -0 alike) are one vertex,
+/// so meshes whose points were split for normals or texture seams still close. Triangles with two
+/// equal (welded) corners are ignored; an index out of range or a non-finite position makes the mesh
+/// open (the safe answer: both sides are drawn).
+SurfaceClosure classifySurface(
+  const std::vector<glm::dvec3>& positions, const std::vector<std::array<std::int64_t, 3>>& triangles);
+
+} // namespace csm

@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Closed surfaces: the meshes whose shadow maps may hold only the faces turned away from the light.
+#include "csmClosedSurface.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace
+{
+using Triangles = std::vector<std::array<std::int64_t, 3>>;
+
+/// A box [lo, hi]^3 as 12 triangles wound counter-clockwise seen from outside. With splitCorners,
+/// every face has its own four points (as vtkPolyDataNormals splits them at sharp edges).
+void box(double lo, double hi, bool splitCorners, std::vector<glm::dvec3>& p, Triangles& t)
+{
+  static const int faces[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 },
+    { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
+  const auto corner = [&](int i)
+  { return glm::dvec3((i & 1) ? hi : lo, (i & 2) ? hi : lo, (i & 4) ? hi : lo); };
+  const std::int64_t base = static_cast<std::int64_t>(p.size());
+  if (!splitCorners)
+  {
+    for (int i = 0; i < 8; ++i)
+      p.push_back(corner(i));
+  }
+  for (const auto& f : faces)
+  {
+    std::int64_t id[4];
+    for (int k = 0; k < 4; ++k)
+    {
+      if (splitCorners)
+      {
+        id[k] = static_cast<std::int64_t>(p.size());
+        p.push_back(corner(f[k]));
+      }
+      else
+      {
+        id[k] = base + f[k];
+      }
+    }
+    t.push_back({ id[0], id[1], id[2] });
+    t.push_back({ id[0], id[2], id[3] });
+  }
+}
+}
+
+TEST(ClosedSurface, ABoxIsClosedWithItsVolume)
+{
+  std::vector<glm::dvec3> p;
+  Triangles t;
+  box(-1.0, 2.0, false, p, t);
+  const csm::SurfaceClosure c = csm::classifySurface(p, t);
+  EXPECT_TRUE(c.closed);
+  EXPECT_NEAR(std::abs(c.volume), 27.0, 1e-12);
+}
+
+TEST(ClosedSurface, PointsSplitAtEdgesStillClose)
+{
+  std::vector<glm::dvec3> p;
+  Triangles t;
+  box(0.0, 1.0, true, p, t); // -0 and +0 corners too: lo = 0.0 below
+  ASSERT_EQ(p.size(), 24u);
+  p[0].x = -0.0;
+  EXPECT_TRUE(csm::classifySurface(p, t).closed);
+}
+
+TEST(ClosedSurface, OrientationGivesTheVolumeSign)
+{
+  std::vector<glm::dvec3> p;
+  Triangles t;
+  box(0.0, 1.0, false, p, t);
+  const double outward = csm::classifySurface(p, t).volume;
+  for (auto& tri : t)
+    std::swap(tri[1], tri[2]);
+  const double inward = csm::classifySurface(p, t).volume;
+  EXPECT_GT(outward, 0.0); // counter-clockwise seen from outside: positive
+  EXPECT_NEAR(outward, -inward, 1e-12);
+  EXPECT_NEAR(std::abs(outward), 1.0, 1e-12);
+}
+
+TEST(ClosedSurface, FarFromTheOriginTheVolumeKeepsItsDigits)
+{
+  std::vector<glm::dvec3> p;
+  Triangles t;
+  box(0.0, 1.0, false, p, t);
+  for (auto& q : p)
+    q += glm::dvec3(1e7, -3e6, 2e7);
+  const csm::SurfaceClosure c = csm::classifySurface(p, t);
+  EXPECT_TRUE(c.closed);
+  EXPECT_NEAR(std::abs(c.volume), 1.0, 1e-6);
+}
+
+TEST(ClosedSurface, AMissingFaceASheetAndAFlippedTriangleAreOpen)
+{
+  std::vector<glm::dvec3> p;
+  Triangles t;
+  box(0.0, 1.0, false, p, t);
+  Triangles missing(t.begin(), t.end() - 2);
+  EXPECT_FALSE(csm::classifySurface(p, missing).closed);
+  Triangles sheet(t.begin(), t.begin() + 2);
+  EXPECT_FALSE(csm::classifySurface(p, sheet).closed);
+  Triangles flipped = t;
+  std::swap(flipped[5][1], flipped[5][2]);
+  EXPECT_FALSE(csm::classifySurface(p, flipped).closed);
+  // A sheet with both windings (a double-sided plate) has an empty boundary: a ray crosses it
+  // toward and away from the light, and its exit layer is the plate.
+  Triangles twoSided = sheet;
+  for (auto tri : sheet)
+  {
+    std::swap(tri[1], tri[2]);
+    twoSided.push_back(tri);
+  }
+  EXPECT_TRUE(csm::classifySurface(p, twoSided).closed);
+}
+
+TEST(ClosedSurface, TwoBoxesSharingAnEdgeAndDegenerateTrianglesStayClosed)
+{
+  std::vector<glm::dvec3> p;
+  Triangles t;
+  box(0.0, 1.0, false, p, t);
+  box(1.0, 2.0, true, p, t); // touches the first box at the corner (1,1,1)
+  t.push_back({ 0, 0, 3 });  // degenerate: ignored
+  t.push_back({ 1, 8 + 1, 1 });
+  EXPECT_TRUE(csm::classifySurface(p, t).closed);
+}
+
+TEST(ClosedSurface, BadInputIsOpen)
+{
+  std::vector<glm::dvec3> p;
+  Triangles t;
+  EXPECT_FALSE(csm::classifySurface(p, t).closed); // empty
+  box(0.0, 1.0, false, p, t);
+  Triangles outOfRange = t;
+  outOfRange[3][2] = 99;
+  EXPECT_FALSE(csm::classifySurface(p, outOfRange).closed);
+  outOfRange[3][2] = -1;
+  EXPECT_FALSE(csm::classifySurface(p, outOfRange).closed);
+  std::vector<glm::dvec3> nan = p;
+  nan[2].y = std::numeric_limits<double>::quiet_NaN();
+  const csm::SurfaceClosure c = csm::classifySurface(nan, t);
+  EXPECT_FALSE(c.closed);
+  EXPECT_EQ(c.volume, 0.0);
+  Triangles degenerate = { { 0, 0, 1 }, { 2, 2, 2 } };
+  EXPECT_FALSE(csm::classifySurface(p, degenerate).closed);
+}
