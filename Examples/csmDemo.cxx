@@ -108,6 +108,7 @@ void usage()
     "  --partition P      single | uniform | log | practical | adaptive [%s]\n"
     "  --cascades K       1..%d [%d]      --lambda L  practical weight [%g]\n"
     "  --adaptive-cascades on|off  the fewest cascades, up to K, that meet --error-target [%s]\n"
+    "  --cull-closed on|off  closed casters drawn into the maps from behind only [%s]\n"
     "  --alpha A          adaptive ratio > 1 [%g]\n"
     "  --resolution R     texels per cascade side at most, 64..8192 [%d]\n"
     "  --error-target M   each cascade's resolution for aliasing error <= M (texel/pixel);\n"
@@ -129,7 +130,7 @@ void usage()
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
     "  t technique, l light angle +15 deg\n",
     o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
-    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.AdaptiveCascades ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
+    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
     d.SlopeBias, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
     o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
@@ -220,6 +221,12 @@ Options parse(int argc, char** argv)
     {
       const char* const names[] = { "off", "on" };
       o.Shadow.AdaptiveCascades = choice(f, v, names, 2) == 1;
+      next();
+    }
+    else if (f == "--cull-closed")
+    {
+      const char* const names[] = { "off", "on" };
+      o.Shadow.CullClosedCasters = choice(f, v, names, 2) == 1;
       next();
     }
     else if (f == "--depth-clamp")
@@ -488,7 +495,7 @@ int main(int argc, char** argv)
   if (app.Opt.Frames > 0)
   {
     std::vector<double> times;
-    int cascadesRendered = 0, cascadesKept = 0;
+    int cascadesRendered = 0, cascadesKept = 0, closedCasters = 0;
     vtkNew<vtkTimerLog> timer;
     window->Render(); // warm-up: shader compilation, first maps
     if (app.Opt.Interactive)
@@ -507,6 +514,7 @@ int main(int argc, char** argv)
       {
         cascadesRendered += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastCascadeRenders();
         cascadesKept += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastCascadesKept();
+        closedCasters = app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastClosedCasters();
       }
     }
     window->SetDesiredUpdateRate(0.0001); // the interactor's still rate
@@ -515,6 +523,9 @@ int main(int argc, char** argv)
     if (app.Passes.Cascaded)
       std::printf("maps_rendered: %d  maps_kept: %d  (over %d frames)\n", cascadesRendered,
         cascadesKept, app.Opt.Frames);
+    if (app.Passes.Cascaded)
+      std::printf("closed_casters: %d of %d actors (drawn into the maps from behind)\n",
+        closedCasters, renderer->GetActors()->GetNumberOfItems());
   }
 
   if (!app.Opt.Out.empty() || app.Opt.Offscreen)

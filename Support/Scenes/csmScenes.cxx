@@ -55,7 +55,8 @@ struct Bar
   double radius;
 };
 
-/// Bars (open cylinders with `sides` facets) and boxes, written straight into a polydata.
+/// Bars (closed prisms with `sides` facets and two end caps) and boxes, written straight into a
+/// polydata.
 class Builder
 {
 public:
@@ -90,6 +91,19 @@ public:
       this->Polys->InsertNextCell(3, t1);
       this->Polys->InsertNextCell(3, t2);
     }
+    // The end caps, with points of their own (flat normals): a bar is a closed solid, as CAD
+    // exports beams, so its shadow maps may hold only its faces turned away from the light.
+    std::vector<vtkIdType> capA(static_cast<size_t>(sides)), capB(static_cast<size_t>(sides));
+    for (int i = 0; i < sides; ++i)
+    {
+      double p[3];
+      this->Points->GetPoint(base + 2 * i, p);
+      capA[static_cast<size_t>(sides - 1 - i)] = this->Points->InsertNextPoint(p);
+      this->Points->GetPoint(base + 2 * i + 1, p);
+      capB[static_cast<size_t>(i)] = this->Points->InsertNextPoint(p);
+    }
+    this->Polys->InsertNextCell(sides, capA.data());
+    this->Polys->InsertNextCell(sides, capB.data());
   }
 
   void AddBox(const Vec& lo, const Vec& hi)
@@ -344,7 +358,7 @@ long long PlatformMaxTriangles()
 {
   std::vector<Bar> heavy, thin;
   PlatformBars(heavy, thin);
-  return 2LL * kMaxBarSides * static_cast<long long>(heavy.size() + thin.size()) +
+  return (4LL * kMaxBarSides - 4) * static_cast<long long>(heavy.size() + thin.size()) +
     kPlatformBoxTriangles;
 }
 
@@ -399,10 +413,10 @@ Scene Platform(long long targetTriangles, double offset)
 {
   std::vector<Bar> heavy, thin;
   PlatformBars(heavy, thin);
-  // Tessellation from the triangle budget: 2 * sides triangles per bar.
+  // Tessellation from the triangle budget: 2 sides triangles a bar's wall, sides - 2 a cap.
   const long long bars = static_cast<long long>(heavy.size() + thin.size());
-  const int sides =
-    static_cast<int>(std::max<long long>(4, std::min<long long>(kMaxBarSides, targetTriangles / (2 * bars))));
+  const int sides = static_cast<int>(
+    std::max<long long>(4, std::min<long long>(kMaxBarSides, (targetTriangles / bars + 4) / 4)));
   Builder steel(offset), light(offset);
   for (const Bar& bar : heavy)
     steel.AddBar(bar, sides);

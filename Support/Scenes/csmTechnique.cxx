@@ -31,6 +31,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->Resolution = baker->GetResolution();
   this->ErrorTarget = baker->GetErrorTarget();
   this->AdaptiveCascades = baker->GetAdaptiveCascades();
+  this->CullClosedCasters = baker->GetCullClosedCasters();
   this->DepthClamp = baker->GetDepthClamp();
   this->PCF = pass->GetPCFSize();
   this->Kernel = pass->GetPCFKernel();
@@ -52,6 +53,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetResolution(o.Resolution);
   baker->SetErrorTarget(o.ErrorTarget);
   baker->SetAdaptiveCascades(o.AdaptiveCascades);
+  baker->SetCullClosedCasters(o.CullClosedCasters);
   baker->SetDepthClamp(o.DepthClamp);
   pass->SetPCFSize(o.PCF);
   pass->SetPCFKernel(o.Kernel);

@@ -35,6 +35,7 @@ struct ShadowOptions
   int Resolution;                ///< also VTK's pass's, for technique vtk
   double ErrorTarget;            ///< resolution from need (0: always Resolution)
   bool AdaptiveCascades;         ///< Cascades: the most; fewer where they meet ErrorTarget
+  bool CullClosedCasters;        ///< closed casters drawn into the maps from behind
   int PCF;
   int Kernel;                    ///< vtkCascadedShadowMapPass::Kernels
   double ConstantBias;
