@@ -196,7 +196,7 @@ compare_to_first(view, "key-light-again", "after ShadowedLights All -> Key")
 # name: (documented default, a different value, what the passes' PrintSelf then shows)
 settings = {"WarpMode": ("Generalized", "LiSPSM", "WarpMode: lispsm"),
             "SplitScheme": ("Adaptive", "Practical", "SplitScheme: practical"),
-            "PCFSize": ("5x5", "3x3", "PCFSize: 3"),
+            "PCFSize": ("3x3", "5x5", "PCFSize: 5"),
             "ShadowDarkness": (1.0, 0.5, "ShadowDarkness: 0.5"),
             "ShadowDebugMode": ("Off", "Cascades", "DebugMode: 1"),
             "NumberOfCascades": (2, 3, "NumberOfCascades: 3"),
