@@ -558,6 +558,11 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
   // as a change next frame.
   renderer->ComputeVisiblePropBounds(props.SceneBounds);
   props.Changed = this->InputsChanged(renderer, state) || state.Maps.empty();
+  // Forget the closed-surface answers for data that is gone.
+  for (auto it = this->Closures.begin(); it != this->Closures.end();)
+  {
+    it = it->second.Data ? std::next(it) : this->Closures.erase(it);
+  }
   // Casters: visible opaque props. Receivers: every visible prop; their boxes fit the cascades.
   vtkPropCollection* collection = renderer->GetViewProps();
   vtkCollectionSimpleIterator pit;
@@ -634,11 +639,6 @@ int vtkCascadedShadowMapBakerPass::ClosureOf(vtkProp* prop)
     data->GetNumberOfVerts() > 0 || data->GetNumberOfLines() > 0)
   {
     return 0;
-  }
-  // Forget the answers for data that is gone.
-  for (auto it = this->Closures.begin(); it != this->Closures.end();)
-  {
-    it = it->second.Data ? std::next(it) : this->Closures.erase(it);
   }
   Closure& closure = this->Closures[data];
   if (closure.Data != data || closure.Time != data->GetMTime())
