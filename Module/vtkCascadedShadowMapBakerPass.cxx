@@ -984,7 +984,7 @@ bool vtkCascadedShadowMapBakerPass::PreReplaceShaderValues(std::string&,
 }
 
 bool vtkCascadedShadowMapBakerPass::PostReplaceShaderValues(std::string& vertexShader,
-  std::string&, std::string& fragmentShader, vtkAbstractMapper*, vtkProp*)
+  std::string&, std::string& fragmentShader, vtkAbstractMapper*, vtkProp* prop)
 {
   // Points: sized per vertex as the main view draws them (gl_PointSize, GL_PROGRAM_POINT_SIZE
   // is on while the maps render); spheres keep only their silhouette; impostors (tubes,
@@ -1001,7 +1001,13 @@ bool vtkCascadedShadowMapBakerPass::PostReplaceShaderValues(std::string& vertexS
       "a mapper's shaders have no main(): its lines and points cast shadows one texel wide");
     return true;
   }
-  vertexShader.insert(vertexEnd, "  csmSizePoint(gl_Position);\n");
+  // Only props whose points are drawn bigger than a pixel pay for the sizing: a software
+  // rasterizer runs both sides of its branch for every vertex (a changed point size changes
+  // the property, and VTK then builds the shaders again).
+  float sizes[2];
+  vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, sizes);
+  vertexShader.insert(vertexEnd,
+    sizes[1] > 1.0f ? "  csmSizePoint(gl_Position);\n" : "  csmSphereView = vec4(0.0);\n");
   vertexShader.insert(vertexMain, std::string("#define CSM_CASTER_VERTEX\n") + csmCaster + "\n");
   std::string fragmentEndCode;
   const bool sphere = fragmentShader.find("gl_PointCoord") != std::string::npos;
