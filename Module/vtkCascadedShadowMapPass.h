@@ -56,7 +56,7 @@ public:
   ///@{
   /// PCF kernel width in texels of the cascade: 1, 3, 5 or 7 (even values round up). Default 3
   /// (Barroso & Celes §4 use 3x3 to 5x5; 3x3 takes 4 bilinear taps where 5x5 takes 9, and
-  /// misclassified fewer pixels on every bench scene: Documentation/Results.md).
+  /// misclassified no more pixels on any bench scene: Documentation/Results.md).
   virtual void SetPCFSize(int size);
   vtkGetMacro(PCFSize, int);
   ///@}
