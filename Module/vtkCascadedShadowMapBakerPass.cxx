@@ -364,7 +364,13 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
   casterView(renderer, renderer->GetActiveCamera(), maps.CasterView[c]);
 
-  // Only the casters whose bounds reach this cascade's light volume.
+  // Only the casters whose bounds reach this cascade's light volume; for the closed ones, the
+  // face to cull (the one turned toward the light). VTK's projections turn a counter-clockwise
+  // face toward the eye into a front face when their determinant is negative (as glFrustum's and
+  // glOrtho's are); a positive one swaps the sides.
+  this->CullFaces.clear();
+  this->CullState = ostate;
+  const double mapDeterminant = vtkMatrix4x4::Determinant(maps.WorldToMap[c]);
   std::vector<vtkProp*> drawn;
   for (size_t i = 0; i < casters.size(); ++i)
   {
@@ -372,20 +378,13 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
           maps.WorldToMap[c], props.CasterBounds[i].data(), depthClamp))
     {
       drawn.push_back(casters[i]);
-    }
-  }
-  // Closed casters: cull the faces turned toward the light. VTK's projections turn a
-  // counter-clockwise face toward the eye into a front face when their determinant is negative
-  // (as glFrustum's and glOrtho's are); a positive one swaps the sides.
-  this->CullFaces.clear();
-  this->CullState = ostate;
-  const double mapDeterminant = vtkMatrix4x4::Determinant(maps.WorldToMap[c]);
-  for (size_t i = 0; i < casters.size() && std::isfinite(mapDeterminant); ++i)
-  {
-    const int outward = props.CasterClosure[i] * (mapDeterminant < 0.0 ? 1 : -1);
-    if (outward != 0 && std::find(drawn.begin(), drawn.end(), casters[i]) != drawn.end())
-    {
-      this->CullFaces[casters[i]] = outward > 0 ? GL_FRONT : GL_BACK;
+      const int outward = std::isfinite(mapDeterminant)
+        ? props.CasterClosure[i] * (mapDeterminant < 0.0 ? 1 : -1)
+        : 0;
+      if (outward != 0)
+      {
+        this->CullFaces[casters[i]] = outward > 0 ? GL_FRONT : GL_BACK;
+      }
     }
   }
   ++this->LastCascadeRenders;
