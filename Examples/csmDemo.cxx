@@ -109,6 +109,7 @@ void usage()
     "  --cascades K       1..%d [%d]      --lambda L  practical weight [%g]\n"
     "  --adaptive-cascades on|off  the fewest cascades, up to K, that meet --error-target [%s]\n"
     "  --cull-closed on|off  closed casters drawn into the maps from behind only [%s]\n"
+    "  --compact-casters on|off  casters drawn into the maps from compact spatial blocks [%s]\n"
     "  --alpha A          adaptive ratio > 1 [%g]\n"
     "  --resolution R     texels per cascade side at most, 64..8192 [%d]\n"
     "  --error-target M   each cascade's resolution for aliasing error <= M (texel/pixel);\n"
@@ -130,7 +131,8 @@ void usage()
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
     "  t technique, l light angle +15 deg\n",
     o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
-    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
+    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
+    d.CompactCasters ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
     d.SlopeBias, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
     o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
@@ -227,6 +229,12 @@ Options parse(int argc, char** argv)
     {
       const char* const names[] = { "off", "on" };
       o.Shadow.CullClosedCasters = choice(f, v, names, 2) == 1;
+      next();
+    }
+    else if (f == "--compact-casters")
+    {
+      const char* const names[] = { "off", "on" };
+      o.Shadow.CompactCasters = choice(f, v, names, 2) == 1;
       next();
     }
     else if (f == "--depth-clamp")
@@ -495,7 +503,8 @@ int main(int argc, char** argv)
   if (app.Opt.Frames > 0)
   {
     std::vector<double> times;
-    int cascadesRendered = 0, cascadesKept = 0, closedCasters = 0;
+    int cascadesRendered = 0, cascadesKept = 0, closedCasters = 0, compactCasters = 0,
+        blocksDrawn = 0;
     vtkNew<vtkTimerLog> timer;
     window->Render(); // warm-up: shader compilation, first maps
     if (app.Opt.Interactive)
@@ -515,6 +524,8 @@ int main(int argc, char** argv)
         cascadesRendered += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastCascadeRenders();
         cascadesKept += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastCascadesKept();
         closedCasters = app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastClosedCasters();
+        compactCasters = app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastCompactCasters();
+        blocksDrawn += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastBlocksDrawn();
       }
     }
     window->SetDesiredUpdateRate(0.0001); // the interactor's still rate
@@ -526,6 +537,9 @@ int main(int argc, char** argv)
     if (app.Passes.Cascaded)
       std::printf("closed_casters: %d of %d actors (drawn into the maps from behind)\n",
         closedCasters, renderer->GetActors()->GetNumberOfItems());
+    if (app.Passes.Cascaded)
+      std::printf("compact_casters: %d of %d actors, blocks drawn: %d (over %d frames)\n",
+        compactCasters, renderer->GetActors()->GetNumberOfItems(), blocksDrawn, app.Opt.Frames);
   }
 
   if (!app.Opt.Out.empty() || app.Opt.Offscreen)

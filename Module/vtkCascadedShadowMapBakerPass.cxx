@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapBakerPass.h"
 
+#include "csmCasterBlocks.h"
 #include "csmClosedSurface.h"
 #include "csmCaster.h"       // the GLSL of Module/glsl/csmCaster.glsl
 #include "csmCasterLineGS.h" // the GLSL of Module/glsl/csmCasterLineGS.glsl
@@ -18,6 +19,7 @@
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkOpenGLError.h"
@@ -38,6 +40,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 vtkStandardNewMacro(vtkCascadedShadowMapBakerPass);
@@ -96,12 +99,13 @@ void casterView(vtkRenderer* renderer, vtkCamera* camera, double key[18])
 
 /// Does any caster draw lines wider or points bigger than one pixel (its map then depends on
 /// the main view)?
-bool hasScreenSizedCasters(const std::vector<vtkProp*>& casters)
+template <typename Caster>
+bool hasScreenSizedCasters(const std::vector<Caster>& casters)
 {
   vtkNew<vtkPropCollection> actors;
-  for (vtkProp* prop : casters)
+  for (const Caster& caster : casters)
   {
-    prop->GetActors(actors);
+    caster.Prop->GetActors(actors);
   }
   vtkCollectionSimpleIterator it;
   actors->InitTraversal(it);
@@ -350,7 +354,6 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   vtkOpenGLFramebufferObject* frameBuffer, LightMaps& maps, int c, const FrameProps& props,
   bool depthClamp)
 {
-  const std::vector<vtkProp*>& casters = props.Casters;
   vtkOpenGLState* ostate = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow())->GetState();
   const int width = static_cast<int>(maps.Atlas->GetWidth());
   const int height = static_cast<int>(maps.Atlas->GetHeight());
@@ -372,18 +375,18 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   this->CullState = ostate;
   const double mapDeterminant = vtkMatrix4x4::Determinant(maps.WorldToMap[c]);
   std::vector<vtkProp*> drawn;
-  for (size_t i = 0; i < casters.size(); ++i)
+  for (const FrameProps::Caster& caster : props.Casters)
   {
     if (vtkCascadedShadowMapPlanner::CascadeReachesBox(
-          maps.WorldToMap[c], props.CasterBounds[i].data(), depthClamp))
+          maps.WorldToMap[c], caster.Bounds.data(), depthClamp))
     {
-      drawn.push_back(casters[i]);
-      const int outward = std::isfinite(mapDeterminant)
-        ? props.CasterClosure[i] * (mapDeterminant < 0.0 ? 1 : -1)
-        : 0;
+      drawn.push_back(caster.Prop);
+      this->LastBlocksDrawn += caster.Block ? 1 : 0;
+      const int outward =
+        std::isfinite(mapDeterminant) ? caster.Closure * (mapDeterminant < 0.0 ? 1 : -1) : 0;
       if (outward != 0)
       {
-        this->CullFaces[casters[i]] = outward > 0 ? GL_FRONT : GL_BACK;
+        this->CullFaces[caster.Prop] = outward > 0 ? GL_FRONT : GL_BACK;
       }
     }
   }
@@ -509,6 +512,8 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   this->LastPropsDrawn = 0;
   this->LastTexelsRendered = 0.0;
   this->LastClosedCasters = 0;
+  this->LastCompactCasters = 0;
+  this->LastBlocksDrawn = 0;
 
   // 1. The props: casters, receivers, scene bounds (across processes when distributed).
   FrameProps props;
@@ -557,10 +562,28 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
   // as a change next frame.
   renderer->ComputeVisiblePropBounds(props.SceneBounds);
   props.Changed = this->InputsChanged(renderer, state) || state.Maps.empty();
-  // Forget the closed-surface answers for data that is gone.
+  // Forget the closed-surface answers for data that is gone, and the blocks of data or props
+  // that are gone (releasing their buffers in this window's context, which is current).
   for (auto it = this->Closures.begin(); it != this->Closures.end();)
   {
     it = it->second.Data ? std::next(it) : this->Closures.erase(it);
+  }
+  vtkWindow* window = renderer->GetRenderWindow();
+  for (auto it = this->Blocks.begin(); it != this->Blocks.end();)
+  {
+    const bool gone = !it->second.Window || !it->second.Data;
+    if (gone && it->second.Window == window)
+    {
+      for (auto& mapper : it->second.Mappers)
+      {
+        mapper->ReleaseGraphicsResources(window);
+      }
+    }
+    it = gone ? this->Blocks.erase(it) : std::next(it);
+  }
+  for (auto it = this->Proxies.begin(); it != this->Proxies.end();)
+  {
+    it = it->second.Window && it->second.Prop ? std::next(it) : this->Proxies.erase(it);
   }
   // Casters: visible opaque props. Receivers: every visible prop; their boxes fit the cascades.
   vtkPropCollection* collection = renderer->GetViewProps();
@@ -574,10 +597,16 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
       props.Receivers.push_back(b);
       if (prop->HasOpaqueGeometry())
       {
-        props.Casters.push_back(prop);
-        props.CasterBounds.push_back(b);
-        props.CasterClosure.push_back(this->ClosureOf(prop));
-        this->LastClosedCasters += props.CasterClosure.back() != 0 ? 1 : 0;
+        const int closure = this->ClosureOf(prop);
+        this->LastClosedCasters += closure != 0 ? 1 : 0;
+        if (this->CompactCasters &&
+          this->AddCompactCaster(prop, closure,
+            static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow()), props))
+        {
+          ++this->LastCompactCasters;
+          continue;
+        }
+        props.Casters.push_back({ prop, b, closure, false });
       }
     }
   }
@@ -585,22 +614,23 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
 
 namespace
 {
-/// The triangles of a polydata's polygons (fans) and strips, for csm::classifySurface.
-csm::SurfaceClosure classifyPolyData(vtkPolyData* data)
+/// The positions and the triangles of a polydata's polygons (fans) and strips (false: no points).
+bool trianglesOf(vtkPolyData* data, std::vector<glm::dvec3>& positions,
+  std::vector<std::array<std::int64_t, 3>>& triangles)
 {
   vtkPoints* points = data->GetPoints();
   if (!points || points->GetNumberOfPoints() == 0)
   {
-    return csm::SurfaceClosure();
+    return false;
   }
-  std::vector<glm::dvec3> positions(static_cast<size_t>(points->GetNumberOfPoints()));
+  positions.resize(static_cast<size_t>(points->GetNumberOfPoints()));
   for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
   {
     double p[3];
     points->GetPoint(i, p);
     positions[static_cast<size_t>(i)] = glm::dvec3(p[0], p[1], p[2]);
   }
-  std::vector<std::array<std::int64_t, 3>> triangles;
+  triangles.clear();
   triangles.reserve(static_cast<size_t>(data->GetPolys()->GetNumberOfConnectivityIds()));
   vtkIdType n;
   const vtkIdType* ids;
@@ -622,7 +652,61 @@ csm::SurfaceClosure classifyPolyData(vtkPolyData* data)
                                      : std::array<std::int64_t, 3>{ ids[k - 1], ids[k - 2], ids[k] });
     }
   }
-  return csm::classifySurface(positions, triangles);
+  return true;
+}
+
+/// csm::classifySurface of a polydata.
+csm::SurfaceClosure classifyPolyData(vtkPolyData* data)
+{
+  std::vector<glm::dvec3> positions;
+  std::vector<std::array<std::int64_t, 3>> triangles;
+  return trianglesOf(data, positions, triangles) ? csm::classifySurface(positions, triangles)
+                                                 : csm::SurfaceClosure();
+}
+
+/// The polydata of a prop that may be drawn from compact blocks: a plain actor and mapper,
+/// polygons or strips drawn as a surface, nothing else (see CompactCasters).
+vtkPolyData* compactableData(vtkProp* prop)
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkProperty* property = actor ? actor->GetProperty() : nullptr;
+  vtkPolyDataMapper* mapper = actor ? vtkPolyDataMapper::SafeDownCast(actor->GetMapper()) : nullptr;
+  vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
+  // Subclasses (followers, LOD actors, impostor and splat mappers) draw what their class knows.
+  if (!data || !property || std::strcmp(actor->GetClassName(), "vtkOpenGLActor") != 0 ||
+    std::strcmp(mapper->GetClassName(), "vtkOpenGLPolyDataMapper") != 0 ||
+    property->GetRepresentation() != VTK_SURFACE || mapper->GetNumberOfClippingPlanes() > 0 ||
+    data->GetNumberOfVerts() > 0 || data->GetNumberOfLines() > 0 ||
+    data->GetNumberOfPolys() + data->GetNumberOfStrips() == 0)
+  {
+    return nullptr;
+  }
+  return data;
+}
+
+/// A block's polydata: its corners (the input's point type, so that the mapper's shift and scale
+/// keep far-from-origin coordinates exact) and its triangles.
+vtkSmartPointer<vtkPolyData> blockPolyData(vtkPoints* input, const csm::CasterBlock& block)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataType(input->GetDataType());
+  points->SetNumberOfPoints(static_cast<vtkIdType>(block.points.size()));
+  for (size_t i = 0; i < block.points.size(); ++i)
+  {
+    points->SetPoint(static_cast<vtkIdType>(i), input->GetPoint(static_cast<vtkIdType>(block.points[i])));
+  }
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(static_cast<vtkIdType>(block.triangles.size()),
+    3 * static_cast<vtkIdType>(block.triangles.size()));
+  for (const auto& t : block.triangles)
+  {
+    const vtkIdType ids[3] = { t[0], t[1], t[2] };
+    polys->InsertNextCell(3, ids);
+  }
+  auto data = vtkSmartPointer<vtkPolyData>::New();
+  data->SetPoints(points);
+  data->SetPolys(polys);
+  return data;
 }
 }
 
@@ -653,6 +737,106 @@ int vtkCascadedShadowMapBakerPass::ClosureOf(vtkProp* prop)
     return 0;
   }
   return determinant > 0.0 ? closure.Orientation : -closure.Orientation;
+}
+
+bool vtkCascadedShadowMapBakerPass::AddCompactCaster(
+  vtkProp* prop, int closure, vtkOpenGLRenderWindow* window, FrameProps& props)
+{
+  vtkPolyData* data = compactableData(prop);
+  if (!data || !window)
+  {
+    return false;
+  }
+  // The data's blocks in this window, built again when the data changed.
+  CasterBlocks& blocks = this->Blocks[{ window, data }];
+  if (blocks.Data != data || blocks.Window != window || blocks.Time != data->GetMTime())
+  {
+    for (auto& mapper : blocks.Mappers)
+    {
+      mapper->ReleaseGraphicsResources(window);
+    }
+    blocks.Mappers.clear();
+    blocks.Bounds.clear();
+    blocks.Window = window;
+    blocks.Data = data;
+    blocks.Time = data->GetMTime();
+    blocks.Build = ++this->BlockBuilds;
+    std::vector<glm::dvec3> positions;
+    std::vector<std::array<std::int64_t, 3>> triangles;
+    if (trianglesOf(data, positions, triangles))
+    {
+      const size_t perBlock = std::max<size_t>(MINIMUM_BLOCK_TRIANGLES,
+        (triangles.size() + MAXIMUM_BLOCKS - 1) / MAXIMUM_BLOCKS);
+      for (const csm::CasterBlock& block : csm::splitIntoBlocks(positions, triangles, perBlock))
+      {
+        auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+        mapper->SetInputData(blockPolyData(data->GetPoints(), block));
+        mapper->ScalarVisibilityOff();
+        mapper->StaticOn(); // its input is ours and does not change
+        blocks.Mappers.push_back(mapper);
+        blocks.Bounds.push_back({ block.lower.x, block.upper.x, block.lower.y, block.upper.y,
+          block.lower.z, block.upper.z });
+      }
+    }
+  }
+  if (blocks.Mappers.empty())
+  {
+    return false; // nothing usable (no area, a bad index or position): drawn as it is
+  }
+  // The prop's actors for those blocks: its property, a copy of its matrix.
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  CasterProxy& proxy = this->Proxies[{ window, prop }];
+  if (proxy.Prop != prop || proxy.Window != window || proxy.Data != data ||
+    proxy.Build != blocks.Build)
+  {
+    proxy.Prop = prop;
+    proxy.Window = window;
+    proxy.Data = data;
+    proxy.Build = blocks.Build;
+    proxy.Matrix = vtkSmartPointer<vtkMatrix4x4>::New();
+    proxy.Actors.clear();
+    for (auto& mapper : blocks.Mappers)
+    {
+      auto blockActor = vtkSmartPointer<vtkActor>::New();
+      blockActor->SetMapper(mapper);
+      blockActor->SetUserMatrix(proxy.Matrix);
+      proxy.Actors.push_back(blockActor);
+    }
+  }
+  vtkMatrix4x4* matrix = actor->GetMatrix();
+  if (!std::equal(matrix->GetData(), matrix->GetData() + 16, proxy.Matrix->GetData()))
+  {
+    proxy.Matrix->DeepCopy(matrix);
+  }
+  std::vector<FrameProps::Caster> added;
+  for (size_t i = 0; i < proxy.Actors.size(); ++i)
+  {
+    proxy.Actors[i]->SetProperty(actor->GetProperty());
+    // The block's box in world space: the box of its corners' images.
+    std::array<double, 6> world = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX,
+      -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    const std::array<double, 6>& local = blocks.Bounds[i];
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const double p[4] = { local[corner & 1], local[2 + ((corner >> 1) & 1)],
+        local[4 + ((corner >> 2) & 1)], 1.0 };
+      double q[4];
+      matrix->MultiplyPoint(p, q);
+      for (int k = 0; k < 3; ++k)
+      {
+        const double v = q[k] / q[3];
+        world[2 * k] = std::min(world[2 * k], v);
+        world[2 * k + 1] = std::max(world[2 * k + 1], v);
+      }
+    }
+    if (!std::all_of(world.begin(), world.end(), [](double v) { return std::isfinite(v); }))
+    {
+      return false; // a matrix that sends a corner to infinity: the prop is drawn as it is
+    }
+    added.push_back({ proxy.Actors[i], world, closure, true });
+  }
+  props.Casters.insert(props.Casters.end(), added.begin(), added.end());
+  return true;
 }
 
 void vtkCascadedShadowMapBakerPass::GatherAcrossProcesses(FrameProps& props)
@@ -1093,6 +1277,24 @@ void vtkCascadedShadowMapBakerPass::ReleaseGraphicsResources(vtkWindow* w)
   this->Renderers.erase(std::remove_if(this->Renderers.begin(), this->Renderers.end(),
                           [](const RendererMaps& r) { return !r.Renderer; }),
     this->Renderers.end());
+  // The compact blocks drawn in this window (all of them for no window).
+  for (auto it = this->Blocks.begin(); it != this->Blocks.end();)
+  {
+    if (w && it->second.Window != w)
+    {
+      ++it;
+      continue;
+    }
+    for (auto& mapper : it->second.Mappers)
+    {
+      mapper->ReleaseGraphicsResources(w ? w : it->second.Window.GetPointer());
+    }
+    it = this->Blocks.erase(it);
+  }
+  for (auto it = this->Proxies.begin(); it != this->Proxies.end();)
+  {
+    it = !w || it->second.Window == w ? this->Proxies.erase(it) : std::next(it);
+  }
 }
 
 vtkCascadedShadowMapPlanner* vtkCascadedShadowMapBakerPass::GetPlanner()
@@ -1132,6 +1334,7 @@ void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InteractiveMapBorder: " << this->InteractiveMapBorder << "\n";
   os << indent << "MeasureTimes: " << (this->MeasureTimes ? "on" : "off") << "\n";
   os << indent << "CullClosedCasters: " << (this->CullClosedCasters ? "on" : "off") << "\n";
+  os << indent << "CompactCasters: " << (this->CompactCasters ? "on" : "off") << "\n";
   os << indent << "Renderers: " << this->Renderers.size() << "\n";
   os << indent << "ShadowedLights: " << this->GetLightMaps().size() << "\n";
   os << indent << "Controller: " << this->Controller << "\n";

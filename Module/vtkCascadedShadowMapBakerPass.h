@@ -44,6 +44,7 @@
 #include <string> // for members
 #include <vector> // for members
 
+class vtkActor;
 class vtkCamera;
 class vtkLight;
 class vtkMatrix4x4;
@@ -53,10 +54,12 @@ class vtkOpenGLRenderWindow;
 class vtkOpenGLRenderer;
 class vtkOpenGLState;
 class vtkPolyData;
+class vtkPolyDataMapper;
 class vtkProp;
 class vtkRenderWindow;
 class vtkRenderer;
 class vtkTextureObject;
+class vtkWindow;
 
 class VTKRENDERINGCASCADEDSHADOWS_EXPORT vtkCascadedShadowMapBakerPass : public vtkOpenGLRenderPass
 {
@@ -163,6 +166,32 @@ public:
   ///@{
   /// For tests and benchmarks: casters drawn with their exit layer only in the last Render().
   vtkGetMacro(LastClosedCasters, int);
+  ///@}
+
+  ///@{
+  /**
+   * Casters drawn from compact blocks. A map needs a caster's depth only, so a prop that is a
+   * plain vtkActor with a plain vtkPolyDataMapper drawing polygons or strips as a surface (no
+   * clipping planes) is drawn into the maps from a copy of its triangles with positions alone
+   * (points split for normals welded again), split into spatial blocks of at least
+   * MINIMUM_BLOCK_TRIANGLES triangles (at most MAXIMUM_BLOCKS a prop): each cascade draws only the
+   * blocks whose boxes reach its light volume, so one actor spanning the scene no longer goes
+   * whole into every cascade (csm::splitIntoBlocks; built once per change of the data, per
+   * window; the copy costs about the positions and triangle indices once more in memory). The
+   * blocks share the prop's property and matrix. Other props are drawn as they are. Default on.
+   */
+  vtkSetMacro(CompactCasters, bool);
+  vtkGetMacro(CompactCasters, bool);
+  vtkBooleanMacro(CompactCasters, bool);
+  static constexpr int MINIMUM_BLOCK_TRIANGLES = 16384;
+  static constexpr int MAXIMUM_BLOCKS = 64;
+  ///@}
+
+  ///@{
+  /// For tests and benchmarks: casters drawn from compact blocks in the last Render(), and the
+  /// blocks drawn into its rendered cascades (all cascades together).
+  vtkGetMacro(LastCompactCasters, int);
+  vtkGetMacro(LastBlocksDrawn, int);
   ///@}
 
   /// The planner that holds the options above and computes the cascades.
@@ -300,11 +329,16 @@ protected:
   {
     double SceneBounds[6] = { 1, -1, 1, -1, 1, -1 };
     bool Changed = true; ///< a prop, light, option or the window size changed: render every map
-    std::vector<vtkProp*> Casters;
-    std::vector<std::array<double, 6>> CasterBounds;
-    /// Per caster: 0 draw both sides; +1 / -1 closed, its counter-clockwise faces (after the
-    /// actor's matrix) turned outward / inward.
-    std::vector<int> CasterClosure;
+    struct Caster
+    {
+      vtkProp* Prop = nullptr; ///< a visible opaque prop, or an actor of a prop's blocks
+      std::array<double, 6> Bounds; ///< world box
+      /// 0 draw both sides; +1 / -1 closed, its counter-clockwise faces (after the actor's
+      /// matrix) turned outward / inward.
+      int Closure = 0;
+      bool Block = false; ///< one of a prop's compact blocks (CompactCasters)
+    };
+    std::vector<Caster> Casters;
     std::vector<std::array<double, 6>> Receivers;
   };
   /// The steps of Render(): collect the props, share them across processes, plan the lights
@@ -328,6 +362,10 @@ protected:
     bool& reallocated);
   void RenderCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebufferObject* frameBuffer,
     LightMaps& maps, int cascade, const FrameProps& props, bool depthClamp);
+  /// For a prop drawn from compact blocks (CompactCasters), appends its blocks to the casters
+  /// with their world boxes and returns true; false: the prop is drawn as it is.
+  bool AddCompactCaster(vtkProp* prop, int closure, vtkOpenGLRenderWindow* window,
+    FrameProps& props);
   /// +1 / -1: the prop's data is closed, its counter-clockwise faces turned outward / inward in
   /// world space; 0: draw both sides (CullClosedCasters).
   int ClosureOf(vtkProp* prop);
@@ -349,6 +387,7 @@ protected:
   double InteractiveMapBorder = 0.2;
   bool MeasureTimes = false;
   bool CullClosedCasters = true;
+  bool CompactCasters = true;
 
   std::vector<RendererMaps> Renderers;
   vtkWeakPointer<vtkRenderer> LastRenderer;
@@ -365,6 +404,8 @@ protected:
   int LastPropsDrawn = 0;
   double LastTexelsRendered = 0.0;
   int LastClosedCasters = 0;
+  int LastCompactCasters = 0;
+  int LastBlocksDrawn = 0;
   /// csm::classifySurface's answer per polydata, kept while the data does not change.
   struct Closure
   {
@@ -373,6 +414,29 @@ protected:
     int Orientation = 0; ///< +1 outward, -1 inward, 0 open
   };
   std::map<vtkPolyData*, Closure> Closures;
+  /// Compact blocks of a polydata in one window (their mappers hold that context's buffers).
+  struct CasterBlocks
+  {
+    vtkWeakPointer<vtkWindow> Window;
+    vtkWeakPointer<vtkPolyData> Data;
+    vtkMTimeType Time = 0;
+    int Build = 0; ///< which build: the proxies of a prop follow it
+    std::vector<vtkSmartPointer<vtkPolyDataMapper>> Mappers;
+    std::vector<std::array<double, 6>> Bounds; ///< per block, in the data's coordinates
+  };
+  std::map<std::pair<vtkWindow*, vtkPolyData*>, CasterBlocks> Blocks;
+  /// The actors that draw a prop's blocks in one window (its property, a copy of its matrix).
+  struct CasterProxy
+  {
+    vtkWeakPointer<vtkWindow> Window;
+    vtkWeakPointer<vtkProp> Prop;
+    vtkPolyData* Data = nullptr;
+    int Build = 0;
+    std::vector<vtkSmartPointer<vtkActor>> Actors;
+    vtkSmartPointer<vtkMatrix4x4> Matrix;
+  };
+  std::map<std::pair<vtkWindow*, vtkProp*>, CasterProxy> Proxies;
+  int BlockBuilds = 0;
   /// While a cascade renders: the face (GL_FRONT / GL_BACK) to cull per closed caster, and the
   /// state to cull it with (SetShaderParameters runs after the property set its own culling).
   std::map<vtkProp*, unsigned int> CullFaces;

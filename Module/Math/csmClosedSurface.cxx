@@ -8,12 +8,12 @@
 namespace csm
 {
 
-namespace
+bool weldPositions(const std::vector<glm::dvec3>& positions, std::vector<std::uint32_t>& ids)
 {
-/// One id per distinct position (positions sorted lexicographically, equal runs share an id).
-/// Returns false when a position is not finite.
-bool weld(const std::vector<glm::dvec3>& positions, std::vector<std::uint32_t>& ids)
-{
+  if (positions.size() > 0xffffffffu)
+  {
+    return false;
+  }
   std::vector<glm::dvec3> p(positions.size());
   for (size_t i = 0; i < positions.size(); ++i)
   {
@@ -45,14 +45,13 @@ bool weld(const std::vector<glm::dvec3>& positions, std::vector<std::uint32_t>& 
   }
   return true;
 }
-} // namespace
 
 SurfaceClosure classifySurface(
   const std::vector<glm::dvec3>& positions, const std::vector<std::array<std::int64_t, 3>>& triangles)
 {
   SurfaceClosure result;
   std::vector<std::uint32_t> ids;
-  if (positions.empty() || positions.size() > 0xffffffffu || !weld(positions, ids))
+  if (positions.empty() || positions.size() > 0xffffffffu || !weldPositions(positions, ids))
   {
     return result;
   }

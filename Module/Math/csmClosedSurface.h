@@ -31,6 +31,11 @@ struct SurfaceClosure
   double volume = 0.0;
 };
 
+/// One id per distinct position (ids grow with the positions' lexicographic order; bitwise-equal
+/// positions, +0 and -0 alike, share one). Returns false, leaving ids unspecified, when a position
+/// is not finite or there are more than 2^32 positions.
+bool weldPositions(const std::vector<glm::dvec3>& positions, std::vector<std::uint32_t>& ids);
+
 /// Classify a triangle mesh. Vertices at bitwise-equal positions (+0 and -0 alike) are one vertex,
 /// so meshes whose points were split for normals or texture seams still close. Triangles with two
 /// equal (welded) corners are ignored; an index out of range or a non-finite position makes the mesh

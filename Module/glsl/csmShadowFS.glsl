@@ -144,7 +144,10 @@ uniform float csmAttenuation[CSM_LIGHTS];
 // Shadow of light j: x = light factor (1 lit .. 1 - attenuation), y = cascade index (-1: none),
 // z = aliasing error m (error view only), w = visibility.
 // The cascade is the one whose view-depth interval holds the point (Lloyd et al. 2006, §6.3) or,
-// where a map kept from an earlier frame misses the point, the next one that covers it. In the
+// where a map kept from an earlier frame misses the point, the next one if it covers it (the
+// baker re-renders a kept map that no longer covers its slice, so this is only for points on
+// its edge; two candidates, not a search, because a software rasterizer pays for every
+// matrix product of every fragment). In the
 // last BlendBand of a cascade's depth range a share of the pixels growing from 0 to 1 across the
 // band takes the next cascade (where its map covers the point): the seam becomes a dithered
 // transition at the cost of one lookup, where a blend would take two.
@@ -166,43 +169,24 @@ vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
   float cascadeFar = csmSplitFar[first + c];
   float band = csmBlendBand * (cascadeFar - cascadeNear);
   bool blend = c + 1 < count && band > 0.0 && (depth - (cascadeFar - band)) / band > csmDither();
-  // The covering cascade at or after c, and the next one if it covers.
-  int chosen = -1;
-  bool nextCovers = false;
-  vec4 h = vec4(0.0, 0.0, 0.0, 1.0), hx = vec4(0.0), hy = vec4(0.0);
-  vec4 hNext = h, hxNext = hx, hyNext = hy;
-  for (int i = 0; i < count; ++i)
-  {
-    mat4 toMap = csmToMap[first + i];
-    vec4 hi = toMap * vc;
-    bool covers = csmCovers(hi);
-    if (i >= c && chosen < 0 && covers)
-    {
-      chosen = i;
-      h = hi;
-      hx = toMap * dvcdx;
-      hy = toMap * dvcdy;
-    }
-    if (i == c + 1 && covers)
-    {
-      nextCovers = true;
-      hNext = hi;
-      hxNext = toMap * dvcdx;
-      hyNext = toMap * dvcdy;
-    }
-  }
-  if (blend && chosen == c && nextCovers)
-  {
-    chosen = c + 1;
-    h = hNext;
-    hx = hxNext;
-    hy = hyNext;
-  }
+  // The cascade c, or the next one where it covers the point and c's map does not, or the
+  // dither gives this pixel of the band to it.
+  int next = min(c + 1, max(count - 1, 0));
+  mat4 toThis = csmToMap[first + c];
+  mat4 toNext = csmToMap[first + next];
+  bool thisCovers = csmCovers(toThis * vc);
+  bool nextCovers = next > c && csmCovers(toNext * vc);
+  bool takeNext = nextCovers && (blend || !thisCovers);
+  int chosen = takeNext ? next : (thisCovers ? c : -1);
+  mat4 toChosen = takeNext ? toNext : toThis;
   if (count <= 0 || depth < csmSplitNear[j] || depth > csmSplitFar[first + max(count, 1) - 1] ||
     chosen < 0)
   {
     return vec4(1.0, -1.0, 0.0, 1.0); // outside every cascade: lit as without shadows
   }
+  vec4 h = toChosen * vc;
+  vec4 hx = toChosen * dvcdx;
+  vec4 hy = toChosen * dvcdy;
   float m;
   float visibility =
     csmVisibility(map, csmTile[first + chosen], csmTexel[first + chosen], h, hx, hy, m);

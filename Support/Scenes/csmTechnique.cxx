@@ -32,6 +32,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->ErrorTarget = baker->GetErrorTarget();
   this->AdaptiveCascades = baker->GetAdaptiveCascades();
   this->CullClosedCasters = baker->GetCullClosedCasters();
+  this->CompactCasters = baker->GetCompactCasters();
   this->DepthClamp = baker->GetDepthClamp();
   this->PCF = pass->GetPCFSize();
   this->Kernel = pass->GetPCFKernel();
@@ -54,6 +55,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetErrorTarget(o.ErrorTarget);
   baker->SetAdaptiveCascades(o.AdaptiveCascades);
   baker->SetCullClosedCasters(o.CullClosedCasters);
+  baker->SetCompactCasters(o.CompactCasters);
   baker->SetDepthClamp(o.DepthClamp);
   pass->SetPCFSize(o.PCF);
   pass->SetPCFKernel(o.Kernel);

@@ -36,6 +36,7 @@ struct ShadowOptions
   double ErrorTarget;            ///< resolution from need (0: always Resolution)
   bool AdaptiveCascades;         ///< Cascades: the most; fewer where they meet ErrorTarget
   bool CullClosedCasters;        ///< closed casters drawn into the maps from behind
+  bool CompactCasters;           ///< casters drawn into the maps from compact spatial blocks
   int PCF;
   int Kernel;                    ///< vtkCascadedShadowMapPass::Kernels
   double ConstantBias;

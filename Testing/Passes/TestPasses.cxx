@@ -3,6 +3,7 @@
 // in a build without OSMesa): what VTK's shadow pass gets wrong or does not do, each checked with
 // numbers.
 #include "vtkActor.h"
+#include "vtkAppendPolyData.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
@@ -49,6 +50,7 @@
 namespace
 {
 using csmTest::BoxOverPlane;
+using csmTest::BoxOverPlaneSettings;
 using csmTest::DarkenedPixels;
 using csmTest::DifferingValues;
 
@@ -1016,4 +1018,79 @@ TEST(Passes, ClosedCastersCastTheSameShadowsFromTheirExitLayer)
     EXPECT_LT(std::abs(before.Held - before.Of[1]), 0.1 * gap);
     EXPECT_LT(std::abs(after.Held - after.Of[0]), 0.1 * gap);
   }
+}
+
+TEST(Passes, BigCastersAreDrawnFromCompactBlocksWithTheSameShadows)
+{
+  // A row of spheres along the view as one polydata (one actor spanning every cascade), over a
+  // finely tessellated ground: both are drawn into the maps from compact blocks, each cascade
+  // drawing only the blocks that reach it, and the shadows are those of the props themselves.
+  BoxOverPlaneSettings settings;
+  settings.GroundHalfWidth = 40.0;
+  settings.GroundResolution = 200; // 80,000 triangles
+  BoxOverPlane scene(settings);
+  vtkNew<vtkAppendPolyData> row;
+  for (int i = 0; i < 32; ++i)
+  {
+    vtkNew<vtkSphereSource> sphere;
+    sphere->SetCenter(3.0, 1.5, 6.0 - 2.0 * i);
+    sphere->SetRadius(0.6);
+    sphere->SetThetaResolution(32);
+    sphere->SetPhiResolution(32);
+    row->AddInputConnection(sphere->GetOutputPort());
+  }
+  row->Update();
+  const vtkIdType rowTriangles = row->GetOutput()->GetNumberOfPolys();
+  ASSERT_GT(rowTriangles, 3 * vtkCascadedShadowMapBakerPass::MINIMUM_BLOCK_TRIANGLES);
+  vtkNew<vtkPolyDataMapper> rowMapper;
+  rowMapper->SetInputConnection(row->GetOutputPort());
+  vtkNew<vtkActor> rowActor;
+  rowActor->SetMapper(rowMapper);
+  scene.Renderer->AddActor(rowActor);
+  auto plain = scene.Render();
+
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->SetNumberOfCascades(3);
+  baker->CompactCastersOff();
+  auto whole = scene.Render();
+  EXPECT_EQ(baker->GetLastCompactCasters(), 0);
+  EXPECT_EQ(baker->GetLastBlocksDrawn(), 0);
+  const long wholeDark = DarkenedPixels(whole, plain);
+
+  baker->CompactCastersOn();
+  auto blocks = scene.Render();
+  ASSERT_EQ(baker->GetLastCascadeRenders(), 3);
+  EXPECT_EQ(baker->GetLastCompactCasters(), 3); // the box, the ground, the row
+  // Blocks: the box 1, the ground 80,000 / 16,384 -> 8 (median halving), the row 4; drawn into 3
+  // cascades that would be 39. Each cascade draws only the blocks that reach it.
+  EXPECT_EQ(baker->GetLastPropsDrawn(), baker->GetLastBlocksDrawn());
+  EXPECT_GE(baker->GetLastBlocksDrawn(), 13);
+  EXPECT_LT(baker->GetLastBlocksDrawn(), 39);
+  const long blockDark = DarkenedPixels(blocks, plain);
+  EXPECT_GT(wholeDark, 2000);
+  EXPECT_LE(std::abs(blockDark - wholeDark), wholeDark / 200);
+  EXPECT_LE(DifferingValues(blocks, whole, 8), 320 * 240 * 3 / 200);
+
+  // The data changes: the blocks are built again (the row's shadow moves with it).
+  vtkNew<vtkPolyData> moved;
+  moved->DeepCopy(row->GetOutput());
+  for (vtkIdType i = 0; i < moved->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    moved->GetPoint(i, p);
+    moved->GetPoints()->SetPoint(i, p[0] - 6.0, p[1], p[2]);
+  }
+  rowMapper->SetInputData(moved);
+  auto movedImage = scene.Render();
+  baker->CompactCastersOff();
+  auto movedWhole = scene.Render();
+  EXPECT_GT(DifferingValues(movedImage, blocks, 8), 1000);
+  EXPECT_LE(DifferingValues(movedImage, movedWhole, 8), 320 * 240 * 3 / 200);
+
+  // What the blocks cannot draw as the prop does is drawn as it is: a wireframe prop.
+  baker->CompactCastersOn();
+  scene.Box->GetProperty()->SetRepresentationToWireframe();
+  scene.Render();
+  EXPECT_EQ(baker->GetLastCompactCasters(), 2);
 }
