@@ -505,6 +505,7 @@ int main(int argc, char** argv)
     std::vector<double> times;
     int cascadesRendered = 0, cascadesKept = 0, closedCasters = 0, compactCasters = 0,
         blocksDrawn = 0;
+    double texelsRendered = 0.0;
     vtkNew<vtkTimerLog> timer;
     window->Render(); // warm-up: shader compilation, first maps
     if (app.Opt.Interactive)
@@ -526,14 +527,16 @@ int main(int argc, char** argv)
         closedCasters = app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastClosedCasters();
         compactCasters = app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastCompactCasters();
         blocksDrawn += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastBlocksDrawn();
+        texelsRendered += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastTexelsRendered();
       }
     }
     window->SetDesiredUpdateRate(0.0001); // the interactor's still rate
     std::sort(times.begin(), times.end());
     std::printf("median_frame_ms: %.3f\n", times[times.size() / 2]);
     if (app.Passes.Cascaded)
-      std::printf("maps_rendered: %d  maps_kept: %d  (over %d frames)\n", cascadesRendered,
-        cascadesKept, app.Opt.Frames);
+      std::printf("maps_rendered: %d  maps_kept: %d  (over %d frames), texels rendered per "
+                  "frame: %.2f M\n",
+        cascadesRendered, cascadesKept, app.Opt.Frames, texelsRendered / app.Opt.Frames / 1e6);
     if (app.Passes.Cascaded)
       std::printf("closed_casters: %d of %d actors (drawn into the maps from behind)\n",
         closedCasters, renderer->GetActors()->GetNumberOfItems());

@@ -125,9 +125,14 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
     u.TextureUnit.push_back(maps.Atlas->GetTextureUnit());
     signature += std::to_string(maps.LightIndex) + ";";
   }
-  // The kernel and the debug view are compiled into the lookup (see csmShadowFS.glsl).
+  // The kernel, its size (for few lights) and the debug view are compiled into the lookup (see
+  // csmShadowFS.glsl).
   signature +=
     " kernel " + std::to_string(this->PCFKernel) + " debug " + std::to_string(this->DebugMode);
+  if (this->ConstantKernelSize())
+  {
+    signature += " radius " + std::to_string(this->PCFSize / 2);
+  }
   if (signature != this->ShaderSignature)
   {
     this->ShaderSignature = signature;
@@ -184,6 +189,10 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
        << "#define CSM_DEBUG_ERROR " << DEBUG_ERROR << "\n"
        << "#define CSM_DEBUG_FACTOR " << DEBUG_FACTOR << "\n"
        << "#define CSM_DEBUG " << this->DebugMode << "\n";
+  if (this->ConstantKernelSize())
+  {
+    decl << "#define CSM_PCF_RADIUS " << this->PCFSize / 2 << "\n";
+  }
   if (impostor)
   {
     decl << "#define CSM_IMPOSTOR\n";
@@ -252,6 +261,11 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   return true;
 }
 
+bool vtkCascadedShadowMapPass::ConstantKernelSize() const
+{
+  return this->Uniforms.Lights() <= static_cast<size_t>(MAXIMUM_LIGHTS_WITH_CONSTANT_KERNEL);
+}
+
 void vtkCascadedShadowMapPass::ReportOnce(const std::string& message)
 {
   if (this->Reported.insert(message).second)
@@ -273,7 +287,10 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
     vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, pixels);
     program->SetUniform2f("csmImpostorPixels", pixels);
   }
-  program->SetUniformi("csmPCFRadius", this->PCFSize / 2);
+  if (program->IsUniformUsed("csmPCFRadius"))
+  {
+    program->SetUniformi("csmPCFRadius", this->PCFSize / 2);
+  }
   program->SetUniformf("csmConstantBias", static_cast<float>(this->ConstantBias));
   program->SetUniformf("csmSlopeBias", static_cast<float>(this->SlopeBias));
   program->SetUniformf("csmBlendBand", static_cast<float>(this->BlendBand));

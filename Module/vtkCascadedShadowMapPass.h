@@ -61,6 +61,12 @@ public:
   vtkGetMacro(PCFSize, int);
   ///@}
 
+  /// Up to this many shadowed lights the PCF kernel's size is compiled into the lookup (its
+  /// loops unroll: ~10 % of a still frame on llvmpipe); beyond it, a uniform, because the
+  /// unrolled taps of many lights make a shader too slow to compile. Changing PCFSize then
+  /// rebuilds the shaders.
+  static constexpr int MAXIMUM_LIGHTS_WITH_CONSTANT_KERNEL = 4;
+
   enum Kernels
   {
     KERNEL_GRID = 0,    ///< regular grid of taps one texel apart
@@ -160,6 +166,7 @@ protected:
   std::string ShaderSignature; // what the injected code is compiled for (lights, kernel, debug)
   std::set<std::string> Reported; // warnings said already: once each
   void ReportOnce(const std::string& message);
+  bool ConstantKernelSize() const; // is the PCF radius compiled in (few lights)?
   vtkTimeStamp ShaderTime;
 
 private:

@@ -6,11 +6,15 @@
 
 // Compile-time choices, #defined by the pass (vtkCascadedShadowMapPass): CSM_KERNEL
 // (CSM_KERNEL_GRID or CSM_KERNEL_JITTERED), CSM_DEBUG (0 off, or CSM_DEBUG_CASCADES, _ERROR,
-// _FACTOR), CSM_LIGHTS, CSM_MAX_CASCADES. Every fragment makes one map lookup: a software
-// rasterizer runs both sides of a branch, so options that a uniform would switch at run time are
-// compiled in or out instead. The kernel radius stays a uniform: a loop of constant length is
-// unrolled, and with many shadowed lights the unrolled taps make a shader too large to compile.
+// _FACTOR), CSM_LIGHTS, CSM_MAX_CASCADES, and CSM_PCF_RADIUS when few lights are shadowed. Every
+// fragment makes one map lookup: a software rasterizer runs both sides of a branch, so options
+// that a uniform would switch at run time are compiled in or out instead. The kernel radius is a
+// constant where it can be (the loops unroll, the tap weights fold); with many shadowed lights the
+// unrolled taps would make a shader too large to compile, so there it stays a uniform.
+#ifndef CSM_PCF_RADIUS
 uniform int csmPCFRadius;      // kernel of 2 r + 1 texels a side
+#define CSM_PCF_RADIUS csmPCFRadius
+#endif
 
 uniform float csmConstantBias; // in the map's [0,1] depth
 uniform float csmSlopeBias;    // times the receiver-plane depth change over one texel
@@ -28,7 +32,7 @@ float csmTap(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float z)
   return textureLod(map, vec3(tile.xy + inside * tile.zw, z), 0.0);
 }
 
-// Texel-space PCF over (2r+1) x (2r+1) texels (r = csmPCFRadius): the mean of (2r+1)^2 hardware
+// Texel-space PCF over (2r+1) x (2r+1) texels (r = CSM_PCF_RADIUS): the mean of (2r+1)^2 hardware
 // bilinear compares one texel apart around uv, taken with (r+1)^2 taps. Along each axis those
 // compares weigh the 2r+2 texels they touch [1-f, 1, ..., 1, f] (f: uv's fraction between texel
 // centres); each adjacent pair of texels is one bilinear tap of weight w0 + w1 placed w1/(w0+w1)
@@ -36,7 +40,7 @@ float csmTap(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float z)
 // bilinear compares). Every tap keeps its own receiver-plane depth (Barroso & Celes 2007, §2.2).
 float csmGridPCF(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float zRef, vec2 dz)
 {
-  int r = csmPCFRadius;
+  int r = CSM_PCF_RADIUS;
   float maxStep = 0.05; // keep grazing receivers from throwing the taps far off their plane
   vec2 t = uv / texel - 0.5; // in texel-centre units
   vec2 base = floor(t);
@@ -67,7 +71,7 @@ float csmGridPCF(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float zRe
 // on a spiral rotated per pixel, so that the taps stay unaligned (Barroso & Celes 2007, §2.2).
 float csmJitteredPCF(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float zRef, vec2 dz)
 {
-  int r = csmPCFRadius;
+  int r = CSM_PCF_RADIUS;
   int n = (r + 1) * (r + 1);
   float maxStep = 0.05;
   float turn = 6.2831853 * csmHash(gl_FragCoord.xy);
@@ -119,7 +123,7 @@ float csmVisibility(sampler2DShadow map, vec4 tile, float texel, vec4 h, vec4 hx
 #if CSM_KERNEL == CSM_KERNEL_GRID
   return csmGridPCF(map, tile, texel, p.xy, zRef, dz);
 #else
-  return csmPCFRadius == 0 ? csmGridPCF(map, tile, texel, p.xy, zRef, dz)
+  return CSM_PCF_RADIUS == 0 ? csmGridPCF(map, tile, texel, p.xy, zRef, dz)
                            : csmJitteredPCF(map, tile, texel, p.xy, zRef, dz);
 #endif
 }

@@ -29,8 +29,13 @@ namespace
 constexpr int kMap = 64;     // synthetic map, texels per side
 constexpr int kSamples = 96; // sample positions per side (the quad's pixels)
 
-std::string fragmentShader()
+// constantRadius >= 0: the kernel radius compiled in, as the pass does for few lights;
+// otherwise the uniform csmPCFRadius.
+std::string fragmentShader(int constantRadius)
 {
+  const std::string radius = constantRadius >= 0
+    ? "#define CSM_PCF_RADIUS " + std::to_string(constantRadius) + "\n"
+    : std::string();
   // The pass prepends these (vtkCascadedShadowMapPass::PostReplaceShaderValues).
   return std::string("//VTK::System::Dec\n"
                      "in vec2 texCoord;\n"
@@ -39,7 +44,7 @@ std::string fragmentShader()
                      "#define CSM_KERNEL_JITTERED 1\n#define CSM_KERNEL 0\n"
                      "#define CSM_DEBUG_CASCADES 1\n#define CSM_DEBUG_ERROR 2\n"
                      "#define CSM_DEBUG_FACTOR 3\n#define CSM_DEBUG 0\n") +
-    csmShadowFS +
+    radius + csmShadowFS +
     "\nuniform sampler2DShadow map;\n"
     "void main()\n"
     "{\n"
@@ -47,7 +52,7 @@ std::string fragmentShader()
     "  vec2 uv = mix(vec2(0.15), vec2(0.85), texCoord);\n"
     "  vec4 tile = vec4(0.0, 0.0, 1.0, 1.0);\n"
     "  float zRef = 0.5;\n"
-    "  int r = csmPCFRadius;\n"
+    "  int r = CSM_PCF_RADIUS;\n"
     "  float texel = 1.0 / " + std::to_string(kMap) + ".0;\n"
     "  float fast = csmGridPCF(map, tile, texel, uv, zRef, vec2(0.0));\n"
     "  float reference = 0.0;\n"
@@ -99,14 +104,21 @@ TEST(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
   target->ActivateReadBuffer(0);
   ASSERT_TRUE(target->CheckFrameBufferStatus(GL_FRAMEBUFFER));
 
-  for (int r = 1; r <= 3; ++r)
+  // Each radius with the kernel size as a uniform (many lights) and compiled in (few lights).
+  for (int variant = 0; variant < 6; ++variant)
   {
-    vtkOpenGLQuadHelper quad(gl, nullptr, fragmentShader().c_str(), "");
+    const int r = 1 + variant / 2;
+    const bool constant = variant % 2 == 1;
+    vtkOpenGLQuadHelper quad(gl, nullptr, fragmentShader(constant ? r : -1).c_str(), "");
     ASSERT_NE(quad.Program, nullptr) << "r = " << r;
+    ASSERT_EQ(quad.Program->IsUniformUsed("csmPCFRadius"), !constant) << "r = " << r;
     gl->GetShaderCache()->ReadyShaderProgram(quad.Program);
     map->Activate();
     quad.Program->SetUniformi("map", map->GetTextureUnit());
-    quad.Program->SetUniformi("csmPCFRadius", r);
+    if (!constant)
+    {
+      quad.Program->SetUniformi("csmPCFRadius", r);
+    }
     gl->GetState()->vtkglViewport(0, 0, kSamples, kSamples);
     gl->GetState()->vtkglDisable(GL_DEPTH_TEST);
     gl->GetState()->vtkglDisable(GL_BLEND);
@@ -123,8 +135,8 @@ TEST(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
       differing += difference > 1.0 / 255.0;
       penumbra += pixels[4 * i + 1] > 0.05f && pixels[4 * i + 1] < 0.95f; // neither lit nor shadowed
     }
-    std::printf("r = %d: largest difference %.2e, %ld of %d samples in a penumbra\n", r, worst,
-      penumbra, kSamples * kSamples);
+    std::printf("r = %d (%s): largest difference %.2e, %ld of %d samples in a penumbra\n", r,
+      constant ? "compiled in" : "uniform", worst, penumbra, kSamples * kSamples);
     EXPECT_EQ(differing, 0) << "r = " << r;
     // The map is random: most samples see both depths (the comparison is not of constants).
     EXPECT_GT(penumbra, kSamples * kSamples / 2) << "r = " << r;
