@@ -20,6 +20,7 @@
 #include "vtkTextureObject.h"
 
 #include "csmShadowFS.h" // the GLSL of Module/glsl/csmShadowFS.glsl
+#include "csmShadowVS.h" // the GLSL of Module/glsl/csmShadowVS.glsl
 
 #include <algorithm>
 #include <sstream>
@@ -68,6 +69,7 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
 {
   vtkOpenGLClearErrorMacro();
   this->NumberOfRenderedProps = 0;
+  this->LastMapCoordinateVaryings = 0;
   vtkRenderer* renderer = s->GetRenderer();
   this->ClearLights(renderer);
   this->UpdateLightGeometry(renderer);
@@ -133,6 +135,21 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
   {
     signature += " radius " + std::to_string(this->PCFSize / 2);
   }
+  // Map coordinates from the vertices: for as many cascades as the baker plans at most (a
+  // stable option; the count it chooses per frame stays within it).
+  if (this->MapCoordinatesFromVertices)
+  {
+    int cascades = baker->GetNumberOfCascades();
+    for (int count : u.Count)
+    {
+      cascades = std::max(cascades, count);
+    }
+    if (u.Lights() * cascades <= static_cast<size_t>(MAXIMUM_MAP_COORDINATE_VARYINGS))
+    {
+      this->LastMapCoordinateVaryings = cascades;
+    }
+  }
+  signature += " varyings " + std::to_string(this->LastMapCoordinateVaryings);
   if (signature != this->ShaderSignature)
   {
     this->ShaderSignature = signature;
@@ -162,8 +179,8 @@ bool vtkCascadedShadowMapPass::PreReplaceShaderValues(
   return true;
 }
 
-bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
-  std::string&, std::string&, std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
+bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader,
+  std::string& geometryShader, std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
 {
   if (this->Uniforms.Lights() == 0)
   {
@@ -178,10 +195,27 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   // Tubes and spheres (VTK's impostors) receive on the surface they show, not on their quad.
   const bool impostor = fragmentShader.find("uniform float ZCalcR") != std::string::npos &&
     fragmentShader.find("normalVCVSOutput") != std::string::npos;
-  std::ostringstream decl;
+  // Map coordinates interpolated from the vertices where the vertex shader's outputs reach the
+  // fragment shader directly (no geometry shader: tubes, wide lines) and the fragment's
+  // position is the vertex's (not an impostor's surface).
+  const size_t vertexMain = vertexShader.find("void main");
+  const size_t vertexEnd = vertexShader.rfind('}');
+  const int varyings = this->LastMapCoordinateVaryings;
+  const bool fromVertices = varyings > 0 && !impostor && geometryShader.empty() &&
+    vertexMain != std::string::npos && vertexEnd != std::string::npos && vertexEnd > vertexMain &&
+    vertexShader.find("vertexVCVSOutput =", vertexMain) != std::string::npos;
+  std::ostringstream common;
   // The limits and option values the GLSL uses, from their one definition here.
-  decl << "#define CSM_LIGHTS " << this->Uniforms.Lights() << "\n"
-       << "#define CSM_MAX_CASCADES " << kMaxCascades << "\n"
+  common << "#define CSM_LIGHTS " << this->Uniforms.Lights() << "\n"
+         << "#define CSM_MAX_CASCADES " << kMaxCascades << "\n";
+  if (fromVertices)
+  {
+    common << "#define CSM_MAP_VARYINGS " << varyings << "\n";
+    vertexShader.insert(vertexEnd, "  csmMapCoordinates(vertexVCVSOutput);\n");
+    vertexShader.insert(vertexMain, common.str() + csmShadowVS + "\n");
+  }
+  std::ostringstream decl;
+  decl << common.str()
        << "#define CSM_KERNEL_GRID " << KERNEL_GRID << "\n"
        << "#define CSM_KERNEL_JITTERED " << KERNEL_JITTERED << "\n"
        << "#define CSM_KERNEL " << this->PCFKernel << "\n"
@@ -219,6 +253,16 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   const std::string reaches = this->DebugMode == DEBUG_OFF ? "df > 0.0" : "true";
   std::ostringstream impl;
   impl << kVertexVC << "\n  vec4 csmDVCdx = dFdx(vertexVC);\n  vec4 csmDVCdy = dFdy(vertexVC);\n";
+  if (fromVertices)
+  {
+    impl << "  vec4 csmMapDx[CSM_LIGHTS * CSM_MAP_VARYINGS];\n"
+            "  vec4 csmMapDy[CSM_LIGHTS * CSM_MAP_VARYINGS];\n"
+            "  for (int i = 0; i < CSM_LIGHTS * CSM_MAP_VARYINGS; ++i)\n"
+            "  {\n"
+            "    csmMapDx[i] = dFdx(csmMapCoordVSOutput[i]);\n"
+            "    csmMapDy[i] = dFdy(csmMapCoordVSOutput[i]);\n"
+            "  }\n";
+  }
   for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
   {
     impl << "  vec4 csmResult" << j << " = vec4(1.0, -1.0, 0.0, 1.0);\n";
@@ -231,7 +275,8 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
     const std::string map = "csmMap" + std::to_string(j) + ", " + std::to_string(j);
     const std::string lookup = result +
       (impostor ? " = csmImpostorShadow(" + map + ", vertexVC, normalVCVSOutput);"
-                : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
+        : fromVertices ? " = csmShadowFromVertices(" + map + ", -vertexVC.z, csmMapDx, csmMapDy);"
+                       : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
     const std::string factor = result + ".x * ";
     // Phong-style lighting (diffuse and specular), or PBR (radiance, directional or positional).
     const bool phong =
@@ -355,6 +400,7 @@ void vtkCascadedShadowMapPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BlendBand: " << this->BlendBand << "\n";
   os << indent << "ShadowDarkness: " << this->ShadowDarkness << "\n";
   os << indent << "DebugMode: " << this->DebugMode << "\n";
+  os << indent << "MapCoordinatesFromVertices: " << this->MapCoordinatesFromVertices << "\n";
   os << indent << "ShadowMapBakerPass: " << this->ShadowMapBakerPass << "\n";
   if (this->ShadowMapBakerPass)
   {

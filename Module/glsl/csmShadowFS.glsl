@@ -87,12 +87,17 @@ float csmJitteredPCF(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float
 }
 
 // Is a point, in a cascade's homogeneous map coordinates, inside its map (its xy square and in
-// front of its far plane)?
+// front of its far plane)? Compared before the division: 0 <= x/w <= 1 is 0 <= x <= w for w > 0.
 bool csmCovers(vec4 h)
 {
-  vec3 p = h.xyz / h.w;
-  return h.w > 0.0 && all(greaterThanEqual(p.xy, vec2(0.0))) && all(lessThanEqual(p.xy, vec2(1.0))) &&
-    p.z <= 1.0;
+  return h.w > 0.0 && all(greaterThanEqual(h.xy, vec2(0.0))) && all(lessThanEqual(h.xyz, h.www));
+}
+
+// The map-coordinate change of a view-space displacement d (w = 0): the matrix's first three
+// columns only.
+vec4 csmDisplacement(mat4 toMap, vec3 d)
+{
+  return toMap[0] * d.x + toMap[1] * d.y + toMap[2] * d.z;
 }
 
 // Visibility (1 lit, 0 shadowed) of a point given in a cascade's homogeneous map coordinates h,
@@ -145,22 +150,17 @@ uniform float csmSplitNear[CSM_LIGHTS];
 uniform int csmCount[CSM_LIGHTS];
 uniform float csmAttenuation[CSM_LIGHTS];
 
-// Shadow of light j: x = light factor (1 lit .. 1 - attenuation), y = cascade index (-1: none),
-// z = aliasing error m (error view only), w = visibility.
-// The cascade is the one whose view-depth interval holds the point (Lloyd et al. 2006, §6.3) or,
-// where a map kept from an earlier frame misses the point, the next one if it covers it (the
-// baker re-renders a kept map that no longer covers its slice, so this is only for points on
-// its edge; two candidates, not a search, because a software rasterizer pays for every
-// matrix product of every fragment). In the
-// last BlendBand of a cascade's depth range a share of the pixels growing from 0 to 1 across the
-// band takes the next cascade (where its map covers the point): the seam becomes a dithered
-// transition at the cost of one lookup, where a blend would take two.
-vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
+// Light j's cascade for a point at view depth `depth`: the one whose view-depth interval holds
+// it (c; Lloyd et al. 2006, §6.3), the next one, and whether this pixel of c's blend band goes
+// to the next: in the last BlendBand of a cascade's depth range a share of the pixels growing
+// from 0 to 1 across the band takes the next cascade, so that the seam becomes a dithered
+// transition at the cost of one lookup, where a blend would take two. False outside every
+// cascade.
+bool csmCascadeAt(int j, float depth, out int c, out int next, out bool blend)
 {
   int count = csmCount[j];
   int first = j * CSM_MAX_CASCADES;
-  float depth = -vc.z;
-  int c = 0;
+  c = 0;
   float cascadeNear = csmSplitNear[j];
   for (int i = 0; i + 1 < count; ++i)
   {
@@ -172,30 +172,89 @@ vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
   }
   float cascadeFar = csmSplitFar[first + c];
   float band = csmBlendBand * (cascadeFar - cascadeNear);
-  bool blend = c + 1 < count && band > 0.0 && (depth - (cascadeFar - band)) / band > csmDither();
-  // The cascade c, or the next one where it covers the point and c's map does not, or the
-  // dither gives this pixel of the band to it.
-  int next = min(c + 1, max(count - 1, 0));
-  mat4 toThis = csmToMap[first + c];
-  mat4 toNext = csmToMap[first + next];
-  bool thisCovers = csmCovers(toThis * vc);
-  bool nextCovers = next > c && csmCovers(toNext * vc);
+  blend = c + 1 < count && band > 0.0 && (depth - (cascadeFar - band)) / band > csmDither();
+  next = min(c + 1, max(count - 1, 0));
+  return count > 0 && depth >= csmSplitNear[j] && depth <= csmSplitFar[first + max(count, 1) - 1];
+}
+
+// Of the cascade c and the next one (their map coordinates hThis, hNext): the next one where it
+// covers the point and c's map does not (a map kept from an earlier frame may miss points on
+// its edge; the baker re-renders one that misses its slice), or where the dither gives this
+// pixel of the band to it; else c where it covers the point; else -1. Two candidates, not a
+// search, because a software rasterizer pays for every candidate in every fragment.
+int csmChoose(int c, int next, bool blend, vec4 hThis, vec4 hNext)
+{
+  bool thisCovers = csmCovers(hThis);
+  bool nextCovers = next > c && csmCovers(hNext);
   bool takeNext = nextCovers && (blend || !thisCovers);
-  int chosen = takeNext ? next : (thisCovers ? c : -1);
-  mat4 toChosen = takeNext ? toNext : toThis;
-  if (count <= 0 || depth < csmSplitNear[j] || depth > csmSplitFar[first + max(count, 1) - 1] ||
-    chosen < 0)
+  return takeNext ? next : (thisCovers ? c : -1);
+}
+
+// Shadow of light j from the chosen cascade (-1: none), given the point's map coordinates there
+// and their screen derivatives: x = light factor (1 lit .. 1 - attenuation), y = cascade index
+// (-1: none), z = aliasing error m (error view only), w = visibility.
+vec4 csmShadowIn(sampler2DShadow map, int j, int chosen, vec4 h, vec4 hx, vec4 hy)
+{
+  if (chosen < 0)
   {
     return vec4(1.0, -1.0, 0.0, 1.0); // outside every cascade: lit as without shadows
   }
-  vec4 h = toChosen * vc;
-  vec4 hx = toChosen * dvcdx;
-  vec4 hy = toChosen * dvcdy;
+  int cascade = j * CSM_MAX_CASCADES + chosen;
   float m;
-  float visibility =
-    csmVisibility(map, csmTile[first + chosen], csmTexel[first + chosen], h, hx, hy, m);
+  float visibility = csmVisibility(map, csmTile[cascade], csmTexel[cascade], h, hx, hy, m);
   return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), float(chosen), m, visibility);
 }
+
+// Shadow of light j at view position vc with screen derivatives dvcdx, dvcdy (w = 0): the map
+// coordinates of the two candidate cascades by matrix products in the fragment.
+vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
+{
+  int c, next;
+  bool blend;
+  bool inside = csmCascadeAt(j, -vc.z, c, next, blend);
+  int first = j * CSM_MAX_CASCADES;
+  mat4 toThis = csmToMap[first + c];
+  mat4 toNext = csmToMap[first + next];
+  vec4 hThis = toThis * vc;
+  vec4 hNext = toNext * vc;
+  int chosen = inside ? csmChoose(c, next, blend, hThis, hNext) : -1;
+  bool takeNext = chosen == next && next > c;
+  mat4 toChosen = takeNext ? toNext : toThis;
+  return csmShadowIn(map, j, chosen, takeNext ? hNext : hThis,
+    csmDisplacement(toChosen, dvcdx.xyz), csmDisplacement(toChosen, dvcdy.xyz));
+}
+
+#ifdef CSM_MAP_VARYINGS
+// The same from map coordinates interpolated from the vertices (csmShadowVS.glsl: light j's
+// cascade i at j * CSM_MAP_VARYINGS + i; exact, they are linear in the view position) and their
+// screen derivatives, taken where control flow is uniform. Picked by comparisons, not by a
+// varying index (which a software rasterizer would gather per pixel).
+in vec4 csmMapCoordVSOutput[CSM_LIGHTS * CSM_MAP_VARYINGS];
+vec4 csmShadowFromVertices(sampler2DShadow map, int j, float depth,
+  vec4 hdx[CSM_LIGHTS * CSM_MAP_VARYINGS], vec4 hdy[CSM_LIGHTS * CSM_MAP_VARYINGS])
+{
+  int c, next;
+  bool blend;
+  bool inside = csmCascadeAt(j, depth, c, next, blend);
+  int first = j * CSM_MAP_VARYINGS;
+  vec4 hThis = csmMapCoordVSOutput[first];
+  vec4 hNext = hThis;
+  for (int i = 1; i < CSM_MAP_VARYINGS; ++i)
+  {
+    hThis = i == c ? csmMapCoordVSOutput[first + i] : hThis;
+    hNext = i == next ? csmMapCoordVSOutput[first + i] : hNext;
+  }
+  int chosen = inside ? csmChoose(c, next, blend, hThis, hNext) : -1;
+  vec4 h = csmMapCoordVSOutput[first], hx = hdx[first], hy = hdy[first];
+  for (int i = 1; i < CSM_MAP_VARYINGS; ++i)
+  {
+    h = i == chosen ? csmMapCoordVSOutput[first + i] : h;
+    hx = i == chosen ? hdx[first + i] : hx;
+    hy = i == chosen ? hdy[first + i] : hy;
+  }
+  return csmShadowIn(map, j, chosen, h, hx, hy);
+}
+#endif
 
 #ifdef CSM_IMPOSTOR
 // Receivers drawn as impostors (VTK's tubes and spheres): the fragment's vertexVC is the point on

@@ -1094,3 +1094,45 @@ TEST(Passes, BigCastersAreDrawnFromCompactBlocksWithTheSameShadows)
   scene.Render();
   EXPECT_EQ(baker->GetLastCompactCasters(), 2);
 }
+
+TEST(Passes, MapCoordinatesFromTheVerticesGiveTheSameShadows)
+{
+  // The lookup's map coordinates interpolated from the vertices equal the fragment's matrix
+  // products up to float rounding: the same shadow, a few edge pixels apart at most.
+  BoxOverPlane scene;
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  for (int cascades : { 2, 3, vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES })
+  {
+    baker->SetNumberOfCascades(cascades);
+    pass->MapCoordinatesFromVerticesOff();
+    auto products = scene.Render();
+    EXPECT_EQ(pass->GetLastMapCoordinateVaryings(), 0);
+    pass->MapCoordinatesFromVerticesOn();
+    auto interpolated = scene.Render();
+    EXPECT_EQ(pass->GetLastMapCoordinateVaryings(), cascades) << cascades << " cascades";
+    const long dark = DarkenedPixels(products, plain);
+    EXPECT_GT(dark, 1000) << cascades << " cascades"; // the box's shadow: ~1250 pixels
+    EXPECT_LE(std::abs(DarkenedPixels(interpolated, plain) - dark), dark / 200);
+    EXPECT_LE(DifferingValues(interpolated, products, 8), 320 * 240 * 3 / 1000)
+      << cascades << " cascades";
+  }
+
+  // More varyings than the limit (two lights of 8 cascades): the fragment multiplies.
+  BoxOverPlane two;
+  vtkNew<vtkLight> second;
+  second->SetLightTypeToSceneLight();
+  second->SetPositional(false);
+  second->SetPosition(-6, 10, 2);
+  second->SetFocalPoint(0, 0, 0);
+  two.Renderer->AddLight(second);
+  auto twoPlain = two.Render();
+  vtkCascadedShadowMapPass* twoPass = vtkCascadedShadowMapPass::UseShadowsOn(two.Renderer);
+  twoPass->GetShadowMapBakerPass()->SetNumberOfCascades(
+    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES);
+  auto both = two.Render();
+  ASSERT_EQ(twoPass->GetShadowMapBakerPass()->GetLightMaps().size(), 2u);
+  EXPECT_EQ(twoPass->GetLastMapCoordinateVaryings(), 0);
+  EXPECT_GT(DarkenedPixels(both, twoPlain), 300); // two half-dark shadows: ~420 pixels
+}
