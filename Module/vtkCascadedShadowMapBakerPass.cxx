@@ -1016,7 +1016,6 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
   std::vector<LightMaps>& planned, std::vector<int>& render)
 {
   const bool depthClamp = this->Planner->GetDepthClamp();
-  const int numberOfCascades = this->Planner->GetNumberOfCascades();
   vtkOpenGLState* ostate = window->GetState();
   vtkOpenGLState::ScopedglViewport savedViewport(ostate);
   vtkOpenGLState::ScopedglScissor savedScissor(ostate);
@@ -1044,9 +1043,12 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
   {
     LightMaps& maps = planned[slot];
     bool reallocated = false;
-    // Tiles of Resolution texels (the ceiling); each cascade's map fills the lower left of its
-    // tile with the resolution PlanLights chose.
-    if (!this->PrepareAtlas(window, maps, numberOfCascades, this->Resolution, reallocated))
+    // Tiles of Resolution texels (the ceiling), as many as this frame's cascades (at least one:
+    // the lookup binds every light's atlas; it is allocated again when AdaptiveCascades changes
+    // their number, which re-plans every map anyway); each cascade's map fills the lower left
+    // of its tile with the resolution PlanLights chose.
+    if (!this->PrepareAtlas(
+          window, maps, std::max(1, maps.NumberOfCascades), this->Resolution, reallocated))
     {
       maps.NumberOfCascades = 0;
       continue;

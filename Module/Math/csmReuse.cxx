@@ -17,8 +17,10 @@ glm::dmat4 withBorder(const glm::dmat4& wsToClip, double border)
   {
     return wsToClip;
   }
+  // x, y and depth alike: a turning camera moves the body's far end too (one cascade, or the
+  // last, ends where the visible scene does), so the kept depth range needs the margin as well.
   glm::dmat4 shrink(1.0);
-  shrink[0][0] = shrink[1][1] = 1.0 / (1.0 + 2.0 * border);
+  shrink[0][0] = shrink[1][1] = shrink[2][2] = 1.0 / (1.0 + 2.0 * border);
   return shrink * wsToClip;
 }
 

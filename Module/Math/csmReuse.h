@@ -21,8 +21,9 @@ struct MapReuse
   double errorRatio = 0.0;
 };
 
-/// The same map with a border: the body, which wsToClip fits to [-1,1]^2 in x and y, is fitted to
-/// the central 1/(1 + 2 border) of the map, so that a camera that moves a little stays covered.
+/// The same map with a border: the body, which wsToClip fits to [-1,1]^3, is fitted to the
+/// central 1/(1 + 2 border) of the map in x, y and depth, so that a camera that moves a little
+/// stays covered.
 glm::dmat4 withBorder(const glm::dmat4& wsToClip, double border);
 
 /// Compare a kept world -> light clip matrix with the freshly planned cascade of the same light
