@@ -1043,12 +1043,13 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
   {
     LightMaps& maps = planned[slot];
     bool reallocated = false;
-    // Tiles of Resolution texels (the ceiling), as many as this frame's cascades (at least one:
-    // the lookup binds every light's atlas; it is allocated again when AdaptiveCascades changes
-    // their number, which re-plans every map anyway); each cascade's map fills the lower left
-    // of its tile with the resolution PlanLights chose.
-    if (!this->PrepareAtlas(
-          window, maps, std::max(1, maps.NumberOfCascades), this->Resolution, reallocated))
+    // Tiles of Resolution texels (the ceiling), as many as NumberOfCascades (the most
+    // AdaptiveCascades uses: the count changes with the view, and a new atlas would cost its
+    // allocation and every map's render); each cascade's map fills the lower left of its tile
+    // with the resolution PlanLights chose.
+    if (!this->PrepareAtlas(window, maps,
+          std::max(this->Planner->GetNumberOfCascades(), maps.NumberOfCascades), this->Resolution,
+          reallocated))
     {
       maps.NumberOfCascades = 0;
       continue;
