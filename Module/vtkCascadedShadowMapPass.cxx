@@ -258,11 +258,7 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader
   {
     impl << "  vec4 csmMapDx[CSM_LIGHTS * CSM_MAP_VARYINGS];\n"
             "  vec4 csmMapDy[CSM_LIGHTS * CSM_MAP_VARYINGS];\n"
-            "  for (int i = 0; i < CSM_LIGHTS * CSM_MAP_VARYINGS; ++i)\n"
-            "  {\n"
-            "    csmMapDx[i] = dFdx(csmMapCoordVSOutput[i]);\n"
-            "    csmMapDy[i] = dFdy(csmMapCoordVSOutput[i]);\n"
-            "  }\n";
+            "  csmMapDerivatives(csmMapDx, csmMapDy);\n";
   }
   for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
   {

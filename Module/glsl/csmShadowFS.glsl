@@ -230,6 +230,17 @@ vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
 // screen derivatives, taken where control flow is uniform. Picked by comparisons, not by a
 // varying index (which a software rasterizer would gather per pixel).
 in vec4 csmMapCoordVSOutput[CSM_LIGHTS * CSM_MAP_VARYINGS];
+
+// Screen derivatives of every interpolated map coordinate; called where control flow is uniform.
+void csmMapDerivatives(
+  out vec4 hdx[CSM_LIGHTS * CSM_MAP_VARYINGS], out vec4 hdy[CSM_LIGHTS * CSM_MAP_VARYINGS])
+{
+  for (int i = 0; i < CSM_LIGHTS * CSM_MAP_VARYINGS; ++i)
+  {
+    hdx[i] = dFdx(csmMapCoordVSOutput[i]);
+    hdy[i] = dFdy(csmMapCoordVSOutput[i]);
+  }
+}
 vec4 csmShadowFromVertices(sampler2DShadow map, int j, float depth,
   vec4 hdx[CSM_LIGHTS * CSM_MAP_VARYINGS], vec4 hdy[CSM_LIGHTS * CSM_MAP_VARYINGS])
 {
