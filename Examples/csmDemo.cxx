@@ -110,6 +110,8 @@ void usage()
     "  --adaptive-cascades on|off  the fewest cascades, up to K, that meet --error-target [%s]\n"
     "  --cull-closed on|off  closed casters drawn into the maps from behind only [%s]\n"
     "  --compact-casters on|off  casters drawn into the maps from compact spatial blocks [%s]\n"
+    "  --cull-without-receivers on|off  casters that shadow nothing (a ground under\n"
+    "                     everything) left out of the maps [%s]\n"
     "  --alpha A          adaptive ratio > 1 [%g]\n"
     "  --resolution R     texels per cascade side at most, 64..8192 [%d]\n"
     "  --error-target M   each cascade's resolution for aliasing error <= M (texel/pixel);\n"
@@ -132,7 +134,7 @@ void usage()
     "  t technique, l light angle +15 deg\n",
     o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
     vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
-    d.CompactCasters ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
+    d.CompactCasters ? "on" : "off", d.CullCastersWithoutReceivers ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
     d.SlopeBias, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
     o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
@@ -235,6 +237,12 @@ Options parse(int argc, char** argv)
     {
       const char* const names[] = { "off", "on" };
       o.Shadow.CompactCasters = choice(f, v, names, 2) == 1;
+      next();
+    }
+    else if (f == "--cull-without-receivers")
+    {
+      const char* const names[] = { "off", "on" };
+      o.Shadow.CullCastersWithoutReceivers = choice(f, v, names, 2) == 1;
       next();
     }
     else if (f == "--depth-clamp")
@@ -504,7 +512,7 @@ int main(int argc, char** argv)
   {
     std::vector<double> times;
     int cascadesRendered = 0, cascadesKept = 0, closedCasters = 0, compactCasters = 0,
-        blocksDrawn = 0;
+        blocksDrawn = 0, withoutReceivers = 0;
     double texelsRendered = 0.0;
     vtkNew<vtkTimerLog> timer;
     window->Render(); // warm-up: shader compilation, first maps
@@ -527,6 +535,8 @@ int main(int argc, char** argv)
         closedCasters = app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastClosedCasters();
         compactCasters = app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastCompactCasters();
         blocksDrawn += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastBlocksDrawn();
+        withoutReceivers +=
+          app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastCastersWithoutReceivers();
         texelsRendered += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastTexelsRendered();
       }
     }
@@ -543,6 +553,9 @@ int main(int argc, char** argv)
     if (app.Passes.Cascaded)
       std::printf("compact_casters: %d of %d actors, blocks drawn: %d (over %d frames)\n",
         compactCasters, renderer->GetActors()->GetNumberOfItems(), blocksDrawn, app.Opt.Frames);
+    if (app.Passes.Cascaded)
+      std::printf("casters left out of a rendered map (they shadow nothing): %d (over %d frames)\n",
+        withoutReceivers, app.Opt.Frames);
   }
 
   if (!app.Opt.Out.empty() || app.Opt.Offscreen)

@@ -50,6 +50,9 @@ namespace
 {
 constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES;
 constexpr size_t kMaxReceiverBoxes = 64;
+/// Most receiver boxes a caster without self-shadow is tested against (CullCastersWithoutReceivers);
+/// beyond, every caster is drawn.
+constexpr size_t kMaxReceiverTests = 4096;
 // Frames per second from which the window's desired update rate means "interacting" (the
 // interactor's default is 15, its still rate 0.0001).
 constexpr double kInteractiveUpdateRate = 1.0;
@@ -377,8 +380,16 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   std::vector<vtkProp*> drawn;
   for (const FrameProps::Caster& caster : props.Casters)
   {
-    if (vtkCascadedShadowMapPlanner::CascadeReachesBox(
+    if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
           maps.WorldToMap[c], caster.Bounds.data(), depthClamp))
+    {
+      continue;
+    }
+    if (!this->CasterHasReceivers(props, caster, maps))
+    {
+      ++this->LastCastersWithoutReceivers;
+      continue;
+    }
     {
       drawn.push_back(caster.Prop);
       this->LastBlocksDrawn += caster.Block ? 1 : 0;
@@ -514,6 +525,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   this->LastClosedCasters = 0;
   this->LastCompactCasters = 0;
   this->LastBlocksDrawn = 0;
+  this->LastCastersWithoutReceivers = 0;
 
   // 1. The props: casters, receivers, scene bounds (across processes when distributed).
   FrameProps props;
@@ -599,14 +611,23 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
       {
         const int closure = this->ClosureOf(prop);
         this->LastClosedCasters += closure != 0 ? 1 : 0;
+        const size_t first = props.Casters.size();
         if (this->CompactCasters &&
           this->AddCompactCaster(prop, closure,
             static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow()), props))
         {
           ++this->LastCompactCasters;
-          continue;
         }
-        props.Casters.push_back({ prop, b, closure, false });
+        else
+        {
+          props.Casters.push_back({ prop, b, closure, false });
+        }
+        const bool itself = this->ShadowsItself(prop);
+        for (size_t i = first; i < props.Casters.size(); ++i)
+        {
+          props.Casters[i].ShadowsItself = itself;
+          props.Casters[i].Receiver = static_cast<int>(props.Receivers.size()) - 1;
+        }
       }
     }
   }
@@ -710,6 +731,67 @@ vtkSmartPointer<vtkPolyData> blockPolyData(vtkPoints* input, const csm::CasterBl
 }
 }
 
+const vtkCascadedShadowMapBakerPass::Closure& vtkCascadedShadowMapBakerPass::ClassifiedShape(
+  vtkPolyData* data)
+{
+  Closure& closure = this->Closures[data];
+  if (closure.Data != data || closure.Time != data->GetMTime())
+  {
+    const csm::SurfaceClosure c = classifyPolyData(data);
+    closure.Data = data;
+    closure.Time = data->GetMTime();
+    closure.Orientation = c.closed && c.volume != 0.0 ? (c.volume > 0.0 ? 1 : -1) : 0;
+    closure.Planar = c.planar;
+    closure.ShadowsItself = c.canShadowItself();
+  }
+  return closure;
+}
+
+bool vtkCascadedShadowMapBakerPass::ShadowsItself(vtkProp* prop)
+{
+  // Only surfaces drawn as they are: lines and points may be drawn as tubes and spheres that
+  // stand out of the plane, and the user's clipping planes open a solid (its inside then shows).
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkPolyDataMapper* mapper = actor ? vtkPolyDataMapper::SafeDownCast(actor->GetMapper()) : nullptr;
+  vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
+  vtkProperty* property = actor ? actor->GetProperty() : nullptr;
+  if (!this->CullCastersWithoutReceivers || !data || !property ||
+    property->GetRepresentation() != VTK_SURFACE || data->GetNumberOfVerts() > 0 ||
+    data->GetNumberOfLines() > 0)
+  {
+    return true;
+  }
+  const Closure& closure = this->ClassifiedShape(data);
+  return mapper->GetNumberOfClippingPlanes() > 0 ? !closure.Planar : closure.ShadowsItself;
+}
+
+bool vtkCascadedShadowMapBakerPass::CasterHasReceivers(
+  const FrameProps& props, const FrameProps::Caster& caster, const LightMaps& maps) const
+{
+  // Directional lights only; with several processes the receivers are everyone's boxes.
+  if (caster.ShadowsItself || caster.Receiver < 0 || maps.LightGeometry[6] >= 0.0 ||
+    this->Distributed() || props.Receivers.size() > kMaxReceiverTests)
+  {
+    return true;
+  }
+  const double travel[3] = { maps.LightGeometry[3] - maps.LightGeometry[0],
+    maps.LightGeometry[4] - maps.LightGeometry[1], maps.LightGeometry[5] - maps.LightGeometry[2] };
+  // A shadow shorter than a millionth of the scene is no shadow (the lookup's bias hides it).
+  const double* s = props.SceneBounds;
+  const double minimum = 1e-6 * std::sqrt((s[1] - s[0]) * (s[1] - s[0]) +
+    (s[3] - s[2]) * (s[3] - s[2]) + (s[5] - s[4]) * (s[5] - s[4]));
+  for (size_t r = 0; r < props.Receivers.size(); ++r)
+  {
+    if (static_cast<int>(r) != caster.Receiver &&
+      vtkCascadedShadowMapPlanner::CasterBoxReachesBox(
+        travel, caster.Bounds.data(), props.Receivers[r].data(), minimum))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 int vtkCascadedShadowMapBakerPass::ClosureOf(vtkProp* prop)
 {
   vtkActor* actor = vtkActor::SafeDownCast(prop);
@@ -723,14 +805,7 @@ int vtkCascadedShadowMapBakerPass::ClosureOf(vtkProp* prop)
   {
     return 0;
   }
-  Closure& closure = this->Closures[data];
-  if (closure.Data != data || closure.Time != data->GetMTime())
-  {
-    const csm::SurfaceClosure c = classifyPolyData(data);
-    closure.Data = data;
-    closure.Time = data->GetMTime();
-    closure.Orientation = c.closed && c.volume != 0.0 ? (c.volume > 0.0 ? 1 : -1) : 0;
-  }
+  const Closure& closure = this->ClassifiedShape(data);
   const double determinant = actor->GetMatrix()->Determinant();
   if (closure.Orientation == 0 || !std::isfinite(determinant) || determinant == 0.0)
   {
@@ -1337,6 +1412,8 @@ void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InteractiveMapBorder: " << this->InteractiveMapBorder << "\n";
   os << indent << "MeasureTimes: " << (this->MeasureTimes ? "on" : "off") << "\n";
   os << indent << "CullClosedCasters: " << (this->CullClosedCasters ? "on" : "off") << "\n";
+  os << indent << "CullCastersWithoutReceivers: "
+     << (this->CullCastersWithoutReceivers ? "on" : "off") << "\n";
   os << indent << "CompactCasters: " << (this->CompactCasters ? "on" : "off") << "\n";
   os << indent << "Renderers: " << this->Renderers.size() << "\n";
   os << indent << "ShadowedLights: " << this->GetLightMaps().size() << "\n";

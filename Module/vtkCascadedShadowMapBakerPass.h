@@ -164,8 +164,25 @@ public:
   ///@}
 
   ///@{
-  /// For tests and benchmarks: casters drawn with their exit layer only in the last Render().
+  /**
+   * Casters with nothing to shadow left out of the maps. A prop that cannot shadow itself (its
+   * polydata is planar, or closed and convex: csm::SurfaceClosure::canShadowItself, checked once
+   * per change of the data) and whose box, swept along a directional light, reaches no other
+   * prop's box (csm::sweptBoxReachesBox) casts no shadow on anything: it is not drawn into that
+   * light's maps. The ground slab or floor under a model is such a prop, and it covers every
+   * map. Spot lights, and several processes sharing the maps, draw every caster. Default on.
+   */
+  vtkSetMacro(CullCastersWithoutReceivers, bool);
+  vtkGetMacro(CullCastersWithoutReceivers, bool);
+  vtkBooleanMacro(CullCastersWithoutReceivers, bool);
+  ///@}
+
+  ///@{
+  /// For tests and benchmarks: casters drawn with their exit layer only in the last Render(),
+  /// and the casters left out of a rendered cascade because they shadow nothing there (all
+  /// rendered cascades together).
   vtkGetMacro(LastClosedCasters, int);
+  vtkGetMacro(LastCastersWithoutReceivers, int);
   ///@}
 
   ///@{
@@ -337,6 +354,10 @@ protected:
       /// matrix) turned outward / inward.
       int Closure = 0;
       bool Block = false; ///< one of a prop's compact blocks (CompactCasters)
+      /// The prop may shadow itself (false: planar, or closed and convex).
+      bool ShadowsItself = true;
+      /// Its prop's box in Receivers (-1: none).
+      int Receiver = -1;
     };
     std::vector<Caster> Casters;
     std::vector<std::array<double, 6>> Receivers;
@@ -369,6 +390,14 @@ protected:
   /// +1 / -1: the prop's data is closed, its counter-clockwise faces turned outward / inward in
   /// world space; 0: draw both sides (CullClosedCasters).
   int ClosureOf(vtkProp* prop);
+  /// False when the prop cannot shadow itself (CullCastersWithoutReceivers).
+  bool ShadowsItself(vtkProp* prop);
+  /// The classification of a polydata, from the cache while the data does not change.
+  struct Closure;
+  const Closure& ClassifiedShape(vtkPolyData* data);
+  /// Does the caster shadow anything in this light's maps (CullCastersWithoutReceivers)?
+  bool CasterHasReceivers(const FrameProps& props, const FrameProps::Caster& caster,
+    const LightMaps& maps) const;
   /// vtkErrorMacro / vtkWarningMacro, once per distinct message.
   void ReportOnce(bool error, const std::string& message);
   /// The light camera for a cascade: the light's rotation as view, the rest as projection.
@@ -388,6 +417,7 @@ protected:
   bool MeasureTimes = false;
   bool CullClosedCasters = true;
   bool CompactCasters = true;
+  bool CullCastersWithoutReceivers = true;
 
   std::vector<RendererMaps> Renderers;
   vtkWeakPointer<vtkRenderer> LastRenderer;
@@ -406,12 +436,15 @@ protected:
   int LastClosedCasters = 0;
   int LastCompactCasters = 0;
   int LastBlocksDrawn = 0;
+  int LastCastersWithoutReceivers = 0;
   /// csm::classifySurface's answer per polydata, kept while the data does not change.
   struct Closure
   {
     vtkWeakPointer<vtkPolyData> Data;
     vtkMTimeType Time = 0;
     int Orientation = 0; ///< +1 outward, -1 inward, 0 open
+    bool Planar = false;
+    bool ShadowsItself = true; ///< csm::SurfaceClosure::canShadowItself
   };
   std::map<vtkPolyData*, Closure> Closures;
   /// Compact blocks of a polydata in one window (their mappers hold that context's buffers).

@@ -375,6 +375,18 @@ bool vtkCascadedShadowMapPlanner::CascadeReachesBox(
   return !csm::boxOutsideClipVolume(fromRowMajor(worldToClip), box, depthClamp);
 }
 
+bool vtkCascadedShadowMapPlanner::CasterBoxReachesBox(const double lightDirection[3],
+  const double casterBounds[6], const double receiverBounds[6], double minimumDistance)
+{
+  if (!lightDirection || !casterBounds || !receiverBounds)
+  {
+    return true;
+  }
+  return csm::sweptBoxReachesBox(toBounds(casterBounds),
+    glm::dvec3(lightDirection[0], lightDirection[1], lightDirection[2]), toBounds(receiverBounds),
+    minimumDistance);
+}
+
 int vtkCascadedShadowMapPlanner::GetCascadeAtDepth(
   double viewDepth, double splitNear, const double splitFar[], int count)
 {

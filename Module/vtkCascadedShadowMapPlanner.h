@@ -212,6 +212,12 @@ public:
   /// plane counts (clamped onto it).
   static bool CascadeReachesBox(const double worldToClip[16], const double bounds[6],
     bool depthClamp);
+  /// Can a caster inside casterBounds shadow a point inside receiverBounds (world boxes) under a
+  /// directional light travelling along lightDirection (csm::sweptBoxReachesBox: the caster box
+  /// swept along the light by more than minimumDistance meets the receiver box)? True for bad
+  /// input (the safe answer).
+  static bool CasterBoxReachesBox(const double lightDirection[3], const double casterBounds[6],
+    const double receiverBounds[6], double minimumDistance);
   /// The cascade a view depth falls in, as the shadow lookup selects it (before it falls back to
   /// the next map covering a point a kept map misses), or -1 outside [splitNear, splitFar[count-1]].
   static int GetCascadeAtDepth(double viewDepth, double splitNear, const double splitFar[],

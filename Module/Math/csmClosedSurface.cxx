@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace csm
@@ -45,6 +46,112 @@ bool weldPositions(const std::vector<glm::dvec3>& positions, std::vector<std::ui
   }
   return true;
 }
+
+namespace
+{
+/// Size of the mesh: the diagonal of the box around the positions its triangles use.
+double meshSize(const std::vector<glm::dvec3>& positions,
+  const std::vector<std::array<std::int64_t, 3>>& triangles)
+{
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  for (const auto& t : triangles)
+  {
+    for (const std::int64_t i : t)
+    {
+      lo = glm::min(lo, positions[static_cast<size_t>(i)]);
+      hi = glm::max(hi, positions[static_cast<size_t>(i)]);
+    }
+  }
+  return glm::length(hi - lo);
+}
+
+/// The unit normal of the triangle with the largest area (counter-clockwise), and one of its
+/// corners; false when every triangle is degenerate.
+bool largestTriangle(const std::vector<glm::dvec3>& positions,
+  const std::vector<std::array<std::int64_t, 3>>& triangles, glm::dvec3& normal, glm::dvec3& corner)
+{
+  double largest = 0.0;
+  for (const auto& t : triangles)
+  {
+    const glm::dvec3& a = positions[static_cast<size_t>(t[0])];
+    const glm::dvec3 n = glm::cross(positions[static_cast<size_t>(t[1])] - a,
+      positions[static_cast<size_t>(t[2])] - a);
+    const double area = glm::length(n);
+    if (area > largest)
+    {
+      largest = area;
+      normal = n / area;
+      corner = a;
+    }
+  }
+  return largest > 0.0;
+}
+
+/// Sets result.planar.
+void classifyShape(const std::vector<glm::dvec3>& positions,
+  const std::vector<std::array<std::int64_t, 3>>& triangles, SurfaceClosure& result)
+{
+  glm::dvec3 normal, corner;
+  const double tolerance = kShapeTolerance * meshSize(positions, triangles);
+  if (!largestTriangle(positions, triangles, normal, corner))
+  {
+    return;
+  }
+  result.planar = std::all_of(triangles.begin(), triangles.end(), [&](const auto& t) {
+    return std::all_of(t.begin(), t.end(), [&](std::int64_t i) {
+      return std::abs(glm::dot(positions[static_cast<size_t>(i)] - corner, normal)) <= tolerance;
+    });
+  });
+}
+
+/// Does every (welded) vertex lie on the inner side of every triangle's plane? outward: +1 when
+/// counter-clockwise triangles face outward, -1 when inward.
+bool isConvex(const std::vector<glm::dvec3>& positions,
+  const std::vector<std::array<std::int64_t, 3>>& triangles, const std::vector<std::uint32_t>& ids,
+  double outward)
+{
+  // One position per welded vertex.
+  std::vector<glm::dvec3> vertices;
+  std::vector<char> seen(positions.size(), 0);
+  for (const auto& t : triangles)
+  {
+    for (const std::int64_t i : t)
+    {
+      const std::uint32_t id = ids[static_cast<size_t>(i)];
+      if (!seen[id])
+      {
+        seen[id] = 1;
+        vertices.push_back(positions[static_cast<size_t>(i)]);
+      }
+    }
+  }
+  if (double(vertices.size()) * double(triangles.size()) > kMaximumConvexityWork)
+  {
+    return false;
+  }
+  const double tolerance = kShapeTolerance * meshSize(positions, triangles);
+  for (const auto& t : triangles)
+  {
+    const glm::dvec3& a = positions[static_cast<size_t>(t[0])];
+    const glm::dvec3 n = glm::cross(positions[static_cast<size_t>(t[1])] - a,
+      positions[static_cast<size_t>(t[2])] - a);
+    const double area = glm::length(n);
+    if (!(area > 0.0))
+    {
+      continue; // degenerate: no plane
+    }
+    const glm::dvec3 out = outward * n / area;
+    for (const glm::dvec3& v : vertices)
+    {
+      if (glm::dot(v - a, out) > tolerance)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+} // namespace
 
 SurfaceClosure classifySurface(
   const std::vector<glm::dvec3>& positions, const std::vector<std::array<std::int64_t, 3>>& triangles)
@@ -91,7 +198,12 @@ SurfaceClosure classifySurface(
     const glm::dvec3 c = positions[static_cast<size_t>(t[2])] - origin;
     volume += glm::dot(a, glm::cross(b, c)) / 6.0;
   }
-  if (counted == 0 || forward.size() != backward.size())
+  if (counted == 0)
+  {
+    return result;
+  }
+  classifyShape(positions, triangles, result);
+  if (forward.size() != backward.size())
   {
     return result;
   }
@@ -99,6 +211,10 @@ SurfaceClosure classifySurface(
   std::sort(backward.begin(), backward.end());
   result.closed = forward == backward;
   result.volume = result.closed ? volume : 0.0;
+  if (result.closed && result.volume != 0.0 && !result.planar)
+  {
+    result.convex = isConvex(positions, triangles, ids, result.volume > 0.0 ? 1.0 : -1.0);
+  }
   return result;
 }
 

@@ -29,14 +29,30 @@ struct SurfaceClosure
   /// The enclosed signed volume (positive when the triangles wind counter-clockwise seen from
   /// outside, as VTK's outward normals do); meaningful when closed.
   double volume = 0.0;
+  /// Every vertex lies in one plane (within kShapeTolerance of the mesh's size).
+  bool planar = false;
+  /// Closed, and every vertex lies on the inner side of every triangle's plane (within
+  /// kShapeTolerance of the mesh's size): the surface bounds one convex solid. Only decided for
+  /// meshes of at most kMaximumConvexityWork vertex-triangle pairs (larger ones: false).
+  bool convex = false;
+  /// Can the surface shadow a point of itself that faces the light? Not a plane (a ray meets it
+  /// once), and not a convex solid (a ray that enters it toward the light leaves through a face
+  /// turned away from the light, which its diffuse light leaves dark anyway).
+  bool canShadowItself() const { return !planar && !(closed && convex); }
 };
+
+/// Tolerance of planar and convex, relative to the diagonal of the mesh's bounding box (the
+/// positions are often floats).
+constexpr double kShapeTolerance = 1e-6;
+/// Most vertex-triangle pairs the convexity test examines.
+constexpr double kMaximumConvexityWork = 1.0e6;
 
 /// One id per distinct position (ids grow with the positions' lexicographic order; bitwise-equal
 /// positions, +0 and -0 alike, share one). Returns false, leaving ids unspecified, when a position
 /// is not finite or there are more than 2^32 positions.
 bool weldPositions(const std::vector<glm::dvec3>& positions, std::vector<std::uint32_t>& ids);
 
-/// Classify a triangle mesh. Vertices at bitwise-equal positions (+0 and -0 alike) are one vertex,
+/// Classify a triangle mesh (closed, volume, planar, convex). Vertices at bitwise-equal positions (+0 and -0 alike) are one vertex,
 /// so meshes whose points were split for normals or texture seams still close. Triangles with two
 /// equal (welded) corners are ignored; an index out of range or a non-finite position makes the mesh
 /// open (the safe answer: both sides are drawn).

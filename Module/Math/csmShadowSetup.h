@@ -183,6 +183,15 @@ glm::dmat4 snapToTexels(const glm::dmat4& wsToClip, int resolution);
 /// homogeneous clip space). With depthClamp, points nearer than the near plane count as inside.
 bool boxOutsideClipVolume(const glm::dmat4& wsToClip, const Bounds& box, bool depthClamp);
 
+/// Can a caster inside casterBox shadow a point of receiverBox under a directional light
+/// travelling along wsLightDirection? True when the caster box, swept along the light by more
+/// than minimumDistance, meets the receiver box (closed boxes: a conservative answer). A point
+/// is shadowed only by what lies toward the light from it, so false means that no point of the
+/// receiver box can be in the caster's shadow (a ground slab under everything else, say).
+/// True for empty, non-finite or zero directions (the safe answer: draw the caster).
+bool sweptBoxReachesBox(const Bounds& casterBox, const glm::dvec3& wsLightDirection,
+  const Bounds& receiverBox, double minimumDistance);
+
 const char* toString(Status status);
 
 } // namespace csm

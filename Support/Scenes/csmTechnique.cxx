@@ -33,6 +33,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->AdaptiveCascades = baker->GetAdaptiveCascades();
   this->CullClosedCasters = baker->GetCullClosedCasters();
   this->CompactCasters = baker->GetCompactCasters();
+  this->CullCastersWithoutReceivers = baker->GetCullCastersWithoutReceivers();
   this->DepthClamp = baker->GetDepthClamp();
   this->PCF = pass->GetPCFSize();
   this->Kernel = pass->GetPCFKernel();
@@ -56,6 +57,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetAdaptiveCascades(o.AdaptiveCascades);
   baker->SetCullClosedCasters(o.CullClosedCasters);
   baker->SetCompactCasters(o.CompactCasters);
+  baker->SetCullCastersWithoutReceivers(o.CullCastersWithoutReceivers);
   baker->SetDepthClamp(o.DepthClamp);
   pass->SetPCFSize(o.PCF);
   pass->SetPCFKernel(o.Kernel);

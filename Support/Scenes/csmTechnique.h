@@ -37,6 +37,7 @@ struct ShadowOptions
   bool AdaptiveCascades;         ///< Cascades: the most; fewer where they meet ErrorTarget
   bool CullClosedCasters;        ///< closed casters drawn into the maps from behind
   bool CompactCasters;           ///< casters drawn into the maps from compact spatial blocks
+  bool CullCastersWithoutReceivers; ///< casters that shadow nothing left out of the maps
   int PCF;
   int Kernel;                    ///< vtkCascadedShadowMapPass::Kernels
   double ConstantBias;

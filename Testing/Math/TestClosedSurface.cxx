@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -144,4 +145,86 @@ TEST(ClosedSurface, BadInputIsOpen)
   EXPECT_EQ(c.volume, 0.0);
   Triangles degenerate = { { 0, 0, 1 }, { 2, 2, 2 } };
   EXPECT_FALSE(csm::classifySurface(p, degenerate).closed);
+}
+
+// Which meshes cannot shadow themselves: planes, and closed convex solids.
+TEST(ClosedSurface, PlanesAndConvexSolidsCannotShadowThemselves)
+{
+  {
+    std::vector<glm::dvec3> p;
+    Triangles t;
+    box(-1.0, 2.0, true, p, t);
+    const csm::SurfaceClosure c = csm::classifySurface(p, t);
+    EXPECT_TRUE(c.closed);
+    EXPECT_TRUE(c.convex);
+    EXPECT_FALSE(c.planar);
+    EXPECT_FALSE(c.canShadowItself());
+  }
+  {
+    // Two disjoint boxes in one mesh: closed, not convex (one may shadow the other).
+    std::vector<glm::dvec3> p;
+    Triangles t;
+    box(0.0, 1.0, false, p, t);
+    box(2.0, 3.0, false, p, t);
+    const csm::SurfaceClosure c = csm::classifySurface(p, t);
+    EXPECT_TRUE(c.closed);
+    EXPECT_FALSE(c.convex);
+    EXPECT_TRUE(c.canShadowItself());
+  }
+  {
+    // A box with one face pushed in (a dent): closed, not convex.
+    std::vector<glm::dvec3> p;
+    Triangles t;
+    box(0.0, 1.0, false, p, t);
+    p.push_back({ 0.5, 0.5, 0.6 }); // a point inside, under the top face z = 1
+    const std::int64_t centre = static_cast<std::int64_t>(p.size()) - 1;
+    // Replace the top face (corners 4 5 7 6, wound { 4, 5, 7 }, { 4, 7, 6 }) by a fan to the centre.
+    t.erase(std::remove_if(t.begin(), t.end(),
+              [](const std::array<std::int64_t, 3>& tri) { return tri[0] == 4 && (tri[1] == 5 || tri[1] == 7); }),
+      t.end());
+    t.push_back({ 4, 5, centre });
+    t.push_back({ 5, 7, centre });
+    t.push_back({ 7, 6, centre });
+    t.push_back({ 6, 4, centre });
+    const csm::SurfaceClosure c = csm::classifySurface(p, t);
+    EXPECT_TRUE(c.closed);
+    EXPECT_FALSE(c.convex);
+    EXPECT_TRUE(c.canShadowItself());
+  }
+  {
+    // A tilted grid of 3 x 3 points far from the origin: planar, open.
+    std::vector<glm::dvec3> p;
+    Triangles t;
+    const glm::dvec3 origin(1.0e6, -2.0e5, 3.0e5), u(1.0, 0.5, 0.0), v(0.0, 0.3, 1.0);
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i)
+        p.push_back(origin + double(i) * u + double(j) * v);
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i)
+      {
+        const std::int64_t a = 3 * j + i;
+        t.push_back({ a, a + 1, a + 4 });
+        t.push_back({ a, a + 4, a + 3 });
+      }
+    csm::SurfaceClosure c = csm::classifySurface(p, t);
+    EXPECT_FALSE(c.closed);
+    EXPECT_TRUE(c.planar);
+    EXPECT_FALSE(c.canShadowItself());
+    // One corner lifted off the plane by 1 % of the grid: not planar, may shadow itself.
+    p[8] += 0.03 * glm::normalize(glm::cross(u, v));
+    c = csm::classifySurface(p, t);
+    EXPECT_FALSE(c.planar);
+    EXPECT_TRUE(c.canShadowItself());
+  }
+  {
+    // Bad input stays on the safe side: it may shadow itself.
+    std::vector<glm::dvec3> p = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } };
+    Triangles t = { { 0, 1, 7 } };
+    EXPECT_TRUE(csm::classifySurface(p, t).canShadowItself());
+    p[2].x = std::numeric_limits<double>::quiet_NaN();
+    t = { { 0, 1, 2 } };
+    EXPECT_TRUE(csm::classifySurface(p, t).canShadowItself());
+    t = { { 0, 0, 1 } }; // degenerate only
+    EXPECT_TRUE(csm::classifySurface(p, t).canShadowItself());
+  }
 }

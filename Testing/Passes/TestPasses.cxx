@@ -296,11 +296,62 @@ TEST(Passes, CastersOutsideACascadeAreNotDrawnIntoIt)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->SetNumberOfCascades(3);
   baker->AdaptiveCascadesOff();
+  baker->CullCastersWithoutReceiversOff(); // the ground is counted below
   scene.Render();
   ASSERT_EQ(baker->GetLastCascadeRenders(), 3);
   // 3 casters x 3 cascades would be 9 draws; culling must save some.
   EXPECT_LT(baker->GetLastPropsDrawn(), 9);
   EXPECT_GE(baker->GetLastPropsDrawn(), 3);
+}
+
+// A ground plane under everything shadows nothing: it is left out of the maps, the shadows stay.
+TEST(Passes, CastersThatShadowNothingAreLeftOutOfTheMaps)
+{
+  BoxOverPlane scene;
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->SetResolution(1024);
+  baker->AdaptiveCascadesOff();
+  auto without = scene.Render();
+  ASSERT_GT(baker->GetLastCascadeRenders(), 0);
+  // The plane (planar: it cannot shadow itself; the box floats above it) is left out of every
+  // cascade, the box is drawn.
+  EXPECT_GE(baker->GetLastCastersWithoutReceivers(), 1); // where the box reaches a cascade
+  EXPECT_EQ(baker->GetLastPropsDrawn(), baker->GetLastCascadeRenders());
+  EXPECT_GT(DarkenedPixels(without, plain), 800);
+  // The same image as with the plane drawn into the maps.
+  baker->CullCastersWithoutReceiversOff();
+  auto with = scene.Render();
+  EXPECT_EQ(baker->GetLastCastersWithoutReceivers(), 0);
+  EXPECT_EQ(baker->GetLastPropsDrawn(), 2 * baker->GetLastCascadeRenders());
+  EXPECT_LE(csmTest::DifferingPixels(without, with, 8), 20);
+  baker->CullCastersWithoutReceiversOn();
+  // The box reaching through the plane: the plane shadows its lower part, so it is drawn.
+  vtkNew<vtkCubeSource> deep;
+  deep->SetBounds(-1, 1, -2, 4, -1, 1);
+  vtkPolyDataMapper::SafeDownCast(scene.Box->GetMapper())->SetInputConnection(deep->GetOutputPort());
+  scene.Render();
+  EXPECT_EQ(baker->GetLastCastersWithoutReceivers(), 0);
+  // Light from below the plane: the plane shadows the box and is drawn; the box (convex, over
+  // nothing else along this light) is left out.
+  vtkNew<vtkCubeSource> above;
+  above->SetBounds(-1, 1, 2, 4, -1, 1);
+  vtkPolyDataMapper::SafeDownCast(scene.Box->GetMapper())->SetInputConnection(above->GetOutputPort());
+  scene.Render();
+  EXPECT_EQ(baker->GetLastCastersWithoutReceivers(), baker->GetLastCascadeRenders());
+  scene.Light->SetPosition(0, -10, 0);
+  scene.Render();
+  EXPECT_GT(baker->GetLastCascadeRenders(), 0);
+  EXPECT_GE(baker->GetLastCastersWithoutReceivers(), 1); // where the box reaches a cascade
+  EXPECT_EQ(baker->GetLastPropsDrawn(), baker->GetLastCascadeRenders());
+  // A spot light: every caster is drawn.
+  scene.Light->SetPosition(0, 10, 0);
+  scene.Light->SetPositional(true);
+  scene.Light->SetConeAngle(60.0);
+  scene.Render();
+  EXPECT_GT(baker->GetLastCascadeRenders(), 0);
+  EXPECT_EQ(baker->GetLastCastersWithoutReceivers(), 0);
 }
 
 TEST(Passes, FourDirectionalLightsAndPBR)
@@ -1059,6 +1110,7 @@ TEST(Passes, BigCastersAreDrawnFromCompactBlocksWithTheSameShadows)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->SetNumberOfCascades(3);
   baker->AdaptiveCascadesOff();
+  baker->CullCastersWithoutReceiversOff(); // the ground's blocks are counted below
   baker->CompactCastersOff();
   auto whole = scene.Render();
   EXPECT_EQ(baker->GetLastCompactCasters(), 0);
