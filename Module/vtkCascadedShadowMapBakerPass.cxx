@@ -749,13 +749,16 @@ const vtkCascadedShadowMapBakerPass::Closure& vtkCascadedShadowMapBakerPass::Cla
 
 bool vtkCascadedShadowMapBakerPass::ShadowsItself(vtkProp* prop)
 {
-  // Only surfaces drawn as they are: lines and points may be drawn as tubes and spheres that
-  // stand out of the plane, and the user's clipping planes open a solid (its inside then shows).
+  // Only surfaces drawn as they are, by the plain mapper (impostor and splat mappers draw
+  // spheres and discs around the points, which stand out of a plane): lines and points may be
+  // drawn as tubes and spheres, and the user's clipping planes open a solid (its inside then
+  // shows).
   vtkActor* actor = vtkActor::SafeDownCast(prop);
   vtkPolyDataMapper* mapper = actor ? vtkPolyDataMapper::SafeDownCast(actor->GetMapper()) : nullptr;
   vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
   vtkProperty* property = actor ? actor->GetProperty() : nullptr;
   if (!this->CullCastersWithoutReceivers || !data || !property ||
+    std::strcmp(mapper->GetClassName(), "vtkOpenGLPolyDataMapper") != 0 ||
     property->GetRepresentation() != VTK_SURFACE || data->GetNumberOfVerts() > 0 ||
     data->GetNumberOfLines() > 0)
   {

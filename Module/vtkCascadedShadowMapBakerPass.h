@@ -89,7 +89,7 @@ public:
   ///@{
   /**
    * How the cascades are planned; these forward to GetPlanner(), which documents them:
-   * number of cascades (1..MAXIMUM_NUMBER_OF_CASCADES, default 2, Barroso & Celes §4; with AdaptiveCascades the most a frame may use), warp mode and split scheme
+   * number of cascades (1..MAXIMUM_NUMBER_OF_CASCADES, default 4: the most AdaptiveCascades may use; Barroso & Celes §4 use 2-4), warp mode and split scheme
    * (vtkCascadedShadowMapPlanner::WarpModes / SplitSchemes; defaults generalized LiSPSM and
    * adaptive), lambda (practical splits, 0.5), alpha (adaptive splits, 2) and depth clamping
    * (Lloyd et al. §6.4, on).
@@ -115,7 +115,7 @@ public:
    * each cascade's map gets the fewest texels (a multiple of RESOLUTION_STEP) at which its
    * predicted worst aliasing error m in this renderer's viewport is at most ErrorTarget
    * (default 1; 0: every map at the ceiling), with Resolution (InteractiveResolution while the
-   * user drags) the ceiling; with AdaptiveCascades (default off) the number of cascades is the
+   * user drags) the ceiling; with AdaptiveCascades (default on) the number of cascades is the
    * smallest up to NumberOfCascades that meets ErrorTarget at the ceiling.
    */
   void SetErrorTarget(double target);

@@ -54,7 +54,7 @@ public:
 
   ///@{
   /// Number of z-partitions (cascades), 1..MAXIMUM_NUMBER_OF_CASCADES; with AdaptiveCascades
-  /// the most a frame may use. Default 2.
+  /// (the default) the most a frame may use. Default 4.
   vtkSetClampMacro(NumberOfCascades, int, 1, MAXIMUM_NUMBER_OF_CASCADES);
   vtkGetMacro(NumberOfCascades, int);
   ///@}
@@ -103,9 +103,10 @@ public:
    * NumberOfCascades whose predicted worst error at the largest map resolution meets
    * ErrorTarget (all NumberOfCascades when none does), changed with hysteresis from the last
    * frame's (csm::computeShadowSetupForError). Needs the image height and the largest map
-   * resolution (see Plan()). Default off: it sharpens the worst views (csm-bench, platform max m 6.1 -> 1.0,
-   * towers 31 -> 13) but the towers take ~4 cascades and their paths 1.38x VTK's frame time
-   * against 0.93x with two (sixth session's quick run, Documentation/Results.md).
+   * resolution (see Plan()). Default on: in the seventh session's full `csm-bench` run
+   * (Documentation/Results.md) its path frames took 0.72-1.04x VTK's on every scene (two fixed
+   * cascades: 0.56-0.88x) and it is never less accurate (the platform's worst error 6.1 -> 1.0,
+   * the towers' 31 -> 13).
    */
   vtkSetMacro(AdaptiveCascades, bool);
   vtkGetMacro(AdaptiveCascades, bool);
@@ -230,14 +231,14 @@ protected:
   vtkCascadedShadowMapPlanner();
   ~vtkCascadedShadowMapPlanner() override;
 
-  int NumberOfCascades = 2;
+  int NumberOfCascades = 4;
   int WarpMode = WARP_GENERALIZED;
   int SplitScheme = SPLIT_ADAPTIVE;
   double Lambda = 0.5;
   double Alpha = 2.0;
   bool DepthClamp = true;
   double ErrorTarget = 1.0;
-  bool AdaptiveCascades = false;
+  bool AdaptiveCascades = true;
 
 private:
   vtkCascadedShadowMapPlanner(const vtkCascadedShadowMapPlanner&) = delete;
