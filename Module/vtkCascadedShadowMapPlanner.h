@@ -102,7 +102,9 @@ public:
    * Choose the number of cascades per frame from the error model: the smallest number up to
    * NumberOfCascades whose predicted worst error at the largest map resolution meets
    * ErrorTarget (all NumberOfCascades when none does), changed with hysteresis from the last
-   * frame's (csm::computeShadowSetupForError). Needs the image height and the largest map
+   * frame's (csm::computeShadowSetupForError; with the adaptive split scheme each count takes
+   * Eq. 19's splits or the log splits, whichever predicts the smaller worst error). Needs the
+   * image height and the largest map
    * resolution (see Plan()). Default on: in the seventh session's full `csm-bench` run
    * (Documentation/Results.md) its path frames took 0.72-1.04x VTK's on every scene (two fixed
    * cascades: 0.56-0.88x) and it is never less accurate (the platform's worst error 6.1 -> 1.0,

@@ -740,6 +740,31 @@ double predictedError(const ShadowSetup& setup, double imageHeight, int resoluti
   return worst * imageHeight / resolution;
 }
 
+namespace
+{
+/// The plan for k cascades; with the adaptive scheme, Eq. 19's splits or the log splits,
+/// whichever predicts the smaller worst error (see computeShadowSetupForError).
+ShadowSetup planForCount(const Camera& camera, const glm::dvec3& wsLightDirection,
+  const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
+  int k)
+{
+  Settings s = settings;
+  s.split.k = k;
+  ShadowSetup plan = computeShadowSetup(camera, wsLightDirection, sceneBounds, s, receiverParts);
+  if (plan.status != Status::Ok || k < 2 || s.split.scheme != SplitScheme::Adaptive)
+  {
+    return plan;
+  }
+  s.split.scheme = SplitScheme::Log;
+  ShadowSetup logPlan =
+    computeShadowSetup(camera, wsLightDirection, sceneBounds, s, receiverParts);
+  // The common factor imageHeight / resolution does not change the order.
+  return logPlan.status == Status::Ok && predictedError(logPlan, 1.0, 1) < predictedError(plan, 1.0, 1)
+    ? logPlan
+    : plan;
+}
+}
+
 ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
   double imageHeight, int maximumResolution, double targetError, int kPrevious)
@@ -750,9 +775,8 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
   int chosen = 0; // 1-based; 0: none meets the target
   for (int k = 1; k <= kMax; ++k)
   {
-    Settings s = settings;
-    s.split.k = k;
-    plans.push_back(computeShadowSetup(camera, wsLightDirection, sceneBounds, s, receiverParts));
+    plans.push_back(
+      planForCount(camera, wsLightDirection, sceneBounds, settings, receiverParts, k));
     if (plans.back().status != Status::Ok)
     {
       return plans.back(); // the same for every count
@@ -772,10 +796,8 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
   if (kPrevious > chosen && kPrevious <= kMax && !(errors.back() <= kCountHysteresis * targetError))
   {
     // Fewer cascades would do, but not by a margin: keep the previous count if it still does.
-    Settings s = settings;
-    s.split.k = kPrevious;
     ShadowSetup previous =
-      computeShadowSetup(camera, wsLightDirection, sceneBounds, s, receiverParts);
+      planForCount(camera, wsLightDirection, sceneBounds, settings, receiverParts, kPrevious);
     if (predictedError(previous, imageHeight, maximumResolution) <= targetError)
     {
       return previous;

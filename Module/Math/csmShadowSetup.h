@@ -117,7 +117,11 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
 /// a previous count kPrevious (0: none) that still meets the target, a smaller count is taken
 /// only where it meets kCountHysteresis times the target. Returns the plan for the chosen count
 /// (its cascades.size() may be smaller where partitions are empty); the same input errors as
-/// computeShadowSetup.
+/// computeShadowSetup. With the adaptive split scheme each count's plan takes Barroso & Celes
+/// 2007, Eq. 19's splits unless the log splits (Lloyd et al. 2006, Eq. 15-16) predict a smaller
+/// worst error for this view: with the light along the view no warp helps, and over a long
+/// depth range Eq. 19 (which only moves splits beyond the log splits) leaves the first
+/// partition most of the range (f/n 1200, k 4, gamma 0: storage 22,512 against 139).
 ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
   double imageHeight, int maximumResolution, double targetError, int kPrevious);

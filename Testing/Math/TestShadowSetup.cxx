@@ -668,6 +668,37 @@ TEST(Steps, ResolutionForErrorMeetsTheTargetWithTheFewestTexels)
   EXPECT_EQ(csm::resolutionForError(2.0, 600.0, 2.0, 64, 2048), 640);  // 600 rounded up
 }
 
+TEST(Steps, EachCountTakesTheBetterOfEq19AndTheLogSplits)
+{
+  // With the light along the view over a long range, Eq. 19 (Barroso & Celes 2007) leaves the
+  // first partition most of the range and no warp helps; the log splits then predict a far
+  // smaller worst error, and the per-frame planner takes them. Elsewhere it takes the better of
+  // the two, never worse than Eq. 19 alone.
+  auto up4 = settings(csm::WarpMode::Generalized, csm::SplitScheme::Adaptive, 4);
+  auto log4 = settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 4);
+  for (double ratio : { 20.0, 1200.0, 1.0e4 })
+  {
+    const csm::Camera view = camera(5.0, 5.0 * ratio, 50.0, 4.0 / 3.0);
+    for (double gamma : { 0.0, 10.0, 30.0, 45.0, 60.0, 90.0, 150.0, 180.0 })
+    {
+      const glm::dvec3 light = lightAt(view, gamma);
+      const csm::ShadowSetup chosen = csm::computeShadowSetupForError(
+        view, light, nullptr, up4, nullptr, 600.0, 2048, 1e-9, 0); // unreachable: 4 cascades
+      ASSERT_EQ(chosen.status, csm::Status::Ok);
+      const double eq19 = csm::predictedError(
+        csm::computeShadowSetup(view, light, nullptr, up4, nullptr), 600.0, 2048);
+      const double logSplits = csm::predictedError(
+        csm::computeShadowSetup(view, light, nullptr, log4, nullptr), 600.0, 2048);
+      const double e = csm::predictedError(chosen, 600.0, 2048);
+      EXPECT_NEAR(e / std::min(eq19, logSplits), 1.0, 1e-12) << "f/n " << ratio << " gamma " << gamma;
+      if (ratio >= 1200.0 && gamma == 0.0)
+      {
+        EXPECT_LT(e, 0.1 * eq19) << "f/n " << ratio; // 7.8 against 200 at f/n 1200 (Mx)
+      }
+    }
+  }
+}
+
 TEST(Steps, CascadeCountFromTheErrorModel)
 {
   // Lloyd et al. 2006: the storage factor grows with f/n and toward parallel light and view.
