@@ -390,15 +390,13 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
       ++this->LastCastersWithoutReceivers;
       continue;
     }
+    drawn.push_back(caster.Prop);
+    this->LastBlocksDrawn += caster.Block ? 1 : 0;
+    const int outward =
+      std::isfinite(mapDeterminant) ? caster.Closure * (mapDeterminant < 0.0 ? 1 : -1) : 0;
+    if (outward != 0)
     {
-      drawn.push_back(caster.Prop);
-      this->LastBlocksDrawn += caster.Block ? 1 : 0;
-      const int outward =
-        std::isfinite(mapDeterminant) ? caster.Closure * (mapDeterminant < 0.0 ? 1 : -1) : 0;
-      if (outward != 0)
-      {
-        this->CullFaces[caster.Prop] = outward > 0 ? GL_FRONT : GL_BACK;
-      }
+      this->CullFaces[caster.Prop] = outward > 0 ? GL_FRONT : GL_BACK;
     }
   }
   ++this->LastCascadeRenders;
