@@ -68,6 +68,8 @@ struct Options
   int StillFrames = 8;        // the default view, camera still
   int DollyFrames = 12;       // flicker: consecutive frames of a dolly toward the focal point
   bool Breakdown = false;     // per frame: planning and map times, maps rendered
+  std::string ErrorImages;    // folder for one image per measured view and technique
+  std::vector<std::string> Labels; // only these techniques (empty: all of the mode)
   std::vector<std::string> Scenes = { "platform", "platform-beams", "platform-2m", "towers",
     "engine" };
 };
@@ -158,6 +160,17 @@ std::vector<Technique> Techniques(const Options& o)
     add("ours k2 pcf5", "csm", ours[0], ours[1], 2, 5);
     add("ours k3 pcf5", "csm", ours[0], ours[1], 3, 5);
     add("ours k4 pcf5", "csm", ours[0], ours[1], 4, 5);
+  }
+  if (!o.Labels.empty())
+  {
+    for (const std::string& label : o.Labels)
+      if (std::none_of(list.begin(), list.end(), [&](const Technique& t) { return t.Label == label; }))
+        fail("no technique labelled '" + label + "' in this mode");
+    list.erase(std::remove_if(list.begin(), list.end(),
+                 [&](const Technique& t) {
+                   return std::find(o.Labels.begin(), o.Labels.end(), t.Label) == o.Labels.end();
+                 }),
+      list.end());
   }
   return list;
 }
@@ -267,6 +280,40 @@ void Apply(const View& v, vtkRenderer* renderer, vtkLight* light, const csmScene
     renderer->ResetCameraClippingRange();
   light->SetFocalPoint(0, 0, 0);
   light->SetPosition(-v.Light[0], -v.Light[1], -v.Light[2]);
+}
+
+/// The misclassified pixels of one view: false shadow red, false light blue, the pixels
+/// classified right light grey (lit) and dark grey (shadowed), those not compared the plain
+/// render darkened.
+void WriteErrorImage(const std::string& file, vtkImageData* plain, const std::vector<char>& comparable,
+  const std::vector<char>& occluded, const std::vector<float>& factor)
+{
+  vtkNew<vtkImageData> image;
+  image->DeepCopy(plain);
+  auto* rgb = static_cast<unsigned char*>(image->GetScalarPointer());
+  const int channels = image->GetNumberOfScalarComponents();
+  for (size_t k = 0; k < comparable.size(); ++k)
+  {
+    unsigned char* px = rgb + k * channels;
+    const unsigned char grey = static_cast<unsigned char>((px[0] + px[1] + px[2]) / 9);
+    unsigned char out[3] = { grey, grey, grey };
+    if (comparable[k] && std::isfinite(factor[k]))
+    {
+      const bool shadowed = factor[k] < 0.5f;
+      if (shadowed != static_cast<bool>(occluded[k]))
+        out[0] = shadowed ? 255 : 0, out[1] = 0, out[2] = shadowed ? 0 : 255;
+      else
+        out[0] = out[1] = out[2] = shadowed ? 90 : 200;
+    }
+    for (int c = 0; c < 3 && c < channels; ++c)
+      px[c] = out[c];
+  }
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(file.c_str());
+  writer->SetInputData(image);
+  writer->Write();
+  if (writer->GetErrorCode() != 0)
+    std::fprintf(stderr, "csm-bench: cannot write %s\n", file.c_str());
 }
 
 vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
@@ -496,7 +543,10 @@ Options Parse(int argc, char** argv)
                   "640x480, 6 frames a path, budget 2048, VTK's pass and ours with the defaults.\n"
                   "Timed paths: coarse orbit + fly-through (interleaved), an interactive orbit of\n"
                   "2 degrees a frame and a still camera. --breakdown: per frame, the planning and\n"
-                  "map times (glFinish around them) and the maps rendered / kept.\n");
+                  "map times (glFinish around them) and the maps rendered / kept.\n"
+                  "--labels a,b,...: only these techniques (their labels as in the CSV).\n"
+                  "--error-images DIR: per measured view and technique, DIR/scene-label-view.png:\n"
+                  "false shadow red, false light blue, right light / dark grey, not compared dark.\n");
       std::exit(0);
     }
     else if (f == "--quick")
@@ -504,12 +554,21 @@ Options Parse(int argc, char** argv)
     else if (f == "--breakdown")
       o.Breakdown = true;
     else if ((f == "--out" || f == "--plot" || f == "--size" || f == "--frames" ||
-               f == "--budget" || f == "--scenes") && !v)
+               f == "--budget" || f == "--scenes" || f == "--error-images" || f == "--labels") && !v)
       fail(f + " needs a value");
     else if (f == "--out")
       o.Out = argv[++i];
     else if (f == "--plot")
       o.Plot = argv[++i];
+    else if (f == "--error-images")
+      o.ErrorImages = argv[++i];
+    else if (f == "--labels")
+    {
+      std::stringstream list(argv[++i]);
+      std::string label;
+      while (std::getline(list, label, ','))
+        o.Labels.push_back(label);
+    }
     else if (f == "--size")
     {
       char extra;
@@ -565,6 +624,7 @@ Options Parse(int argc, char** argv)
     o.StillFrames = 4;
     o.DollyFrames = 6;
   }
+  Techniques(o); // fails here on a label the mode does not have
   return o;
 }
 } // namespace
@@ -744,6 +804,12 @@ int main(int argc, char** argv)
         auto shadowed = Grab(window);
         const auto factor = csmTruth::FactorFromRenders(shadowed, plain);
         const csmTruth::Classification c = csmTruth::Classify(surfaces, comparable, occluded, factor);
+        if (!o.ErrorImages.empty())
+        {
+          std::string name = sceneName + "-" + t.Label + "-" + v.Name + ".png";
+          std::replace(name.begin(), name.end(), ' ', '_');
+          WriteErrorImage(o.ErrorImages + "/" + name, plain, comparable, occluded, factor);
+        }
         t.Errors.Considered += c.Considered;
         t.Errors.FalseShadow += c.FalseShadow;
         t.Errors.FalseLight += c.FalseLight;

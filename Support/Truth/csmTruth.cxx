@@ -33,6 +33,7 @@ struct RayScene::Internals
   double Origin[3] = { 0, 0, 0 }; // world position of the Embree origin
   double Scale = 1.0;             // size of the scene, for ray offsets
   bool Tubes = false;             // the scene holds tubes sized for one camera
+  std::vector<unsigned> TubeGeometries; // Embree geometry ids of the tubes
   ~Internals()
   {
     if (this->Scene)
@@ -71,7 +72,8 @@ void PixelWorld(vtkRenderer* renderer, int height, double pixel[2])
 /// The lines of an actor drawn as tubes, as Embree cone linear curves (flat caps where a
 /// polyline ends), radius from each vertex's depth in the main view. Returns the segments.
 long long AddTubes(RTCDevice device, RTCScene scene, vtkActor* actor, vtkPolyData* data,
-  vtkRenderer* renderer, const double pixel[2], const double origin[3])
+  vtkRenderer* renderer, const double pixel[2], const double origin[3],
+  std::vector<unsigned>& tubeGeometries)
 {
   vtkProperty* property = actor->GetProperty();
   vtkCellArray* lines = data->GetLines();
@@ -127,7 +129,7 @@ long long AddTubes(RTCDevice device, RTCScene scene, vtkActor* actor, vtkPolyDat
     geometry, RTC_BUFFER_TYPE_FLAGS, 0, RTC_FORMAT_UCHAR, sizeof(unsigned char), flags.size()));
   std::copy(flags.begin(), flags.end(), fb);
   rtcCommitGeometry(geometry);
-  rtcAttachGeometry(scene, geometry);
+  tubeGeometries.push_back(rtcAttachGeometry(scene, geometry));
   rtcReleaseGeometry(geometry);
   return static_cast<long long>(segments.size());
 }
@@ -145,6 +147,7 @@ long long RayScene::Build(vtkRenderer* renderer, int height)
     rtcReleaseScene(in.Scene);
   in.Scene = nullptr;
   in.Tubes = false;
+  in.TubeGeometries.clear();
   if (!in.Device)
     in.Device = rtcNewDevice(nullptr);
   if (!in.Device)
@@ -170,7 +173,8 @@ long long RayScene::Build(vtkRenderer* renderer, int height)
     auto* data = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0));
     if (!data)
       continue;
-    const long long tubes = AddTubes(in.Device, in.Scene, actor, data, renderer, pixel, in.Origin);
+    const long long tubes = AddTubes(
+      in.Device, in.Scene, actor, data, renderer, pixel, in.Origin, in.TubeGeometries);
     in.Tubes = in.Tubes || tubes > 0;
     triangles += tubes;
     vtkNew<vtkTriangleFilter> triangulate;
@@ -260,6 +264,8 @@ std::vector<Surface> RayScene::CastPrimary(vtkCamera* camera, int width, int hei
       if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
         continue;
       s.Hit = true;
+      s.OnTube = std::find(in.TubeGeometries.begin(), in.TubeGeometries.end(), rh.hit.geomID) !=
+        in.TubeGeometries.end();
       s.Distance = rh.ray.tfar;
       double n[3] = { rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z };
       const double nl = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -280,7 +286,18 @@ bool RayScene::Occluded(const Surface& s, const double lightDirection[3]) const
   const auto& in = *this->Internal;
   const double l = std::sqrt(lightDirection[0] * lightDirection[0] +
     lightDirection[1] * lightDirection[1] + lightDirection[2] * lightDirection[2]);
-  const double eps = 1e-5 * in.Scale + 1e-4 * s.Distance;
+  // A triangle's hit lies within a few float ulps of its plane: Embree holds coordinates
+  // relative to in.Origin in single precision, so the error grows with the distance from there
+  // and along the primary ray. Lift the shadow ray off the surface by a few times that, no more:
+  // any lift moves the point tested, and under a grazing light a lift h moves its shadow by
+  // h / tan(angle) along the receiver (a lift of 1e-5 of the scene's size moved the towers'
+  // ground shadows by 0.66 units at 5 degrees, ~20 pixels near the camera). Tubes (Embree's
+  // cone curves, pixel-thin) are hit less precisely: they keep the scene-sized lift.
+  const double fromOrigin = std::max({ std::abs(s.Position[0] - in.Origin[0]),
+    std::abs(s.Position[1] - in.Origin[1]), std::abs(s.Position[2] - in.Origin[2]) });
+  const double eps = s.OnTube
+    ? 1e-5 * in.Scale + 1e-4 * s.Distance
+    : 8.0 * std::numeric_limits<float>::epsilon() * (fromOrigin + s.Distance) + 1e-9 * in.Scale;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay ray;
@@ -290,7 +307,7 @@ bool RayScene::Occluded(const Surface& s, const double lightDirection[3]) const
   ray.dir_x = float(-lightDirection[0] / l);
   ray.dir_y = float(-lightDirection[1] / l);
   ray.dir_z = float(-lightDirection[2] / l);
-  ray.tnear = float(eps);
+  ray.tnear = 0.0f;
   ray.tfar = std::numeric_limits<float>::infinity();
   ray.mask = 0xFFFFFFFF;
   ray.flags = 0;

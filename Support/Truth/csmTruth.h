@@ -20,6 +20,7 @@ struct Surface
   double Position[3] = { 0, 0, 0 }; ///< world
   double Normal[3] = { 0, 0, 0 };   ///< geometric, unit, facing the camera
   double Distance = 0.0;            ///< along the ray
+  bool OnTube = false;              ///< a line drawn as a tube, not a triangle
 };
 
 /// The triangles of a renderer's visible actors (world space, actor matrices applied) in an

@@ -5,8 +5,14 @@
 #include "csmTestHelpers.h"
 #include "csmTruth.h"
 
+#include "vtkActor.h"
+#include "vtkCamera.h"
 #include "vtkCascadedShadowMapPass.h"
+#include "vtkCubeSource.h"
 #include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkRenderer.h"
 
 #include <gtest/gtest.h>
 
@@ -102,6 +108,49 @@ TEST(Truth, OurPassMisclassifiesUnderHalfAPercent)
   const csmTruth::Classification n = csmTruth::Classify(surfaces, comparable, occluded, none);
   EXPECT_GT(n.FalseLight, 1000);
   EXPECT_EQ(n.FalseShadow, 0);
+}
+
+// A bar over a large ground (6 km a side) under a light 5 degrees above the horizon: the bar's
+// shadow lies 23 units downstream and is 2.5 units long; the truth must find its edges within
+// 0.05 units. The ray's lift off the ground moves the shadow by lift / tan(5 deg), so a lift
+// sized to the scene (1e-5 of 6 km = 0.06, a shift of 0.7) fails here.
+TEST(Truth, GrazingShadowsStayInPlace)
+{
+  const double degrees = 5.0, t = std::tan(degrees * M_PI / 180.0);
+  const double light[3] = { 0.0, -std::sin(degrees * M_PI / 180.0), std::cos(degrees * M_PI / 180.0) };
+  vtkNew<vtkRenderer> renderer;
+  auto add = [&](double x0, double x1, double y0, double y1, double z0, double z1) {
+    vtkNew<vtkCubeSource> cube;
+    cube->SetBounds(x0, x1, y0, y1, z0, z1);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputConnection(cube->GetOutputPort());
+    mapper->Update();
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    renderer->AddActor(actor);
+  };
+  add(-3000, 3000, -1, 0, -3000, 3000); // ground, its top at y = 0
+  add(-1, 1, 2.0, 2.2, -0.1, 0.1);      // bar
+  renderer->GetActiveCamera()->SetPosition(0, 3, 40);
+  renderer->GetActiveCamera()->SetFocalPoint(0, 0, 20);
+  csmTruth::RayScene rays;
+  ASSERT_EQ(rays.Build(renderer, 300), 24);
+  const double first = -0.1 + 2.0 / t, last = 0.1 + 2.2 / t; // the shadow's extent along z
+  int checked = 0, wrong = 0;
+  for (double z = first - 3.0; z <= last + 3.0; z += 0.01)
+  {
+    if (std::abs(z - first) < 0.05 || std::abs(z - last) < 0.05)
+      continue;
+    csmTruth::Surface s;
+    s.Hit = true;
+    s.Position[2] = z;
+    s.Normal[1] = 1.0;
+    s.Distance = std::hypot(3.0, 40.0 - z);
+    ++checked;
+    wrong += rays.Occluded(s, light) != (z > first && z < last);
+  }
+  EXPECT_GT(checked, 800);
+  EXPECT_EQ(wrong, 0);
 }
 
 TEST(Truth, Summaries)
