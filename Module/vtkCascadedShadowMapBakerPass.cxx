@@ -3,6 +3,7 @@
 
 #include "csmCasterBlocks.h"
 #include "csmClosedSurface.h"
+#include "csmShadowSetup.h" // the atlas layout
 #include "csmCaster.h"       // the GLSL of Module/glsl/csmCaster.glsl
 #include "csmCasterLineGS.h" // the GLSL of Module/glsl/csmCasterLineGS.glsl
 
@@ -303,22 +304,20 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(vtkOpenGLRenderWindow* window,
   LightMaps& maps, int tiles, int wanted, bool& reallocated)
 {
   reallocated = false;
-  const int columns = std::min(tiles, 4);
-  const int rows = (tiles + columns - 1) / columns;
+  csm::AtlasGrid layout = csm::atlasLayout(tiles, wanted);
   GLint maxSize = 4096;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  int resolution = wanted;
-  if (resolution * columns > maxSize)
+  if (layout.tile * layout.columns > maxSize)
   {
-    resolution = maxSize / columns;
+    layout.tile = maxSize / layout.columns;
     std::ostringstream message;
-    message << "Shadow map resolution " << wanted << " x " << columns
-            << " cascades exceeds the GL limit " << maxSize << "; using " << resolution;
+    message << "Shadow map resolution " << wanted << " x " << layout.columns
+            << " cascades exceeds the GL limit " << maxSize << "; using " << layout.tile;
     this->ReportOnce(false, message.str());
   }
   vtkTextureObject* atlas = maps.Atlas;
-  const unsigned int width = static_cast<unsigned int>(columns * resolution);
-  const unsigned int height = static_cast<unsigned int>(rows * resolution);
+  const unsigned int width = static_cast<unsigned int>(layout.columns * layout.tile);
+  const unsigned int height = static_cast<unsigned int>(layout.rows * layout.tile);
   if (atlas->GetContext() != window || atlas->GetWidth() != width ||
     atlas->GetHeight() != height || !atlas->GetHandle())
   {
@@ -342,13 +341,16 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(vtkOpenGLRenderWindow* window,
     atlas->Modified();
     reallocated = true;
   }
-  maps.Resolution = resolution;
-  for (int i = 0; i < tiles; ++i)
+  // This frame's cascades in equal square tiles (up to kAtlasFullMaps of the atlas's own, more
+  // in smaller ones).
+  const csm::AtlasGrid grid = csm::atlasGrid(std::max(maps.NumberOfCascades, 1), layout);
+  maps.Resolution = grid.tile;
+  for (int i = 0; i < maps.NumberOfCascades; ++i)
   {
-    maps.Tile[i][0] = double(i % columns) / columns;
-    maps.Tile[i][1] = double(i / columns) / rows;
-    maps.Tile[i][2] = 1.0 / columns;
-    maps.Tile[i][3] = 1.0 / rows;
+    maps.Tile[i][0] = double((i % grid.columns) * grid.tile) / width;
+    maps.Tile[i][1] = double((i / grid.columns) * grid.tile) / height;
+    maps.Tile[i][2] = double(grid.tile) / width;
+    maps.Tile[i][3] = double(grid.tile) / height;
   }
   return true;
 }
@@ -1030,10 +1032,14 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       ? &state.Maps[slot]
       : nullptr;
     vtkNew<vtkMatrix4x4> m;
+    // The largest map this count of cascades has in the atlas (csm::resolutionCeilingForCount:
+    // the planner judged the count at the same).
+    const int countCeiling = csm::resolutionCeilingForCount(
+      maps.NumberOfCascades, this->Planner->GetNumberOfCascades(), ceiling);
     for (int c = 0; c < maps.NumberOfCascades; ++c)
     {
       maps.CascadeResolution[c] =
-        this->Planner->GetCascadeResolution(c, imageHeight, RESOLUTION_STEP, ceiling);
+        this->Planner->GetCascadeResolution(c, imageHeight, RESOLUTION_STEP, countCeiling);
       this->Planner->GetCascadeMatrix(c, m, border, maps.CascadeResolution[c]);
       std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
       maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
@@ -1119,10 +1125,11 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
   {
     LightMaps& maps = planned[slot];
     bool reallocated = false;
-    // Tiles of Resolution texels (the ceiling), as many as NumberOfCascades (the most
-    // AdaptiveCascades uses: the count changes with the view, and a new atlas would cost its
-    // allocation and every map's render); each cascade's map fills the lower left of its tile
-    // with the resolution PlanLights chose.
+    // One atlas for as many cascades as NumberOfCascades (the most AdaptiveCascades uses: the
+    // count changes with the view, and a new atlas would cost its allocation and every map's
+    // render): up to csm::kAtlasFullMaps tiles of Resolution texels, more cascades in smaller
+    // tiles of the same area; each cascade's map fills the lower left of its tile with the
+    // resolution PlanLights chose.
     if (!this->PrepareAtlas(window, maps,
           std::max(this->Planner->GetNumberOfCascades(), maps.NumberOfCascades), this->Resolution,
           reallocated))

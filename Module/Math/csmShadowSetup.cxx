@@ -770,9 +770,14 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
   double imageHeight, int maximumResolution, double targetError, int kPrevious)
 {
   const int kMax = std::max(1, settings.split.k);
+  auto errorOf = [&](const ShadowSetup& plan, int k) {
+    return predictedError(
+      plan, imageHeight, resolutionCeilingForCount(k, kMax, maximumResolution));
+  };
   std::vector<ShadowSetup> plans;
   std::vector<double> errors;
   int chosen = 0; // 1-based; 0: none meets the target
+  int best = 0;   // where none does: the count taken
   for (int k = 1; k <= kMax; ++k)
   {
     plans.push_back(
@@ -781,7 +786,11 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
     {
       return plans.back(); // the same for every count
     }
-    errors.push_back(predictedError(plans.back(), imageHeight, maximumResolution));
+    errors.push_back(errorOf(plans.back(), k));
+    if (best == 0 || errors.back() < kCountHysteresis * errors[best - 1])
+    {
+      best = k;
+    }
     if (!(errors.back() <= targetError))
     {
       continue;
@@ -791,19 +800,67 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
   }
   if (chosen == 0)
   {
-    return plans.back(); // none meets the target: the most cascades
+    // None meets the target. A previous count close to the best error stays (no popping
+    // between two counts that do about as well).
+    if (kPrevious >= 1 && kPrevious <= kMax && kPrevious != best &&
+      errors[kPrevious - 1] * kCountHysteresis <= errors[best - 1])
+    {
+      return plans[kPrevious - 1];
+    }
+    return plans[best - 1];
   }
   if (kPrevious > chosen && kPrevious <= kMax && !(errors.back() <= kCountHysteresis * targetError))
   {
     // Fewer cascades would do, but not by a margin: keep the previous count if it still does.
     ShadowSetup previous =
       planForCount(camera, wsLightDirection, sceneBounds, settings, receiverParts, kPrevious);
-    if (predictedError(previous, imageHeight, maximumResolution) <= targetError)
+    if (errorOf(previous, kPrevious) <= targetError)
     {
       return previous;
     }
   }
   return plans.back();
+}
+
+AtlasGrid atlasLayout(int mostCascades, int resolution)
+{
+  AtlasGrid atlas;
+  if (mostCascades < 1 || resolution < 1)
+  {
+    return atlas;
+  }
+  atlas.columns = std::min(mostCascades, kAtlasFullMaps);
+  atlas.tile = resolution;
+  return atlas;
+}
+
+AtlasGrid atlasGrid(int count, const AtlasGrid& atlas)
+{
+  AtlasGrid grid;
+  if (count < 1 || atlas.tile < 1)
+  {
+    return grid;
+  }
+  const long long width = static_cast<long long>(atlas.columns) * atlas.tile;
+  const long long height = static_cast<long long>(atlas.rows) * atlas.tile;
+  for (int columns = 1; columns <= count; ++columns)
+  {
+    const int rows = (count + columns - 1) / columns;
+    const int tile = static_cast<int>(std::min(width / columns, height / rows));
+    if (tile > grid.tile)
+    {
+      grid.columns = columns;
+      grid.rows = rows;
+      grid.tile = tile;
+    }
+  }
+  return grid;
+}
+
+int resolutionCeilingForCount(int count, int mostCascades, int resolution)
+{
+  const AtlasGrid atlas = atlasLayout(std::max(mostCascades, count), resolution);
+  return std::min(resolution, atlasGrid(count, atlas).tile);
 }
 
 int resolutionForError(double maxAliasing, double imageHeight, double targetError, int step,

@@ -122,12 +122,50 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
 /// worst error for this view: with the light along the view no warp helps, and over a long
 /// depth range Eq. 19 (which only moves splits beyond the log splits) leaves the first
 /// partition most of the range (f/n 1200, k 4, gamma 0: storage 22,512 against 139).
+///
+/// Each count k is judged at the resolution its maps can have: one light's maps share an atlas
+/// (atlasLayout), so up to kAtlasFullMaps cascades get maximumResolution texels a side and more
+/// get less (resolutionCeilingForCount(k, settings.split.k, maximumResolution)). Where no count
+/// meets the target, more cascades are taken only while each step cuts the predicted worst error
+/// to kCountHysteresis of the best fewer cascades reach (the light along a 1:24,000 view: five
+/// cascades of 1638 texels, 1.7 texels a pixel, where four of 2048 give 2.3); a previous count
+/// within 1 / kCountHysteresis of that error stays.
 ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
   double imageHeight, int maximumResolution, double targetError, int kPrevious);
 
-/// Share of the error target a smaller cascade count must meet to replace a previous count.
+/// Share of the error target a smaller cascade count must meet to replace a previous count, and
+/// share of the error a larger count must reach to be taken where none meets the target.
 constexpr double kCountHysteresis = 0.8;
+
+/// One light's cascades share one depth texture (an atlas) of at most this many maps of the
+/// largest resolution, in a row: more cascades share its area with smaller maps, so that the
+/// texels (and the memory) do not grow with the number of cascades.
+constexpr int kAtlasFullMaps = 4;
+
+/// An atlas, or a grid of equal square tiles in one: texels a side of the tiles, and their
+/// columns and rows.
+struct AtlasGrid
+{
+  int columns = 1;
+  int rows = 1;
+  int tile = 0;
+};
+
+/// The atlas for at most mostCascades maps of resolution texels a side: min(mostCascades,
+/// kAtlasFullMaps) tiles of that resolution in one row (a 1 x 1 grid of 0 texels for counts or
+/// resolutions below 1).
+AtlasGrid atlasLayout(int mostCascades, int resolution);
+
+/// The grid of count equal square tiles in an atlas of atlas.columns x atlas.rows tiles of
+/// atlas.tile texels: of the grids with columns x rows >= count, the one whose tiles are largest
+/// (ties: fewer columns).
+AtlasGrid atlasGrid(int count, const AtlasGrid& atlas);
+
+/// The largest map resolution count cascades can have in the atlas of atlasLayout(mostCascades,
+/// resolution): resolution up to kAtlasFullMaps cascades, less beyond (4 x 2048 texels a row: 5
+/// cascades 1638, 6 cascades 1365, 8 cascades 1024). 0 for counts or resolutions below 1.
+int resolutionCeilingForCount(int count, int mostCascades, int resolution);
 
 /// The predicted worst error of a plan (see computeShadowSetupForError): +infinity without cascades.
 double predictedError(const ShadowSetup& setup, double imageHeight, int resolution);

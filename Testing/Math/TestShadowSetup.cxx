@@ -683,16 +683,19 @@ TEST(Steps, EachCountTakesTheBetterOfEq19AndTheLogSplits)
     {
       const glm::dvec3 light = lightAt(view, gamma);
       const csm::ShadowSetup chosen = csm::computeShadowSetupForError(
-        view, light, nullptr, up4, nullptr, 600.0, 2048, 1e-9, 0); // unreachable: 4 cascades
+        view, light, nullptr, up4, nullptr, 600.0, 2048, 1e-9, 0); // unreachable
       ASSERT_EQ(chosen.status, csm::Status::Ok);
+      auto eq19Settings = up4, logSettings = log4; // at the count chosen
+      eq19Settings.split.k = logSettings.split.k = static_cast<int>(chosen.cascades.size());
       const double eq19 = csm::predictedError(
-        csm::computeShadowSetup(view, light, nullptr, up4, nullptr), 600.0, 2048);
+        csm::computeShadowSetup(view, light, nullptr, eq19Settings, nullptr), 600.0, 2048);
       const double logSplits = csm::predictedError(
-        csm::computeShadowSetup(view, light, nullptr, log4, nullptr), 600.0, 2048);
+        csm::computeShadowSetup(view, light, nullptr, logSettings, nullptr), 600.0, 2048);
       const double e = csm::predictedError(chosen, 600.0, 2048);
       EXPECT_NEAR(e / std::min(eq19, logSplits), 1.0, 1e-12) << "f/n " << ratio << " gamma " << gamma;
       if (ratio >= 1200.0 && gamma == 0.0)
       {
+        EXPECT_EQ(chosen.cascades.size(), 4u); // every step cuts the error here
         EXPECT_LT(e, 0.1 * eq19) << "f/n " << ratio; // 7.8 against 200 at f/n 1200 (Mx)
       }
     }
@@ -734,10 +737,48 @@ TEST(Steps, CascadeCountFromTheErrorModel)
     overhead.cascades.size(), csm::predictedError(overhead, 600.0, 2048), enough.cascades.size(),
     csm::predictedError(enough, 600.0, 2048), csm::predictedError(oneFewer, 600.0, 2048),
     behind.cascades.size(), csm::predictedError(behind, 600.0, 2048));
-  // None meets an unreachable target: the most cascades.
+  // None meets an unreachable target: more cascades as long as each cuts the worst error to
+  // kCountHysteresis of the best fewer reach, each judged at the resolution the atlas gives its
+  // count (beyond four cascades, less than 2048). Along a 1:10^4 view that is more than four,
+  // and the next count would not cut the error by the margin.
   const csm::ShadowSetup most = csm::computeShadowSetupForError(
     longView, lightAt(longView, 0.0), nullptr, settingsUpTo8, nullptr, 600.0, 2048, 1e-6, 0);
-  EXPECT_EQ(most.cascades.size(), 8u);
+  const int kMost = static_cast<int>(most.cascades.size());
+  EXPECT_GT(kMost, 4);
+  auto errorAt = [&](int k) {
+    auto s = settingsUpTo8;
+    s.split.k = k;
+    return csm::predictedError(
+      csm::computeShadowSetupForError(longView, lightAt(longView, 0.0), nullptr, s, nullptr, 600.0,
+        2048, 1e-6, 0),
+      600.0, csm::resolutionCeilingForCount(k, 8, 2048));
+  };
+  const double eMost = csm::predictedError(most, 600.0, csm::resolutionCeilingForCount(kMost, 8, 2048));
+  EXPECT_LT(eMost, csm::kCountHysteresis * errorAt(4));
+  if (kMost < 8)
+  {
+    auto next = settingsUpTo8;
+    next.split.k = kMost + 1;
+    const double eNext = csm::predictedError(
+      csm::computeShadowSetup(longView, lightAt(longView, 0.0), nullptr, next, nullptr), 600.0,
+      csm::resolutionCeilingForCount(kMost + 1, 8, 2048));
+    EXPECT_GE(eNext, csm::kCountHysteresis * eMost);
+  }
+  std::printf("unreachable target, f/n 1e4, light behind: %d cascades (error %.2f; four: %.2f)\n",
+    kMost, eMost, errorAt(4));
+  // A previous count within 1 / kCountHysteresis of that error stays.
+  if (kMost > 1)
+  {
+    auto fewer = settingsUpTo8;
+    fewer.split.k = kMost - 1;
+    const double eFewer = csm::predictedError(
+      csm::computeShadowSetup(longView, lightAt(longView, 0.0), nullptr, fewer, nullptr), 600.0,
+      csm::resolutionCeilingForCount(kMost - 1, 8, 2048));
+    const csm::ShadowSetup kept = csm::computeShadowSetupForError(longView,
+      lightAt(longView, 0.0), nullptr, settingsUpTo8, nullptr, 600.0, 2048, 1e-6, kMost - 1);
+    EXPECT_EQ(kept.cascades.size(),
+      static_cast<size_t>(eFewer * csm::kCountHysteresis <= eMost ? kMost - 1 : kMost));
+  }
   // Hysteresis: where one cascade meets the target only within the margin, a previous count of
   // two that meets it stays; without a previous count, one is taken.
   const csm::Camera mid = camera(1.0, 100.0, 40.0, 4.0 / 3.0);
@@ -763,6 +804,38 @@ TEST(Steps, CascadeCountFromTheErrorModel)
     glm::dvec3(std::nan(""), 1.0, 0.0), nullptr, two, nullptr, 1000.0, 2048, 1.0, 0);
   EXPECT_EQ(bad.status, csm::Status::InvalidInput);
   EXPECT_TRUE(bad.cascades.empty());
+}
+
+TEST(Steps, CascadesShareOneAtlasOfFourFullMaps)
+{
+  // Up to four cascades: a row of full-size tiles, as many as the most cascades.
+  const csm::AtlasGrid two = csm::atlasLayout(2, 2048);
+  EXPECT_EQ(two.columns, 2);
+  EXPECT_EQ(two.rows, 1);
+  EXPECT_EQ(two.tile, 2048);
+  const csm::AtlasGrid six = csm::atlasLayout(6, 2048);
+  EXPECT_EQ(six.columns, 4); // never more than four full maps' texels
+  EXPECT_EQ(six.rows, 1);
+  EXPECT_EQ(six.tile, 2048);
+  // More cascades share the row in the grid with the largest tiles.
+  const int expected[9] = { 0, 2048, 2048, 2048, 2048, 1638, 1365, 1170, 1024 };
+  for (int k = 1; k <= 8; ++k)
+  {
+    const csm::AtlasGrid g = csm::atlasGrid(k, six);
+    EXPECT_EQ(g.tile, expected[k]) << k << " cascades";
+    EXPECT_GE(g.columns * g.rows, k);
+    EXPECT_LE(g.columns * g.tile, 4 * 2048);
+    EXPECT_LE(g.rows * g.tile, 2048);
+    EXPECT_EQ(csm::resolutionCeilingForCount(k, 6, 2048), expected[k]);
+  }
+  EXPECT_EQ(csm::atlasGrid(8, six).columns, 4); // 4 x 2 and 8 x 1 tie at 1024: fewer columns
+  // A ceiling below the tile (while interacting) stays the ceiling; bad counts give nothing.
+  EXPECT_EQ(csm::resolutionCeilingForCount(2, 6, 1024), 1024);
+  EXPECT_EQ(csm::resolutionCeilingForCount(0, 6, 2048), 0);
+  EXPECT_EQ(csm::resolutionCeilingForCount(3, 6, 0), 0);
+  EXPECT_EQ(csm::atlasLayout(0, 2048).tile, 0);
+  // More than the most planned: the atlas grows to hold them (a caller's safety, not a use).
+  EXPECT_EQ(csm::resolutionCeilingForCount(3, 1, 2048), 2048);
 }
 
 TEST(Steps, OrthographicMapsKeepTheirTexelGridWhileTheCameraTranslates)

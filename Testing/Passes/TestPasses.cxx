@@ -120,8 +120,17 @@ TEST(Passes, ResolutionAndCascadesCanChangeBetweenFrames)
   baker->SetResolution(1024);
   baker->SetNumberOfCascades(6);
   auto six = scene.Render();
-  EXPECT_EQ(baker->GetLightMaps()[0].Atlas->GetWidth(), 4096u);  // 4 tiles a row
-  EXPECT_EQ(baker->GetLightMaps()[0].Atlas->GetHeight(), 2048u); // 2 rows
+  // Four full tiles a row at most: six cascades share that area, 6 x 1 tiles of 682 texels.
+  const auto& maps = baker->GetLightMaps()[0];
+  EXPECT_EQ(maps.Atlas->GetWidth(), 4096u);
+  EXPECT_EQ(maps.Atlas->GetHeight(), 1024u);
+  ASSERT_EQ(maps.NumberOfCascades, 6);
+  for (int c = 0; c < 6; ++c)
+  {
+    EXPECT_LE(maps.CascadeResolution[c], 682) << c;
+    EXPECT_NEAR(maps.Tile[c][0], c * 682.0 / 4096.0, 1e-12) << c;
+    EXPECT_EQ(maps.Tile[c][1], 0.0) << c;
+  }
   pass->SetPCFSize(1);
   auto hard = scene.Render();
   // A reallocated atlas must behave exactly like a first one (its compare mode and filters are
