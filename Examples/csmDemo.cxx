@@ -118,6 +118,8 @@ void usage()
     "                     0: always --resolution [%g]\n"
     "  --pcf N            1 | 3 | 5 | 7 [%d]   --kernel grid | jittered [%s]\n"
     "  --bias B           constant depth bias [%g]   --slope-bias S [%g]\n"
+    "  --closed-bias F    share of both for closed surfaces drawn into the maps from\n"
+    "                     behind, 0..1 [%g]\n"
     "  --blend F          cascade blend band, 0..0.5 [%g]\n"
     "  --depth-clamp on|off [%s]      --darkness D  0..1 [%g]\n"
     "  --debug D          off | cascades | error | factor [%s]\n"
@@ -135,7 +137,7 @@ void usage()
     o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
     vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
     d.CompactCasters ? "on" : "off", d.CullCastersWithoutReceivers ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
-    d.SlopeBias, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
+    d.SlopeBias, d.ClosedSurfaceBiasFactor, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
     o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
                              : "needs an X display: xvfb-run -a",
@@ -277,7 +279,7 @@ Options parse(int argc, char** argv)
     {
       static const char* const numeric[] = { "--triangles", "--cascades", "--resolution",
         "--error-target", "--pcf",
-        "--lambda", "--alpha", "--bias", "--slope-bias", "--blend", "--darkness", "--gamma",
+        "--lambda", "--alpha", "--bias", "--slope-bias", "--closed-bias", "--blend", "--darkness", "--gamma",
         "--frames", "--orbit" };
       if (std::none_of(std::begin(numeric), std::end(numeric),
             [&](const char* known) { return f == known; }))
@@ -332,6 +334,8 @@ Options parse(int argc, char** argv)
         o.Shadow.ConstantBias = range(0, 1);
       else if (f == "--slope-bias")
         o.Shadow.SlopeBias = range(0, 100);
+      else if (f == "--closed-bias")
+        o.Shadow.ClosedSurfaceBiasFactor = range(0, 1);
       else if (f == "--blend")
         o.Shadow.Blend = range(0, 0.5);
       else if (f == "--darkness")

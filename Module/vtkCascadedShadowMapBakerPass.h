@@ -284,6 +284,11 @@ public:
   /// props without a vtkProperty, and where the property's value is not finite or below 1).
   static void GetScreenSizes(vtkProp* prop, float sizes[2]);
 
+  /// Does this prop's own lit side stay out of the maps? True for a closed surface drawn with
+  /// only its faces turned away from the light (CullClosedCasters): its lit faces cannot shadow
+  /// themselves, so the lookup may bias them less (vtkCascadedShadowMapPass::ClosedSurfaceBiasFactor).
+  bool DrawsFromBehind(vtkProp* prop) { return this->ClosureOf(prop) != 0; }
+
   /// Number of Render() calls that rendered at least one map (not all kept); for tests.
   vtkGetMacro(BakeCount, int);
 

@@ -333,8 +333,12 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   {
     program->SetUniformi("csmPCFRadius", this->PCFSize / 2);
   }
-  program->SetUniformf("csmConstantBias", static_cast<float>(this->ConstantBias));
-  program->SetUniformf("csmSlopeBias", static_cast<float>(this->SlopeBias));
+  // Per prop: a closed surface drawn into the maps from behind needs less bias.
+  const double biasShare = this->ShadowMapBakerPass && this->ShadowMapBakerPass->DrawsFromBehind(prop)
+    ? this->ClosedSurfaceBiasFactor
+    : 1.0;
+  program->SetUniformf("csmConstantBias", static_cast<float>(biasShare * this->ConstantBias));
+  program->SetUniformf("csmSlopeBias", static_cast<float>(biasShare * this->SlopeBias));
   program->SetUniformf("csmBlendBand", static_cast<float>(this->BlendBand));
   const ShaderUniforms& u = this->Uniforms;
   const int lights = static_cast<int>(u.Lights());
@@ -394,6 +398,7 @@ void vtkCascadedShadowMapPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PCFKernel: " << (this->PCFKernel == KERNEL_GRID ? "grid" : "jittered") << "\n";
   os << indent << "ConstantBias: " << this->ConstantBias << "\n";
   os << indent << "SlopeBias: " << this->SlopeBias << "\n";
+  os << indent << "ClosedSurfaceBiasFactor: " << this->ClosedSurfaceBiasFactor << "\n";
   os << indent << "BlendBand: " << this->BlendBand << "\n";
   os << indent << "ShadowDarkness: " << this->ShadowDarkness << "\n";
   os << indent << "DebugMode: " << this->DebugMode << "\n";

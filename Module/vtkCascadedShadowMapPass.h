@@ -113,6 +113,20 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Share of ConstantBias and SlopeBias for surfaces whose lit side is not in the maps: closed
+   * surfaces that the baker draws with only their faces turned away from the light
+   * (vtkCascadedShadowMapBakerPass::DrawsFromBehind). Their lit faces meet only the far side of
+   * their own solid in the map, so the bias, which exists to keep a surface from shadowing
+   * itself, only has the terminator to cover; a full bias there hides contact shadows where
+   * parts touch (bar joints, a part on a floor). 1: the same bias for every surface. Default
+   * 0.25 (on the bench scenes, all closed, 12-45 % fewer misclassified pixels, Results.md).
+   */
+  vtkSetFiniteClampMacro(ClosedSurfaceBiasFactor, double, 0.0, 1.0);
+  vtkGetMacro(ClosedSurfaceBiasFactor, double);
+  ///@}
+
+  ///@{
   /// Share of each cascade's depth range, at its far end, blended into the next cascade so that
   /// no seam shows; 0 switches blending off. Default 0.05.
   vtkSetFiniteClampMacro(BlendBand, double, 0.0, 0.5);
@@ -166,6 +180,7 @@ protected:
   int PCFKernel = KERNEL_GRID;
   double ConstantBias = 0.002;
   double SlopeBias = 1.5;
+  double ClosedSurfaceBiasFactor = 0.25;
   double BlendBand = 0.05;
   double ShadowDarkness = 1.0;
   int DebugMode = DEBUG_OFF;

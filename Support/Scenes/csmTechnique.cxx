@@ -39,6 +39,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->Kernel = pass->GetPCFKernel();
   this->ConstantBias = pass->GetConstantBias();
   this->SlopeBias = pass->GetSlopeBias();
+  this->ClosedSurfaceBiasFactor = pass->GetClosedSurfaceBiasFactor();
   this->Blend = pass->GetBlendBand();
   this->Darkness = pass->GetShadowDarkness();
   this->Debug = pass->GetDebugMode();
@@ -63,6 +64,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   pass->SetPCFKernel(o.Kernel);
   pass->SetConstantBias(o.ConstantBias);
   pass->SetSlopeBias(o.SlopeBias);
+  pass->SetClosedSurfaceBiasFactor(o.ClosedSurfaceBiasFactor);
   pass->SetBlendBand(o.Blend);
   pass->SetShadowDarkness(o.Darkness);
   pass->SetDebugMode(o.Debug);

@@ -42,6 +42,7 @@ struct ShadowOptions
   int Kernel;                    ///< vtkCascadedShadowMapPass::Kernels
   double ConstantBias;
   double SlopeBias;
+  double ClosedSurfaceBiasFactor; ///< share of the biases for closed surfaces drawn from behind
   double Blend;
   bool DepthClamp;
   double Darkness;

@@ -365,6 +365,40 @@ TEST(Passes, CastersThatShadowNothingAreLeftOutOfTheMaps)
   EXPECT_EQ(baker->GetLastCastersWithoutReceivers(), 0);
 }
 
+TEST(Passes, ClosedSurfacesDrawnFromBehindTakeAShareOfTheBias)
+{
+  // A bias so large that it hides the box's shadow on the ground (the ground's reference depth
+  // moves past the box, 2 units above it): with the ground an open plane the bias applies in
+  // full whatever ClosedSurfaceBiasFactor says; with the ground a closed slab, drawn into the
+  // maps from behind, only its share does, and the shadow is back.
+  BoxOverPlane scene;
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  EXPECT_EQ(pass->GetClosedSurfaceBiasFactor(), 0.25);
+  pass->SetSlopeBias(0.0);
+  pass->SetConstantBias(0.9);
+  EXPECT_LT(DarkenedPixels(scene.Render(), plain), 50);
+  EXPECT_FALSE(baker->DrawsFromBehind(scene.Ground)); // a plane: open
+  EXPECT_TRUE(baker->DrawsFromBehind(scene.Box));
+  vtkNew<vtkCubeSource> slab;
+  slab->SetBounds(-10, 10, -0.5, 0, -10, 10);
+  vtkPolyDataMapper::SafeDownCast(scene.Ground->GetMapper())->SetInputConnection(slab->GetOutputPort());
+  vtkSmartPointer<vtkRenderPass> chain = scene.Renderer->GetPass();
+  scene.Renderer->SetPass(nullptr);
+  plain = scene.Render();
+  scene.Renderer->SetPass(chain);
+  EXPECT_TRUE(baker->DrawsFromBehind(scene.Ground));
+  pass->SetClosedSurfaceBiasFactor(1.0);
+  EXPECT_LT(DarkenedPixels(scene.Render(), plain), 50);
+  pass->SetClosedSurfaceBiasFactor(0.1);
+  EXPECT_GT(DarkenedPixels(scene.Render(), plain), 800);
+  // Without CullClosedCasters the slab's lit side is in the maps: the full bias again.
+  baker->CullClosedCastersOff();
+  EXPECT_FALSE(baker->DrawsFromBehind(scene.Ground));
+  EXPECT_LT(DarkenedPixels(scene.Render(), plain), 50);
+}
+
 TEST(Passes, FourDirectionalLightsAndPBR)
 {
   BoxOverPlane scene;
