@@ -33,6 +33,9 @@ struct Options
   bool json = false;
   bool table = false;
   bool face = false; ///< --partition face: face partitioning instead of z-partitioning alone
+  double errorTarget = 0.0; ///< > 0: the cascade count from the error model, up to --cascades
+  double imageHeight = 600.0;
+  int resolution = 2048;
 };
 
 [[noreturn]] void fail(const std::string& message)
@@ -58,6 +61,11 @@ void usage()
     "  --cascades K      number of partitions (>= 1), per face with --partition face [2]\n"
     "  --alpha A         adaptive: far partitions' f/n at gamma 0 (> 1) [2]\n"
     "  --lambda L        practical: weight of the log splits, [0, 1] [0.5]\n"
+    "  --error-target M  > 0: the number of cascades from the error model, as the pass's\n"
+    "                    AdaptiveCascades chooses it: the fewest, up to --cascades, whose\n"
+    "                    predicted worst error m (texels a pixel) is at most M [off]\n"
+    "  --image-height H  pixels, for --error-target [600]\n"
+    "  --resolution R    largest map side in texels, for --error-target [2048]\n"
     "  --json            print one JSON object instead of a table\n"
     "  --table           speed-against-error table of common settings for a CAD-like view\n"
     "                    (near 0.5, far 5000, fovy 45, 4:3)\n");
@@ -108,6 +116,25 @@ Options parse(int argc, char** argv)
       o.settings.split.alpha = number(argv[i++], value);
     else if (flag == "--lambda")
       o.settings.split.lambda = number(argv[i++], value);
+    else if (flag == "--error-target")
+    {
+      o.errorTarget = number(argv[i++], value);
+      if (!(o.errorTarget > 0.0))
+        fail("--error-target must be > 0");
+    }
+    else if (flag == "--image-height")
+    {
+      o.imageHeight = number(argv[i++], value);
+      if (!(o.imageHeight >= 1.0 && o.imageHeight <= 1e5))
+        fail("--image-height must be in [1, 100000]");
+    }
+    else if (flag == "--resolution")
+    {
+      const double r = number(argv[i++], value);
+      if (r != std::floor(r) || r < 64 || r > 16384)
+        fail("--resolution needs a whole number in [64, 16384]");
+      o.resolution = static_cast<int>(r);
+    }
     else if (flag == "--cascades")
     {
       const double k = number(argv[i++], value);
@@ -194,8 +221,18 @@ void printJson(const Options& o, const csm::ShadowSetup& s)
       jsonNumber(c.nPrime).c_str(), jsonNumber(c.gammaLimDeg).c_str(), jsonNumber(c.Mx).c_str(),
       jsonNumber(c.Mz).c_str(), jsonNumber(c.storage).c_str());
   }
-  std::printf("],\n \"storage_total\": %s, \"storage_optimal\": %s}\n",
+  std::printf("],\n \"storage_total\": %s, \"storage_optimal\": %s",
     jsonNumber(s.storageTotal).c_str(), jsonNumber(s.storageOptimal).c_str());
+  if (o.errorTarget > 0.0)
+  {
+    const int k = static_cast<int>(s.cascades.size());
+    const int r = csm::resolutionCeilingForCount(k, o.settings.split.k, o.resolution);
+    std::printf(",\n \"error_target\": %s, \"chosen_cascades\": %d, \"resolution\": %d, "
+                "\"predicted_error\": %s",
+      jsonNumber(o.errorTarget).c_str(), k, r,
+      jsonNumber(csm::predictedError(s, o.imageHeight, r)).c_str());
+  }
+  std::printf("}\n");
 }
 
 void printText(const Options& o, const csm::ShadowSetup& s)
@@ -220,6 +257,24 @@ void printText(const Options& o, const csm::ShadowSetup& s)
   }
   std::printf("storage total %.6g, optimal %.6g (ratio %.3g)\n", s.storageTotal,
     s.storageOptimal, s.storageTotal / s.storageOptimal);
+  if (o.errorTarget > 0.0)
+  {
+    // The choice as AdaptiveCascades makes it, and every count's own plan beside it.
+    std::printf("error target %g at %g pixels, maps of at most %d texels: %zu cascade(s) "
+                "chosen of up to %d\n",
+      o.errorTarget, o.imageHeight, o.resolution, s.cascades.size(), o.settings.split.k);
+    std::printf("%-3s %10s %16s\n", "k", "texels", "predicted m");
+    for (int k = 1; k <= o.settings.split.k; ++k)
+    {
+      const csm::ShadowSetup plan = csm::computeShadowSetupForCount(
+        makeCamera(o), lightDirection(o.gamma), nullptr, o.settings, nullptr, k);
+      const int r = csm::resolutionCeilingForCount(
+        static_cast<int>(plan.cascades.size()), o.settings.split.k, o.resolution);
+      std::printf("%-3zu %10d %16.4g%s\n", plan.cascades.size(), r,
+        csm::predictedError(plan, o.imageHeight, r),
+        plan.cascades.size() == s.cascades.size() ? "   <- chosen" : "");
+    }
+  }
 }
 
 void printFaceJson(const Options& o, const csm::FacePartitioning& s)
@@ -362,8 +417,10 @@ int main(int argc, char** argv)
       printFaceText(o, s);
     return 0;
   }
-  const csm::ShadowSetup s =
-    csm::computeShadowSetup(makeCamera(o), lightDirection(o.gamma), nullptr, o.settings);
+  const csm::ShadowSetup s = o.errorTarget > 0.0
+    ? csm::computeShadowSetupForError(makeCamera(o), lightDirection(o.gamma), nullptr, o.settings,
+        nullptr, o.imageHeight, o.resolution, o.errorTarget, 0)
+    : csm::computeShadowSetup(makeCamera(o), lightDirection(o.gamma), nullptr, o.settings);
   if (s.status == csm::Status::InvalidInput)
     fail(s.message);
   if (o.json)

@@ -740,11 +740,7 @@ double predictedError(const ShadowSetup& setup, double imageHeight, int resoluti
   return worst * imageHeight / resolution;
 }
 
-namespace
-{
-/// The plan for k cascades; with the adaptive scheme, Eq. 19's splits or the log splits,
-/// whichever predicts the smaller worst error (see computeShadowSetupForError).
-ShadowSetup planForCount(const Camera& camera, const glm::dvec3& wsLightDirection,
+ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
   int k)
 {
@@ -763,7 +759,6 @@ ShadowSetup planForCount(const Camera& camera, const glm::dvec3& wsLightDirectio
     ? logPlan
     : plan;
 }
-}
 
 ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
@@ -781,7 +776,7 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
   for (int k = 1; k <= kMax; ++k)
   {
     plans.push_back(
-      planForCount(camera, wsLightDirection, sceneBounds, settings, receiverParts, k));
+      computeShadowSetupForCount(camera, wsLightDirection, sceneBounds, settings, receiverParts, k));
     if (plans.back().status != Status::Ok)
     {
       return plans.back(); // the same for every count
@@ -813,7 +808,7 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
   {
     // Fewer cascades would do, but not by a margin: keep the previous count if it still does.
     ShadowSetup previous =
-      planForCount(camera, wsLightDirection, sceneBounds, settings, receiverParts, kPrevious);
+      computeShadowSetupForCount(camera, wsLightDirection, sceneBounds, settings, receiverParts, kPrevious);
     if (errorOf(previous, kPrevious) <= targetError)
     {
       return previous;

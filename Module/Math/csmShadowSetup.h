@@ -134,6 +134,13 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
   double imageHeight, int maximumResolution, double targetError, int kPrevious);
 
+/// The plan computeShadowSetupForError judges for exactly k cascades (settings.split.k is
+/// ignored): with the adaptive split scheme, Barroso & Celes 2007, Eq. 19's splits or the log
+/// splits, whichever predicts the smaller worst error; else computeShadowSetup's.
+ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& wsLightDirection,
+  const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
+  int k);
+
 /// Share of the error target a smaller cascade count must meet to replace a previous count, and
 /// share of the error a larger count must reach to be taken where none meets the target.
 constexpr double kCountHysteresis = 0.8;
