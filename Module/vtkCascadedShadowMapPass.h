@@ -120,7 +120,8 @@ public:
    * their own solid in the map, so the bias, which exists to keep a surface from shadowing
    * itself, only has the terminator to cover; a full bias there hides contact shadows where
    * parts touch (bar joints, a part on a floor). 1: the same bias for every surface. Default
-   * 0.25 (on the bench scenes, all closed, 12-45 % fewer misclassified pixels, Results.md).
+   * 0.25 (eighth session's full run: towers 0.45 -> 0.33 % misclassified, platform 0.57 ->
+   * 0.53 %; Documentation/Results.md).
    */
   vtkSetFiniteClampMacro(ClosedSurfaceBiasFactor, double, 0.0, 1.0);
   vtkGetMacro(ClosedSurfaceBiasFactor, double);

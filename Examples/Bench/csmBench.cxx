@@ -13,6 +13,7 @@
 #include "vtkCascadedShadowMapPass.h"
 #include "vtkCascadedShadowMapPlanner.h"
 #include "vtkChartMatrix.h"
+#include "vtkChartLegend.h"
 #include "vtkChartXY.h"
 #include "vtkContextScene.h"
 #include "vtkContextView.h"
@@ -508,11 +509,17 @@ bool Plot(const std::vector<std::pair<std::string, std::vector<Technique>>>& res
           front->SetValue(front->GetNumberOfRows() - 1, 0, p.first);
           front->SetValue(front->GetNumberOfRows() - 1, 1, p.second);
         }
-      vtkPlot* line = chart->AddPlot(vtkChart::LINE);
-      line->SetInputData(front, 0, 1);
-      line->SetColor(0, 0, 0, 255);
-      line->SetWidth(1.5);
-      vtkChartXY::SafeDownCast(chart)->SetShowLegend(r == rows - 1 && col == 0);
+      if (front->GetNumberOfRows() >= 2) // a line needs two points
+      {
+        vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+        line->SetInputData(front, 0, 1);
+        line->SetColor(0, 0, 0, 255);
+        line->SetWidth(1.5);
+      }
+      vtkChartXY* xy = vtkChartXY::SafeDownCast(chart);
+      xy->SetShowLegend(r == rows - 1 && col == 0);
+      // Top left: VTK's pass usually sits top right (slow and often wrong).
+      xy->GetLegend()->SetHorizontalAlignment(vtkChartLegend::LEFT);
     }
   }
   view->GetRenderWindow()->Render();
