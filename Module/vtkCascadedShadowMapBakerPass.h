@@ -256,7 +256,7 @@ public:
     double SplitNear = 0.0;       ///< view depth where the first cascade begins
     double SplitFar[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};           ///< view depth where each cascade ends
     double Tile[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][4] = {};            ///< atlas tile: offset x, y and scale x, y in [0, 1]
-    int Resolution = 0;           ///< texels a side of each cascade's tile (Resolution, or less if GL limits)
+    int Resolution = 0;           ///< texels a side of each cascade's tile (Resolution; less beyond csm::kAtlasFullMaps cascades or where GL limits)
     /// Texels a side of each cascade's map (from ErrorTarget), in the lower left of its tile.
     int CascadeResolution[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     double LightGeometry[7] = { 0, 0, 0, 0, 0, 0, 0 }; ///< position, focal point, cone angle (-1: directional) the maps were rendered for
