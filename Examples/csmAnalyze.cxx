@@ -172,6 +172,8 @@ Options parse(int argc, char** argv)
     fail("--alpha must be > 1");
   if (!(o.settings.split.lambda >= 0.0 && o.settings.split.lambda <= 1.0))
     fail("--lambda must be in [0, 1]");
+  if (o.errorTarget > 0.0 && (o.face || o.table))
+    fail("--error-target chooses a number of z-partitions: not with --partition face or --table");
   return o;
 }
 
