@@ -100,8 +100,9 @@ public:
   ///@{
   /**
    * Choose the number of cascades per frame from the error model: the smallest number up to
-   * NumberOfCascades whose predicted worst error at the largest map resolution meets
-   * ErrorTarget (all NumberOfCascades when none does), changed with hysteresis from the last
+   * NumberOfCascades whose predicted worst error at the largest maps that count can have
+   * (csm::resolutionCeilingForCount) meets ErrorTarget; when none does, more cascades only
+   * while each cuts the predicted error to csm::kCountHysteresis; changed with hysteresis from the last
    * frame's (csm::computeShadowSetupForError; with the adaptive split scheme each count takes
    * Eq. 19's splits or the log splits, whichever predicts the smaller worst error). Needs the
    * image height and the largest map

@@ -298,13 +298,22 @@ void WriteErrorImage(const std::string& file, vtkImageData* plain, const std::ve
     unsigned char* px = rgb + k * channels;
     const unsigned char grey = static_cast<unsigned char>((px[0] + px[1] + px[2]) / 9);
     unsigned char out[3] = { grey, grey, grey };
-    if (comparable[k] && std::isfinite(factor[k]))
+    switch (csmTruth::ClassifyPixel(comparable[k], occluded[k], factor[k]))
     {
-      const bool shadowed = factor[k] < 0.5f;
-      if (shadowed != static_cast<bool>(occluded[k]))
-        out[0] = shadowed ? 255 : 0, out[1] = 0, out[2] = shadowed ? 0 : 255;
-      else
-        out[0] = out[1] = out[2] = shadowed ? 90 : 200;
+      case csmTruth::PixelClass::FalseShadow:
+        out[0] = 255, out[1] = out[2] = 0;
+        break;
+      case csmTruth::PixelClass::FalseLight:
+        out[2] = 255, out[0] = out[1] = 0;
+        break;
+      case csmTruth::PixelClass::Shadowed:
+        out[0] = out[1] = out[2] = 90;
+        break;
+      case csmTruth::PixelClass::Lit:
+        out[0] = out[1] = out[2] = 200;
+        break;
+      case csmTruth::PixelClass::NotCompared:
+        break;
     }
     for (int c = 0; c < 3 && c < channels; ++c)
       px[c] = out[c];

@@ -344,18 +344,26 @@ std::vector<char> ComparablePixels(const std::vector<Surface>& surfaces, int wid
   return ok;
 }
 
+PixelClass ClassifyPixel(bool comparable, bool occluded, float factor)
+{
+  if (!comparable || std::isnan(factor))
+    return PixelClass::NotCompared;
+  const bool dark = factor < 0.5f;
+  if (dark != occluded)
+    return dark ? PixelClass::FalseShadow : PixelClass::FalseLight;
+  return dark ? PixelClass::Shadowed : PixelClass::Lit;
+}
+
 Classification Classify(const std::vector<Surface>& surfaces, const std::vector<char>& comparable,
   const std::vector<char>& occluded, const std::vector<float>& factor)
 {
   Classification c;
   for (size_t k = 0; k < surfaces.size(); ++k)
   {
-    if (!comparable[k] || std::isnan(factor[k]))
-      continue;
-    ++c.Considered;
-    const bool dark = factor[k] < 0.5f;
-    c.FalseShadow += dark && !occluded[k];
-    c.FalseLight += !dark && occluded[k];
+    const PixelClass p = ClassifyPixel(comparable[k], occluded[k], factor[k]);
+    c.Considered += p != PixelClass::NotCompared;
+    c.FalseShadow += p == PixelClass::FalseShadow;
+    c.FalseLight += p == PixelClass::FalseLight;
   }
   return c;
 }

@@ -76,6 +76,19 @@ struct Classification
 std::vector<char> ComparablePixels(const std::vector<Surface>& surfaces, int width, int height,
   const double lightDirection[3]);
 
+/// One pixel against the truth: not compared, classified right (lit or shadowed), or wrong.
+enum class PixelClass
+{
+  NotCompared,
+  Lit,
+  Shadowed,
+  FalseShadow, ///< factor < 0.5 but lit
+  FalseLight   ///< factor >= 0.5 but occluded
+};
+
+/// The class of one pixel (factor: 0 shadowed .. 1 lit, NaN where it cannot be measured).
+PixelClass ClassifyPixel(bool comparable, bool occluded, float factor);
+
 /// factor: per pixel, 0 (shadowed) .. 1 (lit), NaN where it cannot be measured.
 Classification Classify(const std::vector<Surface>& surfaces, const std::vector<char>& comparable,
   const std::vector<char>& occluded, const std::vector<float>& factor);
