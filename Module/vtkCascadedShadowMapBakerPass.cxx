@@ -213,6 +213,67 @@ vtkCascadedShadowMapBakerPass::RendererMaps& vtkCascadedShadowMapBakerPass::Maps
   return this->Renderers.back();
 }
 
+bool vtkCascadedShadowMapBakerPass::CheckVisibleDepths(
+  vtkRenderer* renderer, double windowMin, double windowMax)
+{
+  RendererMaps* state = nullptr;
+  for (RendererMaps& r : this->Renderers)
+  {
+    state = renderer && r.Renderer == renderer ? &r : state;
+  }
+  vtkCamera* camera = renderer ? renderer->GetActiveCamera() : nullptr;
+  if (!state || !camera)
+  {
+    return false;
+  }
+  // Did every sample fall in the depths each directional light's cascades cover? (A spot
+  // light's map covers only its cone, and is not fitted to the visible depths.)
+  const double aspect = renderer->GetTiledAspectRatio();
+  bool held = true;
+  for (const LightMaps& maps : state->Maps)
+  {
+    if (maps.NumberOfCascades > 0 && maps.LightGeometry[6] < 0.0)
+    {
+      held = held &&
+        vtkCascadedShadowMapPlanner::DepthsHeld(camera, aspect, maps.SplitNear,
+          maps.SplitFar[maps.NumberOfCascades - 1], windowMin, windowMax);
+    }
+  }
+  const bool refit = !held && state->VisibleDepthsUsed;
+  state->VisibleDepthsUsed = false;
+  if (held && this->VisibleDepthFit)
+  {
+    // Kept for the next frame. (Where even the boxes' fit misses samples, say a prop with no
+    // bounds, the visible depths are not kept: the next frame is fitted to the boxes again.)
+    if (!state->VisibleCamera)
+    {
+      state->VisibleCamera = vtkSmartPointer<vtkCamera>::New();
+    }
+    state->VisibleCamera->DeepCopy(camera);
+    state->VisibleAspect = aspect;
+    state->VisibleWindow[0] = windowMin;
+    state->VisibleWindow[1] = windowMax;
+  }
+  else
+  {
+    state->VisibleCamera = nullptr;
+  }
+  this->VisibleDepthRefits += refit ? 1 : 0;
+  return refit;
+}
+
+void vtkCascadedShadowMapBakerPass::ClearVisibleDepths(vtkRenderer* renderer)
+{
+  for (RendererMaps& r : this->Renderers)
+  {
+    if (renderer && r.Renderer == renderer)
+    {
+      r.VisibleCamera = nullptr;
+      r.VisibleDepthsUsed = false;
+    }
+  }
+}
+
 const std::vector<vtkCascadedShadowMapBakerPass::LightMaps>&
 vtkCascadedShadowMapBakerPass::GetLightMaps(vtkRenderer* renderer) const
 {
@@ -526,6 +587,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   this->LastCompactCasters = 0;
   this->LastBlocksDrawn = 0;
   this->LastCastersWithoutReceivers = 0;
+  this->LastVisibleDepthsUsed = false;
 
   // 1. The props: casters, receivers, scene bounds (across processes when distributed).
   FrameProps props;
@@ -538,6 +600,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   std::vector<LightMaps> planned;
   std::vector<int> render; // per light slot and cascade: 1 render, 0 keep
   this->PlanLights(renderer, window, state, props, planned, render);
+  this->LastVisibleDepthsUsed = state.VisibleDepthsUsed;
   if (this->MeasureTimes)
   {
     this->LastPlanSeconds = std::chrono::duration<double>(Clock::now() - planStart).count();
@@ -995,6 +1058,17 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
   const int ceiling = interacting ? std::min(this->InteractiveResolution, this->Resolution)
                                   : this->Resolution;
   const int imageHeight = renderer->GetSize()[1];
+  // The visible depths of the last frame (VisibleDepthFit; each process sees only its own).
+  if (this->VisibleDepthFit && !this->Distributed() && state.VisibleCamera)
+  {
+    this->Planner->SetVisibleDepths(
+      state.VisibleCamera, state.VisibleAspect, state.VisibleWindow[0], state.VisibleWindow[1]);
+  }
+  else
+  {
+    this->Planner->ClearVisibleDepths();
+  }
+  state.VisibleDepthsUsed = false;
   double viewKey[18];
   casterView(renderer, camera, viewKey);
   const int maximumLights = this->MaximumShadowedLights(window);
@@ -1021,6 +1095,7 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
     maps.LightIndex = index;
     const int count =
       this->Planner->Plan(camera, aspect, light, sceneBounds, imageHeight, ceiling);
+    state.VisibleDepthsUsed = state.VisibleDepthsUsed || this->Planner->GetVisibleDepthsUsed();
     maps.NumberOfCascades = std::min(count, kMaxCascades);
     light->GetTransformedPosition(maps.LightGeometry);
     light->GetTransformedFocalPoint(maps.LightGeometry + 3);
@@ -1420,6 +1495,7 @@ void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InteractiveMapBorder: " << this->InteractiveMapBorder << "\n";
   os << indent << "MeasureTimes: " << (this->MeasureTimes ? "on" : "off") << "\n";
   os << indent << "CullClosedCasters: " << (this->CullClosedCasters ? "on" : "off") << "\n";
+  os << indent << "VisibleDepthFit: " << (this->VisibleDepthFit ? "on" : "off") << "\n";
   os << indent << "CullCastersWithoutReceivers: "
      << (this->CullCastersWithoutReceivers ? "on" : "off") << "\n";
   os << indent << "CompactCasters: " << (this->CompactCasters ? "on" : "off") << "\n";

@@ -211,6 +211,41 @@ public:
   vtkGetMacro(LastBlocksDrawn, int);
   ///@}
 
+  ///@{
+  /**
+   * Cascades fitted to the depths the view really has samples at. The shadow pass reads each
+   * shadowed frame's depth buffer once it is drawn (its nearest and farthest sample); the next
+   * frame's directional cascades cover only that depth range, carried to the new camera and
+   * widened by how far it moved and turned (vtkCascadedShadowMapPlanner::SetVisibleDepths).
+   * The scene's boxes often reach far nearer and farther than anything the view shows (a
+   * camera among tall structures: a near plane at 0.25 with the nearest sample at 15), and the
+   * split scheme spends its resolution on that range. When a frame's samples fall outside the
+   * range its cascades covered (something came into view nearer or farther), the shadow pass
+   * plans and draws that frame again fitted to the scene's boxes (CheckVisibleDepths()); a
+   * camera that turned too far, or a scene whose samples lie outside its own boxes, gets the
+   * boxes' fit. Off with several processes (each sees only its own samples). Default on.
+   */
+  vtkSetMacro(VisibleDepthFit, bool);
+  vtkGetMacro(VisibleDepthFit, bool);
+  vtkBooleanMacro(VisibleDepthFit, bool);
+  ///@}
+
+  /**
+   * For the shadow pass, once a shadowed frame of the renderer is drawn: its visible samples lie
+   * at window depths windowMin .. windowMax (min > max: none; GL's default depth range). Returns
+   * true when that frame's cascades were fitted to carried visible depths and some sample falls
+   * outside the depths they cover: then the frame must be baked (Render()) and drawn again,
+   * which fits it to the scene's boxes. Otherwise keeps the range for the next frame's plan
+   * (when every sample lies in the covered depths) and returns false.
+   */
+  bool CheckVisibleDepths(vtkRenderer* renderer, double windowMin, double windowMax);
+  /// Forget the renderer's visible depths (its next frame is fitted to the scene's boxes).
+  void ClearVisibleDepths(vtkRenderer* renderer);
+  /// For tests and benchmarks: did the last Render() fit its cascades to visible depths, and
+  /// how many frames CheckVisibleDepths() sent back to be drawn again.
+  vtkGetMacro(LastVisibleDepthsUsed, bool);
+  vtkGetMacro(VisibleDepthRefits, int);
+
   /// The planner that holds the options above and computes the cascades.
   vtkCascadedShadowMapPlanner* GetPlanner();
 
@@ -344,6 +379,12 @@ protected:
     vtkSmartPointer<vtkOpenGLFramebufferObject> FrameBuffer;
     vtkMTimeType LastInputTime = 0;
     int LastSize[2] = { 0, 0 };
+    /// The visible depths of the last frame checked (VisibleDepthFit): the camera that drew
+    /// it (null: none kept), its aspect and window depths; and whether the last plan used them.
+    vtkSmartPointer<vtkCamera> VisibleCamera;
+    double VisibleAspect = 1.0;
+    double VisibleWindow[2] = { 1.0, 0.0 };
+    bool VisibleDepthsUsed = false;
   };
 
   /// What a frame draws: the visible props' boxes and the opaque ones among them.
@@ -423,6 +464,9 @@ protected:
   bool CullClosedCasters = true;
   bool CompactCasters = true;
   bool CullCastersWithoutReceivers = true;
+  bool VisibleDepthFit = true;
+  bool LastVisibleDepthsUsed = false;
+  int VisibleDepthRefits = 0;
 
   std::vector<RendererMaps> Renderers;
   vtkWeakPointer<vtkRenderer> LastRenderer;

@@ -3,6 +3,7 @@
 
 #include "csmReuse.h"
 #include "csmShadowSetup.h"
+#include "csmVisibleDepth.h"
 
 #include "vtkCamera.h"
 #include "vtkLight.h"
@@ -52,6 +53,10 @@ struct vtkCascadedShadowMapPlanner::Internals
   csm::Camera Camera;
   glm::dvec3 wsLightDirection{ 0.0, -1.0, 0.0 };
   bool Directional = true;
+  // SetVisibleDepths(): the camera that measured them and their view depths; used by the last plan.
+  csm::Camera VisibleCamera;
+  csm::DepthRange Visible;
+  bool VisibleUsed = false;
 };
 
 vtkCascadedShadowMapPlanner::vtkCascadedShadowMapPlanner()
@@ -135,6 +140,7 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   {
     this->Internal->Setup = csm::ShadowSetup();
     this->Internal->Setup.message = "no camera or no light direction";
+    this->Internal->VisibleUsed = false;
     return;
   }
   csm::Settings settings;
@@ -147,6 +153,18 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   settings.stableOrthographic = true; // with GetCascadeMatrix(..., resolution)'s snap
   const csm::Bounds scene = toBounds(bounds);
   const glm::dvec3 direction(lightDirection[0], lightDirection[1], lightDirection[2]);
+  // The visible samples of an earlier frame, carried to this camera: the cascades begin where
+  // the view can have samples. (Only the near end: it sets the depth ratio that the splits and
+  // the warp pay for; the farthest samples are often thin far objects that cover a pixel in
+  // one frame and none in the next, and the scene's boxes bound them as well.)
+  const csm::DepthRange visible =
+    csm::carryDepthRange(this->Internal->VisibleCamera, this->Internal->Visible, cam);
+  this->Internal->VisibleUsed =
+    !visible.isEmpty() && visible.vsNear > cam.vsNear && visible.vsNear < cam.vsFar;
+  if (this->Internal->VisibleUsed)
+  {
+    cam.vsNear = visible.vsNear;
+  }
   const void* lightKey = light;
   const std::vector<csm::Bounds>* parts =
     this->Internal->Receivers.empty() ? nullptr : &this->Internal->Receivers;
@@ -191,6 +209,7 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
     return this->Report(light, light->GetMTime());
   }
   // A spot light: one perspective map fitted to the lit part of the visible scene.
+  this->Internal->VisibleUsed = false;
   csm::Camera cam;
   toCamera(camera, aspect, cam);
   const csm::Bounds scene = toBounds(bounds);
@@ -210,6 +229,45 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
       bounds ? &scene : nullptr, this->DepthClamp);
   }
   return this->Report(light, light->GetMTime());
+}
+
+void vtkCascadedShadowMapPlanner::SetVisibleDepths(
+  vtkCamera* measuredBy, double aspect, double windowMin, double windowMax)
+{
+  csm::Camera cam;
+  csm::WindowDepthRange window;
+  window.min = windowMin;
+  window.max = windowMax;
+  this->Internal->Visible = toCamera(measuredBy, aspect, cam) ? csm::viewDepthRange(window, cam)
+                                                               : csm::DepthRange();
+  this->Internal->VisibleCamera = cam;
+}
+
+void vtkCascadedShadowMapPlanner::ClearVisibleDepths()
+{
+  this->Internal->Visible = csm::DepthRange();
+}
+
+bool vtkCascadedShadowMapPlanner::GetVisibleDepthsUsed() const
+{
+  return this->Internal->VisibleUsed;
+}
+
+bool vtkCascadedShadowMapPlanner::DepthsHeld(vtkCamera* camera, double aspect,
+  double coveredNear, double coveredFar, double windowMin, double windowMax)
+{
+  csm::Camera cam;
+  if (!toCamera(camera, aspect, cam))
+  {
+    return false;
+  }
+  csm::DepthRange covered;
+  covered.vsNear = coveredNear;
+  covered.vsFar = coveredFar;
+  csm::WindowDepthRange window;
+  window.min = windowMin;
+  window.max = windowMax;
+  return csm::depthRangeHolds(covered, window, cam);
 }
 
 void vtkCascadedShadowMapPlanner::ClearReceiverBounds()
@@ -411,4 +469,5 @@ void vtkCascadedShadowMapPlanner::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ErrorTarget: " << this->ErrorTarget << "\n";
   os << indent << "AdaptiveCascades: " << (this->AdaptiveCascades ? "on" : "off") << "\n";
   os << indent << "PlannedCascades: " << this->GetNumberOfPlannedCascades() << "\n";
+  os << indent << "VisibleDepthsUsed: " << (this->Internal->VisibleUsed ? "yes" : "no") << "\n";
 }

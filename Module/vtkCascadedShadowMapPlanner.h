@@ -152,6 +152,28 @@ public:
   void AddReceiverBounds(const double bounds[6]);
   ///@}
 
+  ///@{
+  /**
+   * The depths the view really has samples at (Lauritzen's sample distribution; the Vazquez
+   * slides' "adjust the depth range to visible objects"): an earlier frame drawn by measuredBy
+   * in a viewport of the given aspect had visible samples at window depths windowMin ..
+   * windowMax (its depth buffer's, GL's default depth range; min > max: nothing visible). A
+   * directional light's Plan() carries that range to the current camera (widened by how far
+   * the camera moved and turned since: csm::carryDepthRange) and fits the cascades to that part
+   * of the view only; not when the camera turned more than csm::kVisibleDepthMaximumTurnDeg.
+   * Points that were not visible then may lie outside: DepthsHeld() tells once the frame is
+   * drawn, and a frame that misses must be planned again without it. Kept until cleared.
+   */
+  void SetVisibleDepths(vtkCamera* measuredBy, double aspect, double windowMin, double windowMax);
+  void ClearVisibleDepths();
+  /// Did the last Plan() fit to the visible depths (SetVisibleDepths())?
+  bool GetVisibleDepthsUsed() const;
+  /// Did every visible sample of a frame drawn by camera (window depths windowMin .. windowMax)
+  /// fall in the view depths coveredNear .. coveredFar (csm::depthRangeHolds)?
+  static bool DepthsHeld(vtkCamera* camera, double aspect, double coveredNear, double coveredFar,
+    double windowMin, double windowMax);
+  ///@}
+
   /// Number of cascades of the last plan.
   int GetNumberOfPlannedCascades() const;
 

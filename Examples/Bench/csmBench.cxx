@@ -95,6 +95,8 @@ struct Technique
   std::vector<double> PlanMs, MapMs;    // --breakdown: per timed frame
   double TexelsRendered = 0.0;          // map texels rendered over the timed frames
   long long MapsRendered = 0, MapsKept = 0;
+  long long Refits = 0;     // timed frames drawn twice (VisibleDepthFit missed a sample)
+  int RefitsSeen = 0;       // the baker's count at the last timed frame
   long long CascadesPlanned = 0, FramesPlanned = 0; // k_used: cascades of the first light a frame
   csmTruth::Classification Errors;
   std::vector<double> M;
@@ -131,7 +133,8 @@ std::vector<Technique> Techniques(const Options& o)
   // The pass as a user gets it (every option at the pass's default: up to 4 cascades, as many
   // as meet the error target), and the same with two fixed cascades (the default before the
   // sixth session).
-  auto addDefaults = [&](const std::string& label, int fixedCascades, bool cullClosed = true) {
+  auto addDefaults = [&](const std::string& label, int fixedCascades, bool cullClosed = true,
+                         bool visibleFit = true) {
     Technique t; // default-constructed ShadowOptions: the pass's defaults
     t.Label = label;
     if (fixedCascades > 0)
@@ -140,6 +143,7 @@ std::vector<Technique> Techniques(const Options& o)
       t.Shadow.AdaptiveCascades = false;
     }
     t.Shadow.CullClosedCasters = t.Shadow.CullClosedCasters && cullClosed;
+    t.Shadow.VisibleDepthFit = t.Shadow.VisibleDepthFit && visibleFit;
     t.Texels = static_cast<long long>(t.Shadow.Cascades) * t.Shadow.Resolution * t.Shadow.Resolution;
     t.MemoryMB = 4.0 * t.Texels / (1024.0 * 1024.0);
     list.push_back(t);
@@ -150,6 +154,8 @@ std::vector<Technique> Techniques(const Options& o)
   {
     // The defaults with closed casters drawn with both sides, as before CullClosedCasters.
     addDefaults("default both sides", 0, false);
+    // The defaults with the cascades fitted to the scene's boxes, as before VisibleDepthFit.
+    addDefaults("default boxes fit", 0, true, false);
     using P = vtkCascadedShadowMapPlanner;
     add("uniform", "csm", P::WARP_NONE, P::SPLIT_SINGLE, 1, 1);
     add("lispsm k1", "csm", P::WARP_LISPSM, P::SPLIT_SINGLE, 1, 1);
@@ -389,6 +395,8 @@ void Account(Technique& t, vtkRenderer* renderer)
   vtkCascadedShadowMapBakerPass* baker = t.Passes.Cascaded->GetShadowMapBakerPass();
   t.MapsRendered += baker->GetLastCascadeRenders();
   t.MapsKept += baker->GetLastCascadesKept();
+  t.Refits += baker->GetVisibleDepthRefits() - t.RefitsSeen;
+  t.RefitsSeen = baker->GetVisibleDepthRefits();
   t.TexelsRendered += baker->GetLastTexelsRendered();
   if (!baker->GetLightMaps().empty())
   {
@@ -656,7 +664,7 @@ int main(int argc, char** argv)
          "p10_ms,p90_ms,math_us,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m,"
          "storage,frames,measured_pixels,interactive_ms,still_ms,plan_ms,map_ms,map_ms_per_map,"
          "texels_per_map,flicker_pct,k_used,near_fit,storage_over_optimal,"
-         "maps_rendered_per_frame,maps_kept_per_frame\n";
+         "maps_rendered_per_frame,maps_kept_per_frame,refits_per_frame\n";
   detail << "scene,label,view,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m\n";
   std::vector<std::pair<std::string, std::vector<Technique>>> results;
 
@@ -949,7 +957,8 @@ int main(int argc, char** argv)
           << (t.FramesPlanned ? double(t.CascadesPlanned) / t.FramesPlanned : NAN) << ","
           << Median(t.NearFit) << "," << Median(t.StorageOverOptimal) << ","
           << (csm ? double(t.MapsRendered) / timedFrames(t) : NAN) << ","
-          << (csm ? double(t.MapsKept) / timedFrames(t) : NAN) << "\n";
+          << (csm ? double(t.MapsKept) / timedFrames(t) : NAN) << ","
+          << (csm ? double(t.Refits) / timedFrames(t) : NAN) << "\n";
       std::printf("  %-16s %8.1f ms  mismatch %6.3f%% (shadow %6.3f%%, light %6.3f%%)  max m %8.2f"
                   "  p95 m %6.2f  flicker %5.2f%%\n",
         t.Label.c_str(), Median(t.Times), t.Errors.MismatchPct(), t.Errors.FalseShadowPct(),
@@ -961,9 +970,10 @@ int main(int argc, char** argv)
           Median(t.Times) / Median(vtk.Times), Median(t.InteractiveTimes) / Median(vtk.InteractiveTimes),
           Median(t.StillTimes) / Median(vtk.StillTimes));
         if (csm)
-          std::printf("  k %.2f  maps rendered %.2f kept %.2f per frame",
+          std::printf("  k %.2f  maps rendered %.2f kept %.2f per frame, %.2f frames drawn twice",
             t.FramesPlanned ? double(t.CascadesPlanned) / t.FramesPlanned : 0.0,
-            double(t.MapsRendered) / timedFrames(t), double(t.MapsKept) / timedFrames(t));
+            double(t.MapsRendered) / timedFrames(t), double(t.MapsKept) / timedFrames(t),
+            double(t.Refits) / timedFrames(t));
         if (!t.PlanMs.empty())
           std::printf("  plan %.3f ms  maps %.1f ms a frame, %.1f ms a map of %.0f^2 texels",
             Median(t.PlanMs), Mean(t.MapMs), PerMap(t),

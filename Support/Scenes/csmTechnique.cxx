@@ -34,6 +34,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->CullClosedCasters = baker->GetCullClosedCasters();
   this->CompactCasters = baker->GetCompactCasters();
   this->CullCastersWithoutReceivers = baker->GetCullCastersWithoutReceivers();
+  this->VisibleDepthFit = baker->GetVisibleDepthFit();
   this->DepthClamp = baker->GetDepthClamp();
   this->PCF = pass->GetPCFSize();
   this->Kernel = pass->GetPCFKernel();
@@ -59,6 +60,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetCullClosedCasters(o.CullClosedCasters);
   baker->SetCompactCasters(o.CompactCasters);
   baker->SetCullCastersWithoutReceivers(o.CullCastersWithoutReceivers);
+  baker->SetVisibleDepthFit(o.VisibleDepthFit);
   baker->SetDepthClamp(o.DepthClamp);
   pass->SetPCFSize(o.PCF);
   pass->SetPCFKernel(o.Kernel);

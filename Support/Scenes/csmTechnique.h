@@ -38,6 +38,7 @@ struct ShadowOptions
   bool CullClosedCasters;        ///< closed casters drawn into the maps from behind
   bool CompactCasters;           ///< casters drawn into the maps from compact spatial blocks
   bool CullCastersWithoutReceivers; ///< casters that shadow nothing left out of the maps
+  bool VisibleDepthFit;           ///< cascades fitted to the depths the view has samples at
   int PCF;
   int Kernel;                    ///< vtkCascadedShadowMapPass::Kernels
   double ConstantBias;

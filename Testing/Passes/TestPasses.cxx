@@ -40,6 +40,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -1239,4 +1240,142 @@ TEST(Passes, MapCoordinatesFromTheVerticesGiveTheSameShadows)
   ASSERT_EQ(twoPass->GetShadowMapBakerPass()->GetLightMaps().size(), 2u);
   EXPECT_EQ(twoPass->GetLastMapCoordinateVaryings(), 0);
   EXPECT_GT(DarkenedPixels(both, twoPlain), 300); // two half-dark shadows: ~420 pixels
+}
+
+namespace
+{
+/// An actor of a box with the given bounds, in grey.
+vtkSmartPointer<vtkActor> BoxActor(double xmin, double xmax, double ymin, double ymax,
+  double zmin, double zmax)
+{
+  vtkNew<vtkCubeSource> cube;
+  cube->SetBounds(xmin, xmax, ymin, ymax, zmin, zmax);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(cube->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
+  return actor;
+}
+
+/// The view depths of the window's depth buffer (last frame), rows from the bottom.
+std::vector<double> ViewDepths(vtkRenderWindow* window, vtkCamera* camera)
+{
+  const int* size = window->GetSize();
+  std::vector<float> z(static_cast<size_t>(size[0]) * size[1]);
+  window->GetZbufferData(0, 0, size[0] - 1, size[1] - 1, z.data());
+  double range[2];
+  camera->GetClippingRange(range);
+  std::vector<double> depths;
+  for (float v : z)
+  {
+    const double ndc = 2.0 * v - 1.0;
+    depths.push_back(v < 1.0f
+        ? 2.0 * range[0] * range[1] / ((range[1] + range[0]) - ndc * (range[1] - range[0]))
+        : HUGE_VAL);
+  }
+  return depths;
+}
+
+double NearestSampleDepth(vtkRenderWindow* window, vtkCamera* camera)
+{
+  const std::vector<double> depths = ViewDepths(window, camera);
+  return *std::min_element(depths.begin(), depths.end());
+}
+
+/// The pixels whose sample is nearer than a view depth.
+std::vector<char> NearerThan(vtkRenderWindow* window, vtkCamera* camera, double depth)
+{
+  std::vector<char> mask;
+  for (double d : ViewDepths(window, camera))
+    mask.push_back(d < depth);
+  return mask;
+}
+} // namespace
+
+// Issue 15, item 1: the cascades begin at the nearest visible sample, not where the scene's
+// boxes meet the view (here one prop's box holds the camera: a block behind it and the box in
+// front of it are one polydata).
+TEST(Passes, VisibleDepthFitStartsTheCascadesAtTheNearestSample)
+{
+  BoxOverPlane scene;
+  vtkNew<vtkCubeSource> behind, front;
+  behind->SetBounds(-1, 1, 13, 15, 18, 20); // behind the camera at (0, 14, 16)
+  front->SetBounds(-1, 1, 2, 4, -1, 1);
+  vtkNew<vtkAppendPolyData> both;
+  both->AddInputConnection(behind->GetOutputPort());
+  both->AddInputConnection(front->GetOutputPort());
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(both->GetOutputPort());
+  scene.Box->SetMapper(mapper);
+  scene.Renderer->ResetCameraClippingRange();
+  auto plain = scene.Render();
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  const double cameraNear = camera->GetClippingRange()[0];
+
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->VisibleDepthFitOff();
+  auto boxes = scene.Frame();
+  const double boxesNear = baker->GetLightMaps()[0].SplitNear;
+  EXPECT_FALSE(baker->GetLastVisibleDepthsUsed());
+  EXPECT_LT(boxesNear, 1.01 * cameraNear); // the box around the two blocks holds the eye
+
+  baker->VisibleDepthFitOn();
+  scene.Frame(); // measures the samples
+  auto fitted = scene.Frame();
+  EXPECT_TRUE(baker->GetLastVisibleDepthsUsed());
+  const double nearest = NearestSampleDepth(scene.Window, camera);
+  EXPECT_GT(nearest, 10.0 * cameraNear);
+  EXPECT_NEAR(baker->GetLightMaps()[0].SplitNear, nearest, 0.01 * nearest);
+  EXPECT_LE(baker->GetLightMaps()[0].SplitNear, nearest);
+  // The same shadows (the fitted cascades are finer; a few edge pixels may differ).
+  const long shadowBoxes = DarkenedPixels(boxes, plain);
+  const long shadowFitted = DarkenedPixels(fitted, plain);
+  EXPECT_GT(shadowBoxes, 800);
+  EXPECT_NEAR(shadowFitted, shadowBoxes, 0.02 * shadowBoxes);
+  EXPECT_EQ(baker->GetVisibleDepthRefits(), 0);
+}
+
+// A frame whose samples fall nearer than the cascades fitted to the last frame's (a shelf with
+// a cube on it put in front of a still camera) is planned and drawn again in that frame: the
+// same image as a fresh pass's, the cube's shadow on the shelf included.
+TEST(Passes, SomethingNearerComingIntoViewIsShadowedInThatFrame)
+{
+  BoxOverPlane scene, reference;
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  scene.Frame();
+  scene.Frame();
+  ASSERT_TRUE(baker->GetLastVisibleDepthsUsed());
+  const double fittedNear = baker->GetLightMaps()[0].SplitNear;
+  auto shelf = BoxActor(-2, 2, 7.8, 8, 4, 8);
+  auto cube = BoxActor(-0.5, 0.5, 9, 10, 5.5, 6.5);
+  auto shelfPlain = BoxActor(-2, 2, 7.8, 8, 4, 8);
+  auto cubePlain = BoxActor(-0.5, 0.5, 9, 10, 5.5, 6.5);
+  for (BoxOverPlane* s : { &scene, &reference })
+  {
+    s->Renderer->AddActor(s == &scene ? shelf : shelfPlain);
+    s->Renderer->AddActor(s == &scene ? cube : cubePlain);
+    s->Renderer->ResetCameraClippingRange();
+  }
+  auto plain = reference.Render();
+  vtkCascadedShadowMapPass::UseShadowsOn(reference.Renderer);
+  const int refits = baker->GetVisibleDepthRefits();
+  auto image = scene.Frame();
+  const std::vector<char> nearer = NearerThan(scene.Window, scene.Renderer->GetActiveCamera(), fittedNear);
+  EXPECT_EQ(baker->GetVisibleDepthRefits(), refits + 1);
+  EXPECT_FALSE(baker->GetLastVisibleDepthsUsed()); // drawn again fitted to the boxes
+  EXPECT_LT(baker->GetLightMaps()[0].SplitNear, 0.8 * fittedNear);
+  auto fresh = reference.Frame();
+  EXPECT_EQ(DifferingValues(image, fresh), 0);
+  // The cube's shadow on the shelf, nearer than the last frame's nearest sample (lit, were the
+  // frame not drawn again: outside every cascade).
+  long shelfPixels = 0;
+  EXPECT_GT(DarkenedPixels(image, plain, &nearer, &shelfPixels), 150);
+  EXPECT_GT(shelfPixels, 2000);
+  // The next frame keeps the new samples: fitted again, no refit.
+  scene.Frame();
+  EXPECT_TRUE(baker->GetLastVisibleDepthsUsed());
+  EXPECT_EQ(baker->GetVisibleDepthRefits(), refits + 1);
 }
