@@ -112,6 +112,7 @@ void usage()
     "  --compact-casters on|off  casters drawn into the maps from compact spatial blocks [%s]\n"
     "  --cull-without-receivers on|off  casters that shadow nothing (a ground under\n"
     "                     everything) left out of the maps [%s]\n"
+    "  --visible-fit on|off  cascades begin at the nearest sample of the last frame [%s]\n"
     "  --alpha A          adaptive ratio > 1 [%g]\n"
     "  --resolution R     texels per cascade side at most, 64..8192 [%d]\n"
     "  --error-target M   each cascade's resolution for aliasing error <= M (texel/pixel);\n"
@@ -136,7 +137,8 @@ void usage()
     "  t technique, l light angle +15 deg\n",
     o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
     vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
-    d.CompactCasters ? "on" : "off", d.CullCastersWithoutReceivers ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
+    d.CompactCasters ? "on" : "off", d.CullCastersWithoutReceivers ? "on" : "off",
+    d.VisibleDepthFit ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
     d.SlopeBias, d.ClosedSurfaceBiasFactor, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
     o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
@@ -245,6 +247,12 @@ Options parse(int argc, char** argv)
     {
       const char* const names[] = { "off", "on" };
       o.Shadow.CullCastersWithoutReceivers = choice(f, v, names, 2) == 1;
+      next();
+    }
+    else if (f == "--visible-fit")
+    {
+      const char* const names[] = { "off", "on" };
+      o.Shadow.VisibleDepthFit = choice(f, v, names, 2) == 1;
       next();
     }
     else if (f == "--depth-clamp")
