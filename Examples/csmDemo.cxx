@@ -37,6 +37,10 @@ namespace
 {
 const char* const kWarps[] = { "none", "psm", "lispsm", "generalized" };
 const char* const kPartitions[] = { "single", "uniform", "log", "practical", "adaptive" };
+/// --partition: the split schemes, then face partitioning (FP+W) and face partitions with two
+/// z-partitions each (FP+ZP+W).
+const char* const kPartitionChoices[] = { "single", "uniform", "log", "practical", "adaptive",
+  "face", "face-zp" };
 const char* const kDebug[] = { "off", "cascades", "error", "factor" };
 const char* const kKernels[] = { "grid", "jittered" };
 
@@ -105,7 +109,9 @@ void usage()
     "  --triangles N      platform size in triangles, 1000..~11.8 M [%lld]\n"
     "  --technique T      csm (ours) | vtk (vtkShadowMapPass) | none [%s]\n"
     "  --warp W           none | psm | lispsm | generalized [%s]\n"
-    "  --partition P      single | uniform | log | practical | adaptive [%s]\n"
+    "  --partition P      single | uniform | log | practical | adaptive [%s] |\n"
+    "                     face (face partitioning, Lloyd et al. 2006, 5.1: FP+W) |\n"
+    "                     face-zp (two z-partitions per face: FP+ZP+W)\n"
     "  --cascades K       1..%d [%d]      --lambda L  practical weight [%g]\n"
     "  --adaptive-cascades on|off  the fewest cascades, up to K, that meet --error-target [%s]\n"
     "  --cull-closed on|off  closed casters drawn into the maps from behind only [%s]\n"
@@ -212,7 +218,9 @@ Options parse(int argc, char** argv)
     }
     else if (f == "--partition")
     {
-      o.Shadow.Partition = choice(f, v, kPartitions, 5);
+      const int partition = choice(f, v, kPartitionChoices, 7);
+      o.Shadow.FacePartitions = partition >= 5 ? partition - 4 : 0;
+      o.Shadow.Partition = partition >= 5 ? o.Shadow.Partition : partition;
       next();
     }
     else if (f == "--kernel")
@@ -411,7 +419,8 @@ struct App
     t << "technique " << s.Technique << " | " << s.Resolution << "^2 | frame "
       << static_cast<int>(this->LastFrameMs) << " ms";
     if (s.Technique == "csm")
-      t << "\nwarp " << kWarps[s.Warp] << " | partition " << kPartitions[s.Partition]
+      t << "\nwarp " << kWarps[s.Warp] << " | partition "
+        << (s.FacePartitions > 0 ? kPartitionChoices[4 + s.FacePartitions] : kPartitions[s.Partition])
         << " | cascades " << s.Cascades << " | pcf " << s.PCF << " " << kKernels[s.Kernel]
         << " | debug " << kDebug[s.Debug];
     this->Text->SetInput(t.str().c_str());

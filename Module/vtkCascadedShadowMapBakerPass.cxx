@@ -1097,10 +1097,15 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       this->Planner->Plan(camera, aspect, light, sceneBounds, imageHeight, ceiling);
     state.VisibleDepthsUsed = state.VisibleDepthsUsed || this->Planner->GetVisibleDepthsUsed();
     maps.NumberOfCascades = std::min(count, kMaxCascades);
+    maps.Faces = count > 0 && this->Planner->GetFacePartitions() > 0 && !light->GetPositional() &&
+      !camera->GetParallelProjection();
     light->GetTransformedPosition(maps.LightGeometry);
     light->GetTransformedFocalPoint(maps.LightGeometry + 3);
     maps.LightGeometry[6] = light->GetPositional() ? light->GetConeAngle() : -1.0;
-    const LightMaps* kept = !props.Changed && depthClamp && slot < state.Maps.size() &&
+    // (Face partitions are re-rendered every frame: compareKeptMap measures the error along
+    // the cascades' map axes, which are not a face partition's.)
+    const bool faces = this->Planner->GetFacePartitions() > 0;
+    const LightMaps* kept = !props.Changed && depthClamp && !faces && slot < state.Maps.size() &&
         state.Maps[slot].Light == light &&
         std::equal(maps.LightGeometry, maps.LightGeometry + 7, state.Maps[slot].LightGeometry) &&
         state.Maps[slot].NumberOfCascades == maps.NumberOfCascades
@@ -1118,6 +1123,7 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       this->Planner->GetCascadeMatrix(c, m, border, maps.CascadeResolution[c]);
       std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
       maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
+      this->Planner->GetCascadePlanes(c, maps.Planes[c]);
       // A kept map serves if it has the texels this view needs (or all its tile holds, where the
       // GL's texture size limit made the tiles smaller than Resolution).
       const bool keep = kept &&
@@ -1475,6 +1481,7 @@ csmForwardToPlanner(Alpha, double)
 csmForwardToPlanner(DepthClamp, bool)
 csmForwardToPlanner(ErrorTarget, double)
 csmForwardToPlanner(AdaptiveCascades, bool)
+csmForwardToPlanner(FacePartitions, int)
 #undef csmForwardToPlanner
 
 vtkMTimeType vtkCascadedShadowMapBakerPass::GetMTime()

@@ -124,6 +124,14 @@ public:
   bool GetAdaptiveCascades();
   vtkBooleanMacro(AdaptiveCascades, bool);
   ///@}
+
+  ///@{
+  /// Face partitioning instead of cascades (a comparison technique, forwarded to GetPlanner(),
+  /// which documents it): 0 off (default), 1 FP+W, 2 FP+ZP+W. Its maps are re-rendered every
+  /// frame; with NumberOfCascades below 4 they share a smaller atlas.
+  void SetFacePartitions(int zPartitionsPerFace);
+  int GetFacePartitions();
+  ///@}
   /// Resolutions chosen from ErrorTarget are multiples of this.
   static constexpr int RESOLUTION_STEP = 64;
 
@@ -290,6 +298,9 @@ public:
     double WorldToMap[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][16] = {};     ///< world -> light clip, row-major, per cascade
     double SplitNear = 0.0;       ///< view depth where the first cascade begins
     double SplitFar[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};           ///< view depth where each cascade ends
+    /// Face partitions: the 4 world half-spaces of each piece (vtkCascadedShadowMapPlanner::GetCascadePlanes).
+    double Planes[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][16] = {};
+    bool Faces = false; ///< the maps are face partitions, selected by their planes
     double Tile[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][4] = {};            ///< atlas tile: offset x, y and scale x, y in [0, 1]
     int Resolution = 0;           ///< texels a side of each cascade's tile (Resolution; less beyond csm::kAtlasFullMaps cascades or where GL limits)
     /// Texels a side of each cascade's map (from ErrorTarget), in the lower left of its tile.

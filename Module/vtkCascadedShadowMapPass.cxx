@@ -202,15 +202,31 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
       }
       u.SplitFar.push_back(c < maps.NumberOfCascades ? static_cast<float>(maps.SplitFar[c]) : 0.0f);
       u.Texel.push_back(1.0f / static_cast<float>(std::max(1, maps.CascadeResolution[c])));
+      // A face partition's half-spaces in view space: the world plane (a row) times view -> world.
+      for (int k = 0; k < 4; ++k)
+      {
+        const double* plane = maps.Planes[c] + 4 * k;
+        const bool used = maps.Faces && c < maps.NumberOfCascades;
+        for (int column = 0; column < 4; ++column)
+        {
+          double value = 0.0;
+          for (int row = 0; row < 4; ++row)
+          {
+            value += plane[row] * viewToWorld->GetElement(row, column);
+          }
+          u.Planes.push_back(static_cast<float>(used ? value : (column == 3 ? 1.0 : 0.0)));
+        }
+      }
     }
+    u.Faces = u.Faces || maps.Faces;
     maps.Atlas->Activate();
     u.TextureUnit.push_back(maps.Atlas->GetTextureUnit());
     signature += std::to_string(maps.LightIndex) + ";";
   }
   // The kernel, its size (for few lights) and the debug view are compiled into the lookup (see
   // csmShadowFS.glsl).
-  signature +=
-    " kernel " + std::to_string(this->PCFKernel) + " debug " + std::to_string(this->DebugMode);
+  signature += " kernel " + std::to_string(this->PCFKernel) + " debug " +
+    std::to_string(this->DebugMode) + (u.Faces ? " faces" : "");
   if (this->ConstantKernelSize())
   {
     signature += " radius " + std::to_string(this->PCFSize / 2);
@@ -308,6 +324,10 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader
   {
     decl << "#define CSM_PCF_RADIUS " << this->PCFSize / 2 << "\n";
   }
+  if (this->Uniforms.Faces)
+  {
+    decl << "#define CSM_FACES\n"; // maps selected by their half-spaces (face partitions)
+  }
   if (impostor)
   {
     decl << "#define CSM_IMPOSTOR\n";
@@ -352,7 +372,7 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader
     const std::string map = "csmMap" + std::to_string(j) + ", " + std::to_string(j);
     const std::string lookup = result +
       (impostor ? " = csmImpostorShadow(" + map + ", vertexVC, normalVCVSOutput);"
-        : fromVertices ? " = csmShadowFromVertices(" + map + ", -vertexVC.z, csmMapDx, csmMapDy);"
+        : fromVertices ? " = csmShadowFromVertices(" + map + ", vertexVC, csmMapDx, csmMapDy);"
                        : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
     const std::string factor = result + ".x * ";
     // Phong-style lighting (diffuse and specular), or PBR (radiance, directional or positional).
@@ -431,6 +451,10 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   program->SetUniform4fv("csmTile", lights * kMaxCascades, u.Tile.data());
   program->SetUniform1fv("csmTexel", lights * kMaxCascades, u.Texel.data());
   program->SetUniform1fv("csmSplitFar", lights * kMaxCascades, u.SplitFar.data());
+  if (u.Faces)
+  {
+    program->SetUniform4fv("csmPlanes", lights * kMaxCascades * 4, u.Planes.data());
+  }
   program->SetUniform1fv("csmSplitNear", lights, u.SplitNear.data());
   program->SetUniform1iv("csmCount", lights, u.Count.data());
   program->SetUniform1fv("csmAttenuation", lights, u.Attenuation.data());

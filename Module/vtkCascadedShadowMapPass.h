@@ -200,6 +200,8 @@ protected:
     std::vector<float> Tile;      ///< per cascade: atlas offset and scale, 4 floats
     std::vector<float> SplitFar;  ///< per cascade
     std::vector<float> Texel;     ///< per cascade: one texel in the cascade's [0,1] coordinates
+    std::vector<float> Planes;    ///< per cascade: 4 view-space half-spaces (face partitions)
+    bool Faces = false;           ///< some light's maps are face partitions
     size_t Lights() const { return this->Count.size(); }
   };
   ShaderUniforms Uniforms;

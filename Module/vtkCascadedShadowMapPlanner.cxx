@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapPlanner.h"
 
+#include "csmFacePartition.h"
 #include "csmReuse.h"
 #include "csmShadowSetup.h"
 #include "csmVisibleDepth.h"
@@ -57,6 +58,12 @@ struct vtkCascadedShadowMapPlanner::Internals
   csm::Camera VisibleCamera;
   csm::DepthRange Visible;
   bool VisibleUsed = false;
+  /// Face partitions of the last plan: each piece's world half-spaces (empty for cascades).
+  std::vector<std::vector<glm::dvec4>> Planes;
+
+  /// Setup and Planes for FacePartitions k: the face partitions of the fitted frustum.
+  void PlanFaces(const csm::Camera& camera, const glm::dvec3& direction, const csm::Bounds* scene,
+    const csm::Settings& settings, const std::vector<csm::Bounds>* parts, int k);
 };
 
 vtkCascadedShadowMapPlanner::vtkCascadedShadowMapPlanner()
@@ -171,7 +178,13 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   this->Internal->Camera = cam;
   this->Internal->wsLightDirection = direction;
   this->Internal->Directional = true;
-  if (this->AdaptiveCascades && this->ErrorTarget > 0.0 && imageHeight > 0 &&
+  this->Internal->Planes.clear();
+  if (this->FacePartitions > 0 && !cam.parallel)
+  {
+    this->Internal->PlanFaces(
+      cam, direction, bounds ? &scene : nullptr, settings, parts, this->FacePartitions);
+  }
+  else if (this->AdaptiveCascades && this->ErrorTarget > 0.0 && imageHeight > 0 &&
     maximumResolution > 0)
   {
     auto last = this->Internal->LastCount.find(lightKey);
@@ -189,6 +202,62 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
     this->Internal->LastCount.clear(); // lights come and go: keep the memory bounded
   }
   this->Internal->LastCount[lightKey] = static_cast<int>(this->Internal->Setup.cascades.size());
+}
+
+void vtkCascadedShadowMapPlanner::Internals::PlanFaces(const csm::Camera& camera,
+  const glm::dvec3& direction, const csm::Bounds* scene, const csm::Settings& settings,
+  const std::vector<csm::Bounds>* parts, int k)
+{
+  // The depth range fitted to the scene as for the cascades (and the same input checks), then
+  // the face partitions of that part of the frustum.
+  csm::Settings one = settings;
+  one.split.scheme = csm::SplitScheme::Single;
+  one.split.k = 1;
+  csm::ShadowSetup& setup = this->Setup;
+  setup = csm::computeShadowSetup(camera, direction, scene, one, parts);
+  if (setup.status != csm::Status::Ok)
+  {
+    return;
+  }
+  csm::Camera fitted = camera;
+  fitted.vsNear = setup.vsNear;
+  fitted.vsFar = setup.vsFar;
+  csm::FacePartitionSettings faces;
+  faces.warp = settings.warp;
+  faces.k = k;
+  const csm::FacePartitioning fp = csm::computeFacePartitions(fitted, direction, faces);
+  if (fp.status != csm::Status::Ok)
+  {
+    setup.status = fp.status;
+    setup.message = fp.message;
+    setup.cascades.clear();
+    return;
+  }
+  setup.splits = fp.splits;
+  setup.cascades.clear();
+  for (const csm::FacePartition& piece : fp.partitions)
+  {
+    setup.cascades.push_back(piece.map);
+    setup.cascades.back().vsNear = fitted.vsNear; // selected by their planes, not by depth
+    setup.cascades.back().vsFar = fitted.vsFar;
+    this->Planes.push_back(piece.wsPlanes);
+  }
+  setup.storageTotal = fp.storageTotal;
+  setup.storageOptimal = fp.storageOptimal;
+}
+
+void vtkCascadedShadowMapPlanner::GetCascadePlanes(int i, double planes[16]) const
+{
+  for (int k = 0; k < 4; ++k)
+  {
+    const bool some = i >= 0 && i < static_cast<int>(this->Internal->Planes.size()) &&
+      k < static_cast<int>(this->Internal->Planes[i].size());
+    const glm::dvec4 plane = some ? this->Internal->Planes[i][k] : glm::dvec4(0.0, 0.0, 0.0, 1.0);
+    for (int c = 0; c < 4; ++c)
+    {
+      planes[4 * k + c] = plane[c];
+    }
+  }
 }
 
 int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight* light,
@@ -210,6 +279,7 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
   }
   // A spot light: one perspective map fitted to the lit part of the visible scene.
   this->Internal->VisibleUsed = false;
+  this->Internal->Planes.clear();
   csm::Camera cam;
   toCamera(camera, aspect, cam);
   const csm::Bounds scene = toBounds(bounds);
@@ -468,6 +538,7 @@ void vtkCascadedShadowMapPlanner::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DepthClamp: " << (this->DepthClamp ? "on" : "off") << "\n";
   os << indent << "ErrorTarget: " << this->ErrorTarget << "\n";
   os << indent << "AdaptiveCascades: " << (this->AdaptiveCascades ? "on" : "off") << "\n";
+  os << indent << "FacePartitions: " << this->FacePartitions << "\n";
   os << indent << "PlannedCascades: " << this->GetNumberOfPlannedCascades() << "\n";
   os << indent << "VisibleDepthsUsed: " << (this->Internal->VisibleUsed ? "yes" : "no") << "\n";
 }

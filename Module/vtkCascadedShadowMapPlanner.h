@@ -116,6 +116,25 @@ public:
   vtkBooleanMacro(AdaptiveCascades, bool);
   ///@}
 
+  /// The most z-partitions a face partition may have (4 faces of them fill the cascade slots).
+  static constexpr int MAXIMUM_FACE_Z_PARTITIONS = MAXIMUM_NUMBER_OF_CASCADES / 4;
+
+  ///@{
+  /**
+   * Face partitioning (Lloyd et al. 2006, §5.1), a comparison technique. 0 (default): cascades
+   * along the view depth (SplitScheme). k = 1 or 2: a directional light's maps are the
+   * partitions of the view frustum (its depth range fitted to the scene as for the cascades) by
+   * the planes through its side-face edges and the light, one per side face the light enters
+   * (up to 4), each z-partitioned into k log-split pieces along its face (FP+W for 1, FP+ZP+W
+   * for 2), each with its own map warped with WarpMode's parameter at gamma = 90 degrees
+   * (csm::computeFacePartitions); the lookup selects the piece by its planes
+   * (GetCascadePlanes()). NumberOfCascades, SplitScheme and AdaptiveCascades do not apply;
+   * parallel projections and spot lights get the cascades.
+   */
+  vtkSetClampMacro(FacePartitions, int, 0, MAXIMUM_FACE_Z_PARTITIONS);
+  vtkGetMacro(FacePartitions, int);
+  ///@}
+
   ///@{
   /// Fit the light depth range to the receivers only and let the GPU clamp casters in front of
   /// it (Lloyd et al. §6.4). Default on.
@@ -189,7 +208,13 @@ public:
   /// shadow edges of a translating camera do not crawl. Other warp modes: as above.
   void GetCascadeMatrix(int i, vtkMatrix4x4* worldToLightClip, double border, int resolution) const;
 
-  /// Split depths of cascade i along the view direction.
+  /// The half-spaces that hold piece i of a face partitioning (world space, 4 planes of 4
+  /// numbers: a point p is inside when a p_x + b p_y + c p_z + d >= 0; (0, 0, 0, 1) where a
+  /// piece has fewer); all (0, 0, 0, 1) for cascades.
+  void GetCascadePlanes(int i, double planes[16]) const;
+
+  /// Split depths of cascade i along the view direction (for face partitions: the whole fitted
+  /// range, they are selected by their planes).
   double GetCascadeNear(int i) const;
   double GetCascadeFar(int i) const;
 
@@ -264,6 +289,7 @@ protected:
   bool DepthClamp = true;
   double ErrorTarget = 1.0;
   bool AdaptiveCascades = true;
+  int FacePartitions = 0;
 
 private:
   vtkCascadedShadowMapPlanner(const vtkCascadedShadowMapPlanner&) = delete;

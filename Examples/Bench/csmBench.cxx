@@ -167,6 +167,13 @@ std::vector<Technique> Techniques(const Options& o)
     add("ours k2 pcf5", "csm", ours[0], ours[1], 2, 5);
     add("ours k3 pcf5", "csm", ours[0], ours[1], 3, 5);
     add("ours k4 pcf5", "csm", ours[0], ours[1], 4, 5);
+    // Face partitioning (Lloyd et al. 2006, §5.1): a generalized-warped map per side face the
+    // light enters (up to 4, FP+W), or two log z-partitions per face (up to 8, FP+ZP+W), in the
+    // atlas of four maps of half the budget (the same texels as the rows above).
+    add("fp-w", "csm", P::WARP_GENERALIZED, P::SPLIT_ADAPTIVE, 4, 3);
+    list.back().Shadow.FacePartitions = 1;
+    add("fp-zp-w", "csm", P::WARP_GENERALIZED, P::SPLIT_ADAPTIVE, 4, 3);
+    list.back().Shadow.FacePartitions = 2;
   }
   if (!o.Labels.empty())
   {
@@ -943,7 +950,9 @@ int main(int argc, char** argv)
       const bool csm = t.Shadow.Technique == "csm";
       csv << sceneName << "," << t.Shadow.Technique << "," << t.Label << ","
           << (csm ? kWarps[t.Shadow.Warp] : "none") << ","
-          << (csm ? kPartitions[t.Shadow.Partition] : "single") << "," << t.Shadow.Cascades << ","
+          << (!csm ? "single" : t.Shadow.FacePartitions == 1 ? "face"
+                 : t.Shadow.FacePartitions == 2 ? "face+log" : kPartitions[t.Shadow.Partition])
+          << "," << t.Shadow.Cascades << ","
           << t.Shadow.Resolution << "," << (csm ? t.Shadow.PCF : 1) << "," << t.Texels << ","
           << t.MemoryMB << "," << Median(t.Times) << "," << Percentile(t.Times, 0.1) << ","
           << Percentile(t.Times, 0.9) << "," << (csm ? Median(t.MathUs) : NAN) << ","

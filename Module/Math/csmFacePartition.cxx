@@ -207,16 +207,19 @@ FacePartitioning computeFacePartitions(const Camera& camera, const glm::dvec3& w
     {
       const double s0 = result.splits[i];
       const double s1 = result.splits[i + 1];
-      ConvexBody body = frustum(p, n, f);
-      body.clip(wedgeA, epsilon);
-      body.clip(wedgeB, epsilon);
+      std::vector<Plane> cuts = { wedgeA, wedgeB };
       if (i > 0)
       {
-        body.clip(splitPlane(p, a, b, s0, y, false), epsilon);
+        cuts.push_back(splitPlane(p, a, b, s0, y, false));
       }
       if (i + 2 < static_cast<int>(result.splits.size()))
       {
-        body.clip(splitPlane(p, a, b, s1, y, true), epsilon);
+        cuts.push_back(splitPlane(p, a, b, s1, y, true));
+      }
+      ConvexBody body = frustum(p, n, f);
+      for (const Plane& cut : cuts)
+      {
+        body.clip(cut, epsilon);
       }
       const std::vector<glm::dvec3> cwsBody = body.vertices(epsilon);
       if (cwsBody.size() < 4)
@@ -229,6 +232,12 @@ FacePartitioning computeFacePartitions(const Camera& camera, const glm::dvec3& w
       part.zIndex = i;
       part.wsMapX = x;
       part.wsMapZ = z;
+      for (const Plane& cut : cuts)
+      {
+        // From camera-centred to world space: dot(N, p - eye) + d = dot(N, p) + d - dot(N, eye).
+        part.wsPlanes.emplace_back(
+          cut.normal, cut.offset - glm::dot(cut.normal, camera.wsPosition));
+      }
       Cascade& map = part.map;
       map.vsNear = s0;
       map.vsFar = s1;
@@ -293,6 +302,26 @@ FacePartitioning computeFacePartitions(const Camera& camera, const glm::dvec3& w
   }
   result.status = Status::Ok;
   return result;
+}
+
+int partitionAt(const FacePartitioning& partitioning, const glm::dvec3& wsPoint)
+{
+  int best = -1;
+  double bestDistance = -kInf;
+  for (size_t i = 0; i < partitioning.partitions.size(); ++i)
+  {
+    double distance = kInf;
+    for (const glm::dvec4& plane : partitioning.partitions[i].wsPlanes)
+    {
+      distance = std::min(distance, glm::dot(glm::dvec3(plane), wsPoint) + plane.w);
+    }
+    if (distance > bestDistance)
+    {
+      best = static_cast<int>(i);
+      bestDistance = distance;
+    }
+  }
+  return best;
 }
 
 const char* toString(FrustumFace face)

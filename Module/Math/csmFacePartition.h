@@ -30,6 +30,7 @@
 #include "csmShadowSetup.h"
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <string>
 #include <vector>
@@ -67,6 +68,13 @@ struct FacePartition
   /// gammaLimDeg (Barroso & Celes 2007, Eq. 15 for the face's trapezoid), Mx, Mz and storage
   /// (Lloyd et al. 2006, Eq. 9-12, measured along wsMapX and wsMapZ) as for a cascade.
   Cascade map;
+  /// The half-spaces that cut this piece out of the frustum (world space: a point p is inside
+  /// when dot(xyz, p) + w >= 0, xyz a unit normal): the two planes through the eye holding the
+  /// face's side edges and the light, and the split planes through the face's edge at s_i and
+  /// s_i+1 and the light (where they cut: none for k = 1). Inside the frustum the pieces tile
+  /// it, so a point belongs to the piece whose smallest plane distance is largest
+  /// (partitionAt()): how the lookup selects the map (Lloyd et al. 2006, §6.3).
+  std::vector<glm::dvec4> wsPlanes;
 };
 
 struct FacePartitioning
@@ -86,6 +94,11 @@ struct FacePartitioning
 /// parallel-projection camera, a zero or non-finite light direction, or k outside [1, 64].
 FacePartitioning computeFacePartitions(const Camera& camera, const glm::dvec3& wsLightDirection,
   const FacePartitionSettings& settings);
+
+/// The partition a world point belongs to: the one whose smallest signed distance to its
+/// wsPlanes is largest (inside one, up to rounding, for points of the frustum). -1 when there
+/// are no partitions.
+int partitionAt(const FacePartitioning& partitioning, const glm::dvec3& wsPoint);
 
 const char* toString(FrustumFace face);
 

@@ -150,15 +150,47 @@ uniform float csmSplitNear[CSM_LIGHTS];
 uniform int csmCount[CSM_LIGHTS];
 uniform float csmAttenuation[CSM_LIGHTS];
 
+#ifdef CSM_FACES
+// Face partitions (Lloyd et al. 2006, §5.1): each map's piece of the frustum as 4 view-space
+// half-spaces; the pieces tile the frustum, so a point belongs to the one whose smallest plane
+// distance is largest (inside it, up to rounding; the same rule as csm::partitionAt).
+uniform vec4 csmPlanes[CSM_LIGHTS * CSM_MAX_CASCADES * 4];
+int csmPartitionAt(int j, vec4 vc)
+{
+  int first = j * CSM_MAX_CASCADES;
+  int best = 0;
+  float bestDistance = -3.4e38;
+  for (int i = 0; i < csmCount[j]; ++i)
+  {
+    int p = 4 * (first + i);
+    vec4 v = vec4(vc.xyz, 1.0);
+    float d = min(min(dot(csmPlanes[p], v), dot(csmPlanes[p + 1], v)),
+      min(dot(csmPlanes[p + 2], v), dot(csmPlanes[p + 3], v)));
+    best = d > bestDistance ? i : best;
+    bestDistance = max(d, bestDistance);
+  }
+  return best;
+}
+#endif
+
 // Light j's cascade for a point at view depth `depth`: the one whose view-depth interval holds
 // it (c; Lloyd et al. 2006, §6.3), the next one, and whether this pixel of c's blend band goes
 // to the next: in the last BlendBand of a cascade's depth range a share of the pixels growing
 // from 0 to 1 across the band takes the next cascade, so that the seam becomes a dithered
 // transition at the cost of one lookup, where a blend would take two. False outside every
 // cascade.
-bool csmCascadeAt(int j, float depth, out int c, out int next, out bool blend)
+bool csmCascadeAt(int j, vec4 vc, out int c, out int next, out bool blend)
 {
   int count = csmCount[j];
+#ifdef CSM_FACES
+  // Face partitions: the piece the point lies in; no blend band (the pieces meet along planes
+  // through the light, where their maps agree).
+  c = csmPartitionAt(j, vc);
+  next = c;
+  blend = false;
+  return count > 0;
+#endif
+  float depth = -vc.z;
   int first = j * CSM_MAX_CASCADES;
   c = 0;
   float cascadeNear = csmSplitNear[j];
@@ -211,7 +243,7 @@ vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
 {
   int c, next;
   bool blend;
-  bool inside = csmCascadeAt(j, -vc.z, c, next, blend);
+  bool inside = csmCascadeAt(j, vc, c, next, blend);
   int first = j * CSM_MAX_CASCADES;
   mat4 toThis = csmToMap[first + c];
   mat4 toNext = csmToMap[first + next];
@@ -241,12 +273,12 @@ void csmMapDerivatives(
     hdy[i] = dFdy(csmMapCoordVSOutput[i]);
   }
 }
-vec4 csmShadowFromVertices(sampler2DShadow map, int j, float depth,
+vec4 csmShadowFromVertices(sampler2DShadow map, int j, vec4 vc,
   vec4 hdx[CSM_LIGHTS * CSM_MAP_VARYINGS], vec4 hdy[CSM_LIGHTS * CSM_MAP_VARYINGS])
 {
   int c, next;
   bool blend;
-  bool inside = csmCascadeAt(j, depth, c, next, blend);
+  bool inside = csmCascadeAt(j, vc, c, next, blend);
   int first = j * CSM_MAP_VARYINGS;
   vec4 hThis = csmMapCoordVSOutput[first];
   vec4 hNext = hThis;

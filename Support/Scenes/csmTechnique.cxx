@@ -35,6 +35,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->CompactCasters = baker->GetCompactCasters();
   this->CullCastersWithoutReceivers = baker->GetCullCastersWithoutReceivers();
   this->VisibleDepthFit = baker->GetVisibleDepthFit();
+  this->FacePartitions = baker->GetFacePartitions();
   this->DepthClamp = baker->GetDepthClamp();
   this->PCF = pass->GetPCFSize();
   this->Kernel = pass->GetPCFKernel();
@@ -61,6 +62,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetCompactCasters(o.CompactCasters);
   baker->SetCullCastersWithoutReceivers(o.CullCastersWithoutReceivers);
   baker->SetVisibleDepthFit(o.VisibleDepthFit);
+  baker->SetFacePartitions(o.FacePartitions);
   baker->SetDepthClamp(o.DepthClamp);
   pass->SetPCFSize(o.PCF);
   pass->SetPCFKernel(o.Kernel);

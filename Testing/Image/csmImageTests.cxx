@@ -353,6 +353,15 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     LightAtGamma(t, 2.0); // light almost along the view: shadows mostly hidden behind casters
     t.MinShadowPixels = 200;
   };
+  cases["TestPlatformFacePartitions"] = [](Test& t) {
+    // Face partitioning (FP+W, Lloyd et al. 2006, §5.1), the comparison technique, where it is
+    // meant to help: the light 15 degrees from behind the viewer, four face partitions.
+    Platform(t);
+    LightAtGamma(t, 15.0);
+    t.Options.Cascades = 4; // the atlas of four full maps
+    t.Options.FacePartitions = 1;
+    t.MinShadowPixels = 3000;
+  };
   cases["TestPlatformDuelingFrusta"] = [](Test& t) {
     Platform(t);
     // Low camera looking up at the derrick; the light comes from behind it toward the camera

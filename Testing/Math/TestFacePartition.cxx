@@ -138,12 +138,13 @@ void expectExactCover(const csm::Camera& cam, const csm::FacePartitioning& fp, i
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double tanY = std::tan(0.5 * cam.fovyDeg * kDeg);
   const double tanX = tanY * cam.aspect;
-  int uncovered = 0, overlapping = 0;
+  int uncovered = 0, overlapping = 0, misplaced = 0;
   for (int s = 0; s < samples; ++s)
   {
     // Depth log-uniform, so that the near part (the stretched near face) gets its share.
     const double d = cam.vsNear * std::pow(cam.vsFar / cam.vsNear, unit(random));
-    const glm::dvec3 p((2 * unit(random) - 1) * tanX * d, (2 * unit(random) - 1) * tanY * d, -d);
+    const glm::dvec3 p = cam.wsPosition +
+      glm::dvec3((2 * unit(random) - 1) * tanX * d, (2 * unit(random) - 1) * tanY * d, -d);
     int loose = 0, strict = 0;
     for (const Hull& h : hulls)
     {
@@ -152,9 +153,13 @@ void expectExactCover(const csm::Camera& cam, const csm::FacePartitioning& fp, i
     }
     uncovered += loose == 0;
     overlapping += strict > 1;
+    // The lookup's choice by the pieces' planes is a piece that holds the point.
+    const int chosen = csm::partitionAt(fp, p);
+    misplaced += chosen < 0 || !hulls[chosen].contains(p, -1e-9 * scale);
   }
   EXPECT_EQ(uncovered, 0) << what;
   EXPECT_EQ(overlapping, 0) << what;
+  EXPECT_EQ(misplaced, 0) << what;
 }
 } // namespace
 
@@ -163,7 +168,9 @@ void expectExactCover(const csm::Camera& cam, const csm::FacePartitioning& fp, i
 TEST(FacePartition, CoversTheFrustumExactly)
 {
   const double gammas[] = { 0, 5, 20, 29.9, 30, 30.1, 45, 60, 89, 90, 100, 150, 180 };
-  for (const csm::Camera& cam : { camera(1.0, 50.0, 60.0), camera(0.5, 400.0, 45.0, 1.6) })
+  csm::Camera moved = camera(0.5, 400.0, 45.0, 1.6);
+  moved.wsPosition = { 300.0, -30.0, 100.0 }; // the planes in world space, not around the eye
+  for (const csm::Camera& cam : { camera(1.0, 50.0, 60.0), camera(0.5, 400.0, 45.0, 1.6), moved })
   {
     for (double g : gammas)
     {

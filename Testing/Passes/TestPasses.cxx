@@ -1379,3 +1379,67 @@ TEST(Passes, SomethingNearerComingIntoViewIsShadowedInThatFrame)
   EXPECT_TRUE(baker->GetLastVisibleDepthsUsed());
   EXPECT_EQ(baker->GetVisibleDepthRefits(), refits + 1);
 }
+
+// Issue 12: face partitioning as a comparison technique. The light 10 degrees from behind the
+// viewer enters all four side faces: four maps, each selected by its planes; the box's shadow
+// is the one the cascades give (the same darkened pixels within 3 %), and the debug view shows
+// each partition's colour.
+TEST(Passes, FacePartitionsShadeLikeCascades)
+{
+  BoxOverPlaneSettings settings;
+  settings.CameraPosition[0] = 0;
+  settings.CameraPosition[1] = 9;
+  settings.CameraPosition[2] = 14;
+  // The light travels along the view turned 10 degrees down (from behind the viewer; VTK's
+  // field of view is 30 degrees, so it enters all four side faces).
+  const double view[3] = { 0, -9, -14 };
+  const double length = std::sqrt(9.0 * 9.0 + 14.0 * 14.0);
+  const double a = 10.0 * 3.14159265358979323846 / 180.0;
+  const double down[3] = { 0, -14 / length, 9 / length }; // perpendicular to the view, downward
+  for (int i = 0; i < 3; ++i)
+    settings.LightPosition[i] = -(std::cos(a) * view[i] / length + std::sin(a) * down[i]);
+  BoxOverPlane scene(settings);
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  const long cascaded = DarkenedPixels(scene.Render(), plain);
+  EXPECT_FALSE(baker->GetLightMaps()[0].Faces);
+  baker->SetFacePartitions(1);
+  const long faces = DarkenedPixels(scene.Render(), plain);
+  ASSERT_EQ(baker->GetLightMaps().size(), 1u);
+  EXPECT_TRUE(baker->GetLightMaps()[0].Faces);
+  EXPECT_EQ(baker->GetLightMaps()[0].NumberOfCascades, 4);
+  EXPECT_GT(cascaded, 500);
+  EXPECT_NEAR(faces, cascaded, 0.03 * cascaded);
+  // The debug view's colours: one per partition (cascade colours of csmShadowFS.glsl).
+  pass->SetDebugMode(vtkCascadedShadowMapPass::DEBUG_CASCADES);
+  auto debug = scene.Render();
+  int seen[4] = { 0, 0, 0, 0 };
+  const double colours[4][3] = { { 1.0, 0.25, 0.25 }, { 0.25, 1.0, 0.25 }, { 0.3, 0.45, 1.0 },
+    { 1.0, 1.0, 0.25 } };
+  const int* size = scene.Window->GetSize();
+  for (int y = 0; y < size[1]; ++y)
+    for (int x = 0; x < size[0]; ++x)
+    {
+      double rgb[3];
+      for (int c = 0; c < 3; ++c)
+        rgb[c] = debug->GetScalarComponentAsDouble(x, y, 0, c) / 255.0;
+      for (int k = 0; k < 4; ++k)
+      {
+        // Lit pixels show the colour times 1 (times 0.35 .. 1 with shading): compare hues.
+        const double m = std::max({ rgb[0], rgb[1], rgb[2] });
+        const double cm = std::max({ colours[k][0], colours[k][1], colours[k][2] });
+        bool match = m > 0.2;
+        for (int c = 0; c < 3; ++c)
+          match = match && std::abs(rgb[c] / m - colours[k][c] / cm) < 0.08;
+        seen[k] += match;
+      }
+    }
+  for (int k = 0; k < 4; ++k)
+    EXPECT_GT(seen[k], 200) << "partition " << k;
+  // Back to cascades: no face partitions.
+  baker->SetFacePartitions(0);
+  pass->SetDebugMode(vtkCascadedShadowMapPass::DEBUG_OFF);
+  EXPECT_EQ(DarkenedPixels(scene.Render(), plain), cascaded);
+  EXPECT_FALSE(baker->GetLightMaps()[0].Faces);
+}
