@@ -123,6 +123,10 @@ std::vector<Technique> Techniques(const Options& o)
     t.Shadow.Partition = partition;
     t.Shadow.Cascades = k;
     t.Shadow.PCF = pcf;
+    // The technique as labelled: k cascades, each map at its share of the budget (not the
+    // pass's defaults, which choose the count and the texels from the error target).
+    t.Shadow.AdaptiveCascades = false;
+    t.Shadow.ErrorTarget = 0.0;
     t.Shadow.Resolution = static_cast<int>(std::lround(o.Budget / std::sqrt(double(k))));
     t.Texels = static_cast<long long>(k) * t.Shadow.Resolution * t.Shadow.Resolution;
     // VTK: an R32F colour map plus a depth renderbuffer; ours: one 32-bit depth texel.
