@@ -63,9 +63,10 @@ constexpr double kReuseMarginTexels = 0.0;
 // Texture units of the fragment shader left to the mapper's own textures (colour, normal,
 // ORM, emissive and anisotropy maps, and PBR's irradiance, prefiltered and BRDF maps).
 constexpr int kMapperTextureUnits = 8;
-// Fragment uniform components one shadowed light costs: per cascade a mat4, a vec4 and a
-// float (padded to a vec4), and the per-light values.
-constexpr int kUniformComponentsPerLight = kMaxCascades * (16 + 4 + 4) + 16;
+// Fragment uniform components one shadowed light costs: per cascade a mat4, a vec4 and two
+// floats (padded to vec4s), and the per-light values; face partitions add 4 planes a cascade.
+constexpr int kUniformComponentsPerLight = kMaxCascades * (16 + 4 + 4 + 4) + 16;
+constexpr int kFacePlaneComponentsPerLight = kMaxCascades * 16;
 constexpr int kMapperUniformComponents = 1024;
 
 /// Bounds of a prop that draws 3D geometry, or false (2D actors, invisible, no bounds).
@@ -339,8 +340,9 @@ int vtkCascadedShadowMapBakerPass::MaximumShadowedLights(vtkOpenGLRenderWindow* 
     units = std::min<GLint>(units, free);
   }
   const int byUnits = static_cast<int>(units) - kMapperTextureUnits;
-  const int byUniforms =
-    (static_cast<int>(components) - kMapperUniformComponents) / kUniformComponentsPerLight;
+  const int perLight = kUniformComponentsPerLight +
+    (this->Planner->GetFacePartitions() > 0 ? kFacePlaneComponentsPerLight : 0);
+  const int byUniforms = (static_cast<int>(components) - kMapperUniformComponents) / perLight;
   return std::max(0, std::min(byUnits, byUniforms));
 }
 
