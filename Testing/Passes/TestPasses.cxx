@@ -1443,3 +1443,34 @@ TEST(Passes, FacePartitionsShadeLikeCascades)
   EXPECT_EQ(DarkenedPixels(scene.Render(), plain), cascaded);
   EXPECT_FALSE(baker->GetLightMaps()[0].Faces);
 }
+
+// Face partitions need a directional light and a perspective camera: a spot light and a
+// parallel view keep the cascades (and their shadows).
+TEST(Passes, FacePartitionsFallBackToCascadesWhereTheyDoNotApply)
+{
+  BoxOverPlane scene;
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->SetFacePartitions(2);
+  EXPECT_EQ(baker->GetFacePartitions(), 2);
+  baker->SetFacePartitions(99); // clamped
+  EXPECT_EQ(baker->GetFacePartitions(), vtkCascadedShadowMapPlanner::MAXIMUM_FACE_Z_PARTITIONS);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->ParallelProjectionOn();
+  camera->SetParallelScale(8.0);
+  scene.Render();
+  ASSERT_EQ(baker->GetLightMaps().size(), 1u);
+  EXPECT_FALSE(baker->GetLightMaps()[0].Faces);
+  EXPECT_GT(baker->GetLightMaps()[0].NumberOfCascades, 0);
+  camera->ParallelProjectionOff();
+  scene.Render();
+  EXPECT_TRUE(baker->GetLightMaps()[0].Faces); // back in perspective: face partitions
+  scene.Light->SetPositional(true);
+  scene.Light->SetPosition(0, 10, 0);
+  scene.Light->SetConeAngle(40);
+  const long spot = DarkenedPixels(scene.Render(), plain);
+  ASSERT_EQ(baker->GetLightMaps().size(), 1u);
+  EXPECT_FALSE(baker->GetLightMaps()[0].Faces);
+  EXPECT_GT(spot, 300);
+}
