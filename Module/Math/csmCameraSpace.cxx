@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "csmCameraSpace.h"
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace csm
+{
+namespace
+{
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Below this sine of the angle between the light and the view axis, the light's direction in
+/// the image is undefined: the dueling frustum case (or its mirror, light straight from behind).
+constexpr double kAlongView = 1e-3;
+/// Below this cosine between the light and P's normal, the projection onto P runs away.
+constexpr double kParallelToPlane = 1e-6;
+/// Share of each ray's w that the depth may use (room for rounding at the ends).
+constexpr double kDepthRoom = 0.99;
+}
+
+CameraSpaceMap computeCameraSpaceMap(const Camera& camera, const glm::dvec3& wsLightDirection)
+{
+  CameraSpaceMap map;
+  map.message = cameraError(camera);
+  const bool lightOk = std::isfinite(wsLightDirection.x) && std::isfinite(wsLightDirection.y) &&
+    std::isfinite(wsLightDirection.z) && glm::length(wsLightDirection) > 0.0;
+  if (map.message.empty() && !lightOk)
+  {
+    map.message = "light direction must be finite and non-zero";
+  }
+  if (map.message.empty() && camera.parallel)
+  {
+    map.message = "camera space shadow maps need a perspective camera";
+  }
+  if (!map.message.empty())
+  {
+    return map;
+  }
+  const glm::dvec3 L = glm::normalize(wsLightDirection);
+  const glm::dvec3 view = glm::normalize(camera.wsDirection);
+  // The roll: the light travels down the rolled image (it comes from above).
+  const glm::dvec3 inImage = L - glm::dot(L, view) * view;
+  if (glm::length(inImage) < kAlongView)
+  {
+    map.message = "light along the view: the dueling frustum case needs four planes";
+    return map;
+  }
+  const glm::dvec3 up = -glm::normalize(inImage);
+  const glm::dvec3 right = glm::cross(view, up);
+  map.lightFromFront = glm::dot(L, view) < 0.0;
+
+  // The original frustum's corners (camera-centred), and the rolled camera's field of view
+  // that holds them.
+  glm::dvec3 oldUp = camera.wsViewUp - glm::dot(camera.wsViewUp, view) * view;
+  if (!(glm::length(oldUp) > 1e-9))
+  {
+    oldUp = up;
+  }
+  oldUp = glm::normalize(oldUp);
+  const glm::dvec3 oldRight = glm::cross(view, oldUp);
+  const double tanY = std::tan(glm::radians(0.5 * camera.fovyDeg));
+  const double tanX = tanY * camera.aspect;
+  double rolledTanY = 0.0;
+  std::vector<glm::dvec3> corners;
+  for (double d : { camera.vsNear, camera.vsFar })
+  {
+    for (double sx : { -1.0, 1.0 })
+    {
+      for (double sy : { -1.0, 1.0 })
+      {
+        const glm::dvec3 unit = view + oldRight * (sx * tanX) + oldUp * (sy * tanY);
+        rolledTanY = std::max(rolledTanY, std::abs(glm::dot(unit, up)));
+        corners.push_back(unit * d);
+      }
+    }
+  }
+  // P holds the rolled frustum's lower near edge and upper far edge (upper near and lower far
+  // for a light from in front), and the rolled right axis.
+  const double sign = map.lightFromFront ? -1.0 : 1.0;
+  const glm::dvec3 nearEdge = view * camera.vsNear - up * (sign * camera.vsNear * rolledTanY);
+  const glm::dvec3 farEdge = view * camera.vsFar + up * (sign * camera.vsFar * rolledTanY);
+  const glm::dvec3 normal = glm::normalize(glm::cross(right, farEdge - nearEdge));
+  const double offset = -glm::dot(normal, nearEdge); // camera-centred: dot(normal, q) + offset = 0
+  const double across = glm::dot(normal, L);
+  if (std::abs(across) < kParallelToPlane)
+  {
+    map.message = "light parallel to the projection plane";
+    return map;
+  }
+  // Camera-centred point -> its projection onto P along L, as a 4x4 (affine).
+  glm::dmat4 toPlane(1.0);
+  for (int column = 0; column < 3; ++column)
+  {
+    for (int row = 0; row < 3; ++row)
+    {
+      toPlane[column][row] -= L[row] * normal[column] / across;
+    }
+  }
+  toPlane[3] = glm::dvec4(-L * (offset / across), 1.0);
+  // The rolled camera (x right, y up, w the view depth) and the light depth.
+  glm::dmat4 capture(0.0);
+  for (int column = 0; column < 3; ++column)
+  {
+    capture[column] = glm::dvec4(right[column], up[column], 0.0, view[column]);
+  }
+  const glm::dmat4 projected = capture * toPlane;
+  // Fit s, t to the frustum's corners (convex: the corners bound it) and the depth row to
+  // their light depths and w.
+  double sMin = kInf, sMax = -kInf, tMin = kInf, tMax = -kInf;
+  double depthMin = kInf, depthMax = -kInf, wMin = kInf;
+  for (const glm::dvec3& q : corners)
+  {
+    const glm::dvec4 h = projected * glm::dvec4(q, 1.0);
+    if (!(h.w > 1e-9 * camera.vsNear) || !std::isfinite(h.w))
+    {
+      map.message = "the light's rays leave the projection plane behind the camera (the dueling "
+                    "frustum case needs four planes)";
+      return map;
+    }
+    sMin = std::min(sMin, h.x / h.w);
+    sMax = std::max(sMax, h.x / h.w);
+    tMin = std::min(tMin, h.y / h.w);
+    tMax = std::max(tMax, h.y / h.w);
+    const double depth = glm::dot(q, L);
+    depthMin = std::min(depthMin, depth);
+    depthMax = std::max(depthMax, depth);
+    wMin = std::min(wMin, h.w);
+  }
+  const double sScale = 2.0 / std::max(sMax - sMin, 1e-12);
+  const double tScale = 2.0 / std::max(tMax - tMin, 1e-12);
+  const double a = 2.0 * kDepthRoom * wMin / std::max(depthMax - depthMin, 1e-12 * camera.vsFar);
+  const double b = -0.5 * a * (depthMin + depthMax);
+  // Rows: s = sScale (x - sMin w) - w, t likewise, depth = a dot(q, L) + b, w.
+  glm::dmat4 clip(0.0);
+  for (int column = 0; column < 4; ++column)
+  {
+    const glm::dvec4 c = projected[column];
+    clip[column].x = sScale * (c.x - sMin * c.w) - c.w;
+    clip[column].y = tScale * (c.y - tMin * c.w) - c.w;
+    clip[column].z = column < 3 ? a * L[column] : b;
+    clip[column].w = c.w;
+  }
+  // From world space: q = p - eye.
+  glm::dmat4 fromWorld(1.0);
+  fromWorld[3] = glm::dvec4(-camera.wsPosition, 1.0);
+  map.wsToClip = clip * fromWorld;
+  map.wsPlane = glm::dvec4(normal, offset - glm::dot(normal, camera.wsPosition));
+  map.status = Status::Ok;
+  return map;
+}
+
+} // namespace csm

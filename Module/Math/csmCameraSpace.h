@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Camera space shadow maps (CSSM, Kolić & Mihajlović), the general case for a directional
+// light, as one world -> clip matrix. Pure math (C++17, GLM, double): no VTK, no GL. Not yet
+// rendered by the passes (issue 12): the map's depth spans a different range on every light
+// ray (see below), which the lookup's constant bias does not yet account for.
+//
+// Kolić & Mihajlović, §3.1: roll the camera about its view axis so that the light comes from
+// above, widen its field of view to hold the original frustum, put a plane P through the two
+// lower corners of the near plane and the two upper corners of the far plane (the two upper
+// near and lower far corners when the light comes from in front), project the casters onto P
+// along the light, and capture P with the rolled camera. Projection along a fixed direction onto
+// a plane is affine, so the map's s, t and w are one projective map of the world point: every
+// point of a light ray lands on the same texel with the same w. The depth row is the light
+// depth (dot(p, L), affine), scaled so that depth / w stays in [-1, 1] over the view: along each
+// ray w is constant, so depth / w orders the casters of a ray as the light does, but its scale
+// is 1 / w of that ray.
+#pragma once
+
+#include "csmShadowSetup.h"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include <string>
+
+namespace csm
+{
+
+struct CameraSpaceMap
+{
+  Status status = Status::InvalidInput;
+  std::string message;          ///< why, when the status is not Ok
+  bool lightFromFront = false;  ///< the plane runs from the upper near to the lower far edge
+  glm::dmat4 wsToClip{ 1.0 };   ///< world -> clip; the view frustum [vsNear, vsFar] in [-1, 1]^3
+  glm::dvec4 wsPlane{ 0.0 };    ///< the projection plane P (xyz unit normal, w offset), world
+};
+
+/// The general-case CSSM map of the camera's view frustum [vsNear, vsFar] for a directional
+/// light travelling along wsLightDirection. InvalidInput, with a message, for an invalid or
+/// parallel camera, a zero or non-finite light, a light (nearly) along the view (the dueling
+/// frustum case, Kolić & Mihajlović Fig. 2, which needs four planes), or a light (nearly)
+/// parallel to the plane P.
+CameraSpaceMap computeCameraSpaceMap(const Camera& camera, const glm::dvec3& wsLightDirection);
+
+} // namespace csm

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Camera space shadow maps (Kolić & Mihajlović), general case, as one world -> clip matrix.
+#include "csmCameraSpace.h"
+#include "csmMathTestHelpers.h"
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace
+{
+using csmMathTest::camera; // eye at the origin looking down -z, up +y
+
+// gammaDeg: 0 light from behind, 90 overhead, 180 facing; sideways tilts it toward +x.
+glm::dvec3 lightAt(double gammaDeg, double sideways = 0.0)
+{
+  const double g = glm::radians(gammaDeg);
+  return glm::normalize(glm::dvec3(sideways, -std::sin(g), -std::cos(g)));
+}
+}
+
+// Every point of the view frustum lands in the map ([-1, 1]^3 after the division, in front of
+// the projection centre); the points of one light ray share a texel, and the one nearer the
+// light has the smaller depth (the map orders the casters of a ray as the light does).
+TEST(CameraSpace, TheFrustumLandsInTheMapAndRaysKeepTheirOrder)
+{
+  csm::Camera moved = camera(0.5, 300.0, 50.0, 1.5);
+  moved.wsPosition = { 40.0, -7.0, 1200.0 };
+  for (const csm::Camera& cam : { camera(1.0, 100.0, 60.0), moved })
+  {
+    for (double gamma : { 50.0, 60.0, 75.0, 90.0, 105.0, 120.0, 130.0 })
+    {
+      for (double sideways : { 0.0, 0.5 })
+      {
+        const glm::dvec3 L = lightAt(gamma, sideways);
+        const csm::CameraSpaceMap map = csm::computeCameraSpaceMap(cam, L);
+        ASSERT_EQ(map.status, csm::Status::Ok) << "gamma " << gamma << ": " << map.message;
+        EXPECT_EQ(map.lightFromFront, gamma > 90.0);
+        std::mt19937 random(3);
+        std::uniform_real_distribution<double> unit(-1.0, 1.0), share(0.0, 1.0);
+        const double tanY = std::tan(glm::radians(0.5 * cam.fovyDeg));
+        int outside = 0, moving = 0, unordered = 0;
+        for (int i = 0; i < 2000; ++i)
+        {
+          const double d = cam.vsNear * std::pow(cam.vsFar / cam.vsNear, share(random));
+          const glm::dvec3 p = cam.wsPosition +
+            glm::dvec3(unit(random) * tanY * cam.aspect * d, unit(random) * tanY * d, -d);
+          const glm::dvec4 h = map.wsToClip * glm::dvec4(p, 1.0);
+          outside += !(h.w > 0.0) || std::abs(h.x / h.w) > 1.0 + 1e-9 ||
+            std::abs(h.y / h.w) > 1.0 + 1e-9 || std::abs(h.z / h.w) > 1.0 + 1e-9;
+          // A caster 0.1 .. 10 units toward the light on the same ray.
+          const glm::dvec3 caster = p - L * (0.1 + 10.0 * share(random));
+          const glm::dvec4 c = map.wsToClip * glm::dvec4(caster, 1.0);
+          const double scale = 1e-9 * (1.0 + std::abs(h.x / h.w) + std::abs(h.y / h.w));
+          moving += std::abs(c.x / c.w - h.x / h.w) > scale || std::abs(c.y / c.w - h.y / h.w) > scale;
+          unordered += !(c.z / c.w < h.z / h.w);
+        }
+        EXPECT_EQ(outside, 0) << "gamma " << gamma << " sideways " << sideways;
+        EXPECT_EQ(moving, 0) << "gamma " << gamma << " sideways " << sideways;
+        EXPECT_EQ(unordered, 0) << "gamma " << gamma << " sideways " << sideways;
+      }
+    }
+  }
+}
+
+// The light along the view or inside the view's cone (the dueling frustum case and its mirror)
+// and bad input give one message and no matrix.
+TEST(CameraSpace, DuelingFrustaAndBadInputAreRefused)
+{
+  const csm::Camera cam = camera(1.0, 100.0, 60.0);
+  // (20 and 160 degrees: inside the 39-degree half diagonal of this view, from behind and in
+  // front: the rays of some visible points meet P behind the camera.)
+  for (double gamma : { 0.0, 20.0, 160.0, 180.0 })
+  {
+    const csm::CameraSpaceMap map = csm::computeCameraSpaceMap(cam, lightAt(gamma));
+    EXPECT_EQ(map.status, csm::Status::InvalidInput);
+    EXPECT_NE(map.message.find("dueling"), std::string::npos) << map.message;
+  }
+  EXPECT_EQ(csm::computeCameraSpaceMap(cam, { std::nan(""), -1.0, 0.0 }).status,
+    csm::Status::InvalidInput);
+  EXPECT_EQ(csm::computeCameraSpaceMap(cam, { 0.0, 0.0, 0.0 }).status, csm::Status::InvalidInput);
+  csm::Camera parallel = cam;
+  parallel.parallel = true;
+  EXPECT_EQ(csm::computeCameraSpaceMap(parallel, lightAt(60.0)).status, csm::Status::InvalidInput);
+}
