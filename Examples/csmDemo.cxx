@@ -40,7 +40,7 @@ const char* const kPartitions[] = { "single", "uniform", "log", "practical", "ad
 /// --partition: the split schemes, then face partitioning (FP+W) and face partitions with two
 /// z-partitions each (FP+ZP+W).
 const char* const kPartitionChoices[] = { "single", "uniform", "log", "practical", "adaptive",
-  "face", "face-zp" };
+  "face", "face-zp", "cssm" };
 const char* const kDebug[] = { "off", "cascades", "error", "factor" };
 const char* const kKernels[] = { "grid", "jittered" };
 
@@ -111,7 +111,9 @@ void usage()
     "  --warp W           none | psm | lispsm | generalized [%s]\n"
     "  --partition P      single | uniform | log | practical | adaptive [%s] |\n"
     "                     face (face partitioning, Lloyd et al. 2006, 5.1: FP+W) |\n"
-    "                     face-zp (two z-partitions per face: FP+ZP+W)\n"
+    "                     face-zp (two z-partitions per face: FP+ZP+W) |\n"
+    "                     cssm (camera space shadow map, general case; the cascades where\n"
+    "                     the light lies in the view's cone)\n"
     "  --cascades K       1..%d [%d]      --lambda L  practical weight [%g]\n"
     "  --adaptive-cascades on|off  the fewest cascades, up to K, that meet --error-target [%s]\n"
     "  --cull-closed on|off  closed casters drawn into the maps from behind only [%s]\n"
@@ -218,8 +220,9 @@ Options parse(int argc, char** argv)
     }
     else if (f == "--partition")
     {
-      const int partition = choice(f, v, kPartitionChoices, 7);
-      o.Shadow.FacePartitions = partition >= 5 ? partition - 4 : 0;
+      const int partition = choice(f, v, kPartitionChoices, 8);
+      o.Shadow.FacePartitions = partition == 5 || partition == 6 ? partition - 4 : 0;
+      o.Shadow.CameraSpace = partition == 7;
       o.Shadow.Partition = partition >= 5 ? o.Shadow.Partition : partition;
       next();
     }
@@ -420,7 +423,8 @@ struct App
       << static_cast<int>(this->LastFrameMs) << " ms";
     if (s.Technique == "csm")
       t << "\nwarp " << kWarps[s.Warp] << " | partition "
-        << (s.FacePartitions > 0 ? kPartitionChoices[4 + s.FacePartitions] : kPartitions[s.Partition])
+        << (s.CameraSpace ? "cssm"
+             : s.FacePartitions > 0 ? kPartitionChoices[4 + s.FacePartitions] : kPartitions[s.Partition])
         << " | cascades " << s.Cascades << " | pcf " << s.PCF << " " << kKernels[s.Kernel]
         << " | debug " << kDebug[s.Debug];
     this->Text->SetInput(t.str().c_str());

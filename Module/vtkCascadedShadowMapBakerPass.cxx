@@ -341,7 +341,8 @@ int vtkCascadedShadowMapBakerPass::MaximumShadowedLights(vtkOpenGLRenderWindow* 
   }
   const int byUnits = static_cast<int>(units) - kMapperTextureUnits;
   const int perLight = kUniformComponentsPerLight +
-    (this->Planner->GetFacePartitions() > 0 ? kFacePlaneComponentsPerLight : 0);
+    (this->Planner->GetFacePartitions() > 0 ? kFacePlaneComponentsPerLight : 0) +
+    (this->Planner->GetCameraSpace() ? kMaxCascades * 4 : 0);
   const int byUniforms = (static_cast<int>(components) - kMapperUniformComponents) / perLight;
   return std::max(0, std::min(byUnits, byUniforms));
 }
@@ -1106,7 +1107,8 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
     maps.LightGeometry[6] = light->GetPositional() ? light->GetConeAngle() : -1.0;
     // (Face partitions are re-rendered every frame: compareKeptMap measures the error along
     // the cascades' map axes, which are not a face partition's.)
-    const bool faces = this->Planner->GetFacePartitions() > 0;
+    const bool faces =
+      this->Planner->GetFacePartitions() > 0 || this->Planner->GetCameraSpace();
     const LightMaps* kept = !props.Changed && depthClamp && !faces && slot < state.Maps.size() &&
         state.Maps[slot].Light == light &&
         std::equal(maps.LightGeometry, maps.LightGeometry + 7, state.Maps[slot].LightGeometry) &&
@@ -1126,6 +1128,7 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
       maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
       this->Planner->GetCascadePlanes(c, maps.Planes[c]);
+      maps.DepthW[c] = this->Planner->GetCascadeDepthW(c);
       // A kept map serves if it has the texels this view needs (or all its tile holds, where the
       // GL's texture size limit made the tiles smaller than Resolution).
       const bool keep = kept &&
@@ -1484,6 +1487,7 @@ csmForwardToPlanner(DepthClamp, bool)
 csmForwardToPlanner(ErrorTarget, double)
 csmForwardToPlanner(AdaptiveCascades, bool)
 csmForwardToPlanner(FacePartitions, int)
+csmForwardToPlanner(CameraSpace, bool)
 #undef csmForwardToPlanner
 
 vtkMTimeType vtkCascadedShadowMapBakerPass::GetMTime()

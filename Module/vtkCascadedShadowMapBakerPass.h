@@ -131,6 +131,11 @@ public:
   /// frame; with NumberOfCascades below 4 they share a smaller atlas.
   void SetFacePartitions(int zPartitionsPerFace);
   int GetFacePartitions();
+  /// Camera space shadow maps (general case; a comparison technique, forwarded to GetPlanner(),
+  /// which documents it). Default off; re-rendered every frame.
+  void SetCameraSpace(bool cameraSpace);
+  bool GetCameraSpace();
+  vtkBooleanMacro(CameraSpace, bool);
   ///@}
   /// Resolutions chosen from ErrorTarget are multiples of this.
   static constexpr int RESOLUTION_STEP = 64;
@@ -301,6 +306,9 @@ public:
     /// Face partitions: the 4 world half-spaces of each piece (vtkCascadedShadowMapPlanner::GetCascadePlanes).
     double Planes[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][16] = {};
     bool Faces = false; ///< the maps are face partitions, selected by their planes
+    /// Camera space maps: the smallest w of the map (its constant bias scales by it over the
+    /// point's w); 0 otherwise.
+    double DepthW[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     double Tile[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][4] = {};            ///< atlas tile: offset x, y and scale x, y in [0, 1]
     int Resolution = 0;           ///< texels a side of each cascade's tile (Resolution; less beyond csm::kAtlasFullMaps cascades or where GL limits)
     /// Texels a side of each cascade's map (from ErrorTarget), in the lower left of its tile.

@@ -219,6 +219,12 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
       }
     }
     u.Faces = u.Faces || maps.Faces;
+    for (int c = 0; c < kMaxCascades; ++c)
+    {
+      const double w = c < maps.NumberOfCascades ? maps.DepthW[c] : 0.0;
+      u.DepthW.push_back(static_cast<float>(w));
+      u.CameraSpace = u.CameraSpace || w > 0.0;
+    }
     maps.Atlas->Activate();
     u.TextureUnit.push_back(maps.Atlas->GetTextureUnit());
     signature += std::to_string(maps.LightIndex) + ";";
@@ -226,7 +232,8 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   // The kernel, its size (for few lights) and the debug view are compiled into the lookup (see
   // csmShadowFS.glsl).
   signature += " kernel " + std::to_string(this->PCFKernel) + " debug " +
-    std::to_string(this->DebugMode) + (u.Faces ? " faces" : "");
+    std::to_string(this->DebugMode) + (u.Faces ? " faces" : "") +
+    (u.CameraSpace ? " camera space" : "");
   if (this->ConstantKernelSize())
   {
     signature += " radius " + std::to_string(this->PCFSize / 2);
@@ -327,6 +334,10 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader
   if (this->Uniforms.Faces)
   {
     decl << "#define CSM_FACES\n"; // maps selected by their half-spaces (face partitions)
+  }
+  if (this->Uniforms.CameraSpace)
+  {
+    decl << "#define CSM_CAMERA_SPACE\n"; // a depth bias that follows each ray's w
   }
   if (impostor)
   {
@@ -454,6 +465,10 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   if (u.Faces)
   {
     program->SetUniform4fv("csmPlanes", lights * kMaxCascades * 4, u.Planes.data());
+  }
+  if (u.CameraSpace)
+  {
+    program->SetUniform1fv("csmDepthW", lights * kMaxCascades, u.DepthW.data());
   }
   program->SetUniform1fv("csmSplitNear", lights, u.SplitNear.data());
   program->SetUniform1iv("csmCount", lights, u.Count.data());

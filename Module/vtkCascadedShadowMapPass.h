@@ -202,6 +202,8 @@ protected:
     std::vector<float> Texel;     ///< per cascade: one texel in the cascade's [0,1] coordinates
     std::vector<float> Planes;    ///< per cascade: 4 view-space half-spaces (face partitions)
     bool Faces = false;           ///< some light's maps are face partitions
+    std::vector<float> DepthW;    ///< per cascade: a camera space map's smallest w (0: none)
+    bool CameraSpace = false;     ///< some light's map is a camera space map
     size_t Lights() const { return this->Count.size(); }
   };
   ShaderUniforms Uniforms;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapPlanner.h"
 
+#include "csmCameraSpace.h"
 #include "csmFacePartition.h"
 #include "csmReuse.h"
 #include "csmShadowSetup.h"
@@ -60,6 +61,14 @@ struct vtkCascadedShadowMapPlanner::Internals
   bool VisibleUsed = false;
   /// Face partitions of the last plan: each piece's world half-spaces (empty for cascades).
   std::vector<std::vector<glm::dvec4>> Planes;
+
+  /// CameraSpace: the smallest w of the last plan's map (0: not a camera space map).
+  double DepthW = 0.0;
+
+  /// Setup for CameraSpace: one camera space map of the fitted frustum; false (Setup
+  /// untouched) where the general case does not apply.
+  bool PlanCameraSpace(const csm::Camera& camera, const glm::dvec3& direction,
+    const csm::Bounds* scene, const csm::Settings& settings, const std::vector<csm::Bounds>* parts);
 
   /// Setup and Planes for FacePartitions k: the face partitions of the fitted frustum.
   void PlanFaces(const csm::Camera& camera, const glm::dvec3& direction, const csm::Bounds* scene,
@@ -179,7 +188,13 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   this->Internal->wsLightDirection = direction;
   this->Internal->Directional = true;
   this->Internal->Planes.clear();
-  if (this->FacePartitions > 0 && !cam.parallel)
+  this->Internal->DepthW = 0.0;
+  if (this->FacePartitions == 0 && this->CameraSpace && !cam.parallel &&
+    this->Internal->PlanCameraSpace(cam, direction, bounds ? &scene : nullptr, settings, parts))
+  {
+    // one camera space map
+  }
+  else if (this->FacePartitions > 0 && !cam.parallel)
   {
     this->Internal->PlanFaces(
       cam, direction, bounds ? &scene : nullptr, settings, parts, this->FacePartitions);
@@ -246,6 +261,44 @@ void vtkCascadedShadowMapPlanner::Internals::PlanFaces(const csm::Camera& camera
   setup.storageOptimal = fp.storageOptimal;
 }
 
+bool vtkCascadedShadowMapPlanner::Internals::PlanCameraSpace(const csm::Camera& camera,
+  const glm::dvec3& direction, const csm::Bounds* scene, const csm::Settings& settings,
+  const std::vector<csm::Bounds>* parts)
+{
+  csm::Settings one = settings;
+  one.split.scheme = csm::SplitScheme::Single;
+  one.split.k = 1;
+  csm::ShadowSetup setup = csm::computeShadowSetup(camera, direction, scene, one, parts);
+  if (setup.status != csm::Status::Ok || setup.cascades.empty())
+  {
+    this->Setup = setup;
+    return true; // nothing to shadow, or bad input: the same answer as the cascades'
+  }
+  csm::Camera fitted = camera;
+  fitted.vsNear = setup.vsNear;
+  fitted.vsFar = setup.vsFar;
+  const csm::CameraSpaceMap map = csm::computeCameraSpaceMap(fitted, direction);
+  if (map.status != csm::Status::Ok)
+  {
+    return false; // the dueling frustum case: the cascades
+  }
+  csm::Cascade& cascade = setup.cascades[0];
+  cascade.wsToClip = map.wsToClip;
+  cascade.nPrime = 0.0;
+  cascade.Mx = 0.0; // Lloyd's M is defined for light-space maps: the map gets the ceiling
+  cascade.Mz = 0.0;
+  cascade.storage = 0.0;
+  setup.storageTotal = 0.0;
+  this->Setup = setup;
+  this->DepthW = map.wMin;
+  return true;
+}
+
+double vtkCascadedShadowMapPlanner::GetCascadeDepthW(int i) const
+{
+  return i == 0 && this->GetNumberOfPlannedCascades() == 1 ? this->Internal->DepthW : 0.0;
+}
+
 void vtkCascadedShadowMapPlanner::GetCascadePlanes(int i, double planes[16]) const
 {
   for (int k = 0; k < 4; ++k)
@@ -280,6 +333,7 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
   // A spot light: one perspective map fitted to the lit part of the visible scene.
   this->Internal->VisibleUsed = false;
   this->Internal->Planes.clear();
+  this->Internal->DepthW = 0.0;
   csm::Camera cam;
   toCamera(camera, aspect, cam);
   const csm::Bounds scene = toBounds(bounds);
@@ -539,6 +593,7 @@ void vtkCascadedShadowMapPlanner::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ErrorTarget: " << this->ErrorTarget << "\n";
   os << indent << "AdaptiveCascades: " << (this->AdaptiveCascades ? "on" : "off") << "\n";
   os << indent << "FacePartitions: " << this->FacePartitions << "\n";
+  os << indent << "CameraSpace: " << (this->CameraSpace ? "on" : "off") << "\n";
   os << indent << "PlannedCascades: " << this->GetNumberOfPlannedCascades() << "\n";
   os << indent << "VisibleDepthsUsed: " << (this->Internal->VisibleUsed ? "yes" : "no") << "\n";
 }

@@ -136,6 +136,24 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Camera space shadow maps (Kolić & Mihajlović), the general case, a comparison technique:
+   * with it on, a directional light gets one map (csm::computeCameraSpaceMap: the casters
+   * projected along the light onto a plane inside the view frustum, captured by the camera
+   * rolled so that the light comes from above) over the depth range fitted to the scene. Where
+   * the light lies inside the view's cone (the dueling frustum case, not built) and for
+   * parallel views and spot lights, the cascades. FacePartitions takes precedence. Default off.
+   */
+  vtkSetMacro(CameraSpace, bool);
+  vtkGetMacro(CameraSpace, bool);
+  vtkBooleanMacro(CameraSpace, bool);
+  ///@}
+
+  /// For a camera space map (CameraSpace): its smallest w over the view (the constant depth
+  /// bias scales by it over the point's w); 0 for cascades and face partitions.
+  double GetCascadeDepthW(int i) const;
+
+  ///@{
   /// Fit the light depth range to the receivers only and let the GPU clamp casters in front of
   /// it (Lloyd et al. §6.4). Default on.
   vtkSetMacro(DepthClamp, bool);
@@ -290,6 +308,7 @@ protected:
   double ErrorTarget = 1.0;
   bool AdaptiveCascades = true;
   int FacePartitions = 0;
+  bool CameraSpace = false;
 
 private:
   vtkCascadedShadowMapPlanner(const vtkCascadedShadowMapPlanner&) = delete;

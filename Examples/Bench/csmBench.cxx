@@ -178,6 +178,10 @@ std::vector<Technique> Techniques(const Options& o)
     list.back().Shadow.FacePartitions = 1;
     add("fp-zp-w", "csm", P::WARP_GENERALIZED, P::SPLIT_ADAPTIVE, 4, 3);
     list.back().Shadow.FacePartitions = 2;
+    // Camera space shadow maps (Kolić & Mihajlović), the general case: one map of the budget
+    // (the cascades where the light lies in the view's cone).
+    add("cssm", "csm", P::WARP_GENERALIZED, P::SPLIT_ADAPTIVE, 1, 3);
+    list.back().Shadow.CameraSpace = true;
   }
   if (!o.Labels.empty())
   {
@@ -954,7 +958,7 @@ int main(int argc, char** argv)
       const bool csm = t.Shadow.Technique == "csm";
       csv << sceneName << "," << t.Shadow.Technique << "," << t.Label << ","
           << (csm ? kWarps[t.Shadow.Warp] : "none") << ","
-          << (!csm ? "single" : t.Shadow.FacePartitions == 1 ? "face"
+          << (!csm ? "single" : t.Shadow.CameraSpace ? "cssm" : t.Shadow.FacePartitions == 1 ? "face"
                  : t.Shadow.FacePartitions == 2 ? "face+log" : kPartitions[t.Shadow.Partition])
           << "," << t.Shadow.Cascades << ","
           << t.Shadow.Resolution << "," << (csm ? t.Shadow.PCF : 1) << "," << t.Texels << ","

@@ -151,6 +151,7 @@ CameraSpaceMap computeCameraSpaceMap(const Camera& camera, const glm::dvec3& wsL
   fromWorld[3] = glm::dvec4(-camera.wsPosition, 1.0);
   map.wsToClip = clip * fromWorld;
   map.wsPlane = glm::dvec4(normal, offset - glm::dot(normal, camera.wsPosition));
+  map.wMin = wMin;
   map.status = Status::Ok;
   return map;
 }

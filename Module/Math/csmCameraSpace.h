@@ -33,6 +33,9 @@ struct CameraSpaceMap
   bool lightFromFront = false;  ///< the plane runs from the upper near to the lower far edge
   glm::dmat4 wsToClip{ 1.0 };   ///< world -> clip; the view frustum [vsNear, vsFar] in [-1, 1]^3
   glm::dvec4 wsPlane{ 0.0 };    ///< the projection plane P (xyz unit normal, w offset), world
+  /// The smallest w over the frustum: on a ray of w the map's depth (after the division) spans
+  /// wMin / w of what it spans on the nearest ray, so a constant depth bias must scale by it.
+  double wMin = 0.0;
 };
 
 /// The general-case CSSM map of the camera's view frustum [vsNear, vsFar] for a directional

@@ -104,7 +104,7 @@ vec4 csmDisplacement(mat4 toMap, vec3 d)
 // with the screen derivatives hx, hy of those coordinates (exact for the projective map); the
 // aliasing error m there for the error view (Lloyd et al. 2006, Eq. 1).
 float csmVisibility(sampler2DShadow map, vec4 tile, float texel, vec4 h, vec4 hx, vec4 hy,
-  out float m)
+  float biasScale, out float m)
 {
   vec3 p = h.xyz / h.w;
   vec3 dx = (hx.xyz - p * hx.w) / h.w;
@@ -124,7 +124,7 @@ float csmVisibility(sampler2DShadow map, vec4 tile, float texel, vec4 h, vec4 hx
     ? vec2(dy.y * dx.z - dx.y * dy.z, dx.x * dy.z - dy.x * dx.z) / det
     : vec2(0.0);
   float zSlopePerTexel = min((abs(dz.x) + abs(dz.y)) * texel, 0.05);
-  float zRef = p.z - csmConstantBias - csmSlopeBias * zSlopePerTexel;
+  float zRef = p.z - biasScale * csmConstantBias - csmSlopeBias * zSlopePerTexel;
 #if CSM_KERNEL == CSM_KERNEL_GRID
   return csmGridPCF(map, tile, texel, p.xy, zRef, dz);
 #else
@@ -147,6 +147,9 @@ uniform vec4 csmTile[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmTexel[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmSplitFar[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmSplitNear[CSM_LIGHTS];
+#ifdef CSM_CAMERA_SPACE
+uniform float csmDepthW[CSM_LIGHTS * CSM_MAX_CASCADES];
+#endif
 uniform int csmCount[CSM_LIGHTS];
 uniform float csmAttenuation[CSM_LIGHTS];
 
@@ -233,7 +236,13 @@ vec4 csmShadowIn(sampler2DShadow map, int j, int chosen, vec4 h, vec4 hx, vec4 h
   }
   int cascade = j * CSM_MAX_CASCADES + chosen;
   float m;
-  float visibility = csmVisibility(map, csmTile[cascade], csmTexel[cascade], h, hx, hy, m);
+  float biasScale = 1.0;
+#ifdef CSM_CAMERA_SPACE
+  // A camera space map's depth spans wMin / w on a ray of w (csm::computeCameraSpaceMap).
+  biasScale = csmDepthW[cascade] > 0.0 ? csmDepthW[cascade] / max(h.w, 1e-30) : 1.0;
+#endif
+  float visibility =
+    csmVisibility(map, csmTile[cascade], csmTexel[cascade], h, hx, hy, biasScale, m);
   return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), float(chosen), m, visibility);
 }
 

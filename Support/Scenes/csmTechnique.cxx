@@ -36,6 +36,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->CullCastersWithoutReceivers = baker->GetCullCastersWithoutReceivers();
   this->VisibleDepthFit = baker->GetVisibleDepthFit();
   this->FacePartitions = baker->GetFacePartitions();
+  this->CameraSpace = baker->GetCameraSpace();
   this->DepthClamp = baker->GetDepthClamp();
   this->PCF = pass->GetPCFSize();
   this->Kernel = pass->GetPCFKernel();
@@ -63,6 +64,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetCullCastersWithoutReceivers(o.CullCastersWithoutReceivers);
   baker->SetVisibleDepthFit(o.VisibleDepthFit);
   baker->SetFacePartitions(o.FacePartitions);
+  baker->SetCameraSpace(o.CameraSpace);
   baker->SetDepthClamp(o.DepthClamp);
   pass->SetPCFSize(o.PCF);
   pass->SetPCFKernel(o.Kernel);

@@ -40,6 +40,7 @@ struct ShadowOptions
   bool CullCastersWithoutReceivers; ///< casters that shadow nothing left out of the maps
   bool VisibleDepthFit;           ///< cascades fitted to the depths the view has samples at
   int FacePartitions;            ///< 0 cascades; 1 FP+W, 2 FP+ZP+W (z-partitions per face)
+  bool CameraSpace;              ///< camera space shadow maps (general case)
   int PCF;
   int Kernel;                    ///< vtkCascadedShadowMapPass::Kernels
   double ConstantBias;

@@ -362,6 +362,15 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     t.Options.FacePartitions = 1;
     t.MinShadowPixels = 3000;
   };
+  cases["TestPlatformCameraSpace"] = [](Test& t) {
+    // Camera space shadow maps (Kolić & Mihajlović), the general case, the comparison
+    // technique: one map, the light 60 degrees from the view.
+    Platform(t);
+    LightAtGamma(t, 60.0);
+    t.Options.Cascades = 1;
+    t.Options.CameraSpace = true;
+    t.MinShadowPixels = 3000;
+  };
   cases["TestPlatformDuelingFrusta"] = [](Test& t) {
     Platform(t);
     // Low camera looking up at the derrick; the light comes from behind it toward the camera

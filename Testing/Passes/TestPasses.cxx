@@ -1474,3 +1474,37 @@ TEST(Passes, FacePartitionsFallBackToCascadesWhereTheyDoNotApply)
   EXPECT_FALSE(baker->GetLightMaps()[0].Faces);
   EXPECT_GT(spot, 300);
 }
+
+// Issue 12: camera space shadow maps (Kolić & Mihajlović), the general case. One map whose
+// depth bias follows each ray's w: the box's shadow as the cascades give it (within 3 %); with
+// the light inside the view's cone (the dueling frustum case, not built) the cascades.
+TEST(Passes, CameraSpaceMapShadesLikeCascades)
+{
+  BoxOverPlaneSettings settings;
+  settings.LightPosition[0] = -0.4; // from above, a little from the side and the front
+  settings.LightPosition[1] = 1.0;
+  settings.LightPosition[2] = -0.5;
+  BoxOverPlane scene(settings);
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  const long cascaded = DarkenedPixels(scene.Render(), plain);
+  EXPECT_EQ(baker->GetLightMaps()[0].DepthW[0], 0.0);
+  baker->CameraSpaceOn();
+  const long cssm = DarkenedPixels(scene.Render(), plain);
+  ASSERT_EQ(baker->GetLightMaps().size(), 1u);
+  EXPECT_EQ(baker->GetLightMaps()[0].NumberOfCascades, 1);
+  EXPECT_GT(baker->GetLightMaps()[0].DepthW[0], 0.0);
+  EXPECT_GT(cascaded, 500);
+  EXPECT_NEAR(cssm, cascaded, 0.03 * cascaded);
+  // The light from straight behind the viewer: the cascades, with their shadow.
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  double position[3], focal[3];
+  camera->GetPosition(position);
+  camera->GetFocalPoint(focal);
+  scene.Light->SetPosition(position);
+  scene.Light->SetFocalPoint(focal);
+  scene.Render();
+  EXPECT_EQ(baker->GetLightMaps()[0].DepthW[0], 0.0);
+  EXPECT_GT(baker->GetLightMaps()[0].NumberOfCascades, 0);
+}
