@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Camera space shadow maps (CSSM, Kolić & Mihajlović), the general case for a directional
-// light, as one world -> clip matrix. Pure math (C++17, GLM, double): no VTK, no GL. Not yet
-// rendered by the passes (issue 12): the map's depth spans a different range on every light
-// ray (see below), which the lookup's constant bias does not yet account for.
+// light, as one world -> clip matrix. Pure math (C++17, GLM, double): no VTK, no GL. Rendered
+// by the passes with the planner's CameraSpace option, as a comparison technique; the map's
+// depth spans a different range on every light ray (see below), and the lookup scales its
+// constant bias by wMin / w.
 //
 // Kolić & Mihajlović, §3.1: roll the camera about its view axis so that the light comes from
 // above, widen its field of view to hold the original frustum, put a plane P through the two
