@@ -1100,8 +1100,8 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       this->Planner->Plan(camera, aspect, light, sceneBounds, imageHeight, ceiling);
     state.VisibleDepthsUsed = state.VisibleDepthsUsed || this->Planner->GetVisibleDepthsUsed();
     maps.NumberOfCascades = std::min(count, kMaxCascades);
-    maps.Faces = count > 0 && this->Planner->GetFacePartitions() > 0 && !light->GetPositional() &&
-      !camera->GetParallelProjection();
+    maps.Faces = count > 0 && !light->GetPositional() &&
+      this->Planner->GetCascadesSelectedByPlanes();
     light->GetTransformedPosition(maps.LightGeometry);
     light->GetTransformedFocalPoint(maps.LightGeometry + 3);
     maps.LightGeometry[6] = light->GetPositional() ? light->GetConeAngle() : -1.0;

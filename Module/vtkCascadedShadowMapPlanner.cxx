@@ -62,8 +62,8 @@ struct vtkCascadedShadowMapPlanner::Internals
   /// Face partitions of the last plan: each piece's world half-spaces (empty for cascades).
   std::vector<std::vector<glm::dvec4>> Planes;
 
-  /// CameraSpace: the smallest w of the last plan's map (0: not a camera space map).
-  double DepthW = 0.0;
+  /// CameraSpace: the smallest w of each of the last plan's maps (empty: not camera space maps).
+  std::vector<double> DepthW;
 
   /// Setup for CameraSpace: one camera space map of the fitted frustum; false (Setup
   /// untouched) where the general case does not apply.
@@ -188,7 +188,7 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   this->Internal->wsLightDirection = direction;
   this->Internal->Directional = true;
   this->Internal->Planes.clear();
-  this->Internal->DepthW = 0.0;
+  this->Internal->DepthW.clear();
   if (this->FacePartitions == 0 && this->CameraSpace && !cam.parallel &&
     this->Internal->PlanCameraSpace(cam, direction, bounds ? &scene : nullptr, settings, parts))
   {
@@ -277,26 +277,51 @@ bool vtkCascadedShadowMapPlanner::Internals::PlanCameraSpace(const csm::Camera& 
   csm::Camera fitted = camera;
   fitted.vsNear = setup.vsNear;
   fitted.vsFar = setup.vsFar;
-  const csm::CameraSpaceMap map = csm::computeCameraSpaceMap(fitted, direction);
-  if (map.status != csm::Status::Ok)
+  // The general case (one plane), else the dueling frustum case (four planes through t).
+  std::vector<csm::CameraSpaceFace> maps;
+  const csm::CameraSpaceMap general = csm::computeCameraSpaceMap(fitted, direction);
+  if (general.status == csm::Status::Ok)
   {
-    return false; // the dueling frustum case: the cascades
+    maps.push_back({ general.wsToClip, {}, general.wMin });
   }
-  csm::Cascade& cascade = setup.cascades[0];
-  cascade.wsToClip = map.wsToClip;
+  else
+  {
+    maps = csm::computeCameraSpaceDueling(fitted, direction);
+  }
+  if (maps.empty())
+  {
+    return false; // neither applies (t at infinity): the cascades
+  }
+  csm::Cascade cascade = setup.cascades[0];
   cascade.nPrime = 0.0;
-  cascade.Mx = 0.0; // Lloyd's M is defined for light-space maps: the map gets the ceiling
+  cascade.Mx = 0.0; // Lloyd's M is defined for light-space maps: the maps get the ceiling
   cascade.Mz = 0.0;
   cascade.storage = 0.0;
+  setup.cascades.clear();
+  for (const csm::CameraSpaceFace& face : maps)
+  {
+    cascade.wsToClip = face.wsToClip;
+    setup.cascades.push_back(cascade);
+    this->DepthW.push_back(face.wMin);
+    if (maps.size() > 1)
+    {
+      this->Planes.push_back(face.wsPlanes);
+    }
+  }
   setup.storageTotal = 0.0;
   this->Setup = setup;
-  this->DepthW = map.wMin;
   return true;
 }
 
 double vtkCascadedShadowMapPlanner::GetCascadeDepthW(int i) const
 {
-  return i == 0 && this->GetNumberOfPlannedCascades() == 1 ? this->Internal->DepthW : 0.0;
+  const auto& w = this->Internal->DepthW;
+  return i >= 0 && i < static_cast<int>(w.size()) ? w[i] : 0.0;
+}
+
+bool vtkCascadedShadowMapPlanner::GetCascadesSelectedByPlanes() const
+{
+  return !this->Internal->Planes.empty();
 }
 
 void vtkCascadedShadowMapPlanner::GetCascadePlanes(int i, double planes[16]) const
@@ -333,7 +358,7 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
   // A spot light: one perspective map fitted to the lit part of the visible scene.
   this->Internal->VisibleUsed = false;
   this->Internal->Planes.clear();
-  this->Internal->DepthW = 0.0;
+  this->Internal->DepthW.clear();
   csm::Camera cam;
   toCamera(camera, aspect, cam);
   const csm::Bounds scene = toBounds(bounds);

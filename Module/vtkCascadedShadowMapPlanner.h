@@ -140,9 +140,12 @@ public:
    * Camera space shadow maps (Kolić & Mihajlović), the general case, a comparison technique:
    * with it on, a directional light gets one map (csm::computeCameraSpaceMap: the casters
    * projected along the light onto a plane inside the view frustum, captured by the camera
-   * rolled so that the light comes from above) over the depth range fitted to the scene. Where
-   * the light lies inside the view's cone (the dueling frustum case, not built) and for
-   * parallel views and spot lights, the cascades. FacePartitions takes precedence. Default off.
+   * rolled so that the light comes from above) over the depth range fitted to the scene; where
+   * the light lies inside the view's cone, the dueling frustum case: four maps, the casters
+   * projected onto the planes through t (where the line through the eye along the light meets
+   * the near plane) and the far plane's edges (csm::computeCameraSpaceDueling), selected by
+   * their planes. Parallel views, spot lights and a light perpendicular to the view with no
+   * general case get the cascades. FacePartitions takes precedence. Default off.
    */
   vtkSetMacro(CameraSpace, bool);
   vtkGetMacro(CameraSpace, bool);
@@ -152,6 +155,10 @@ public:
   /// For a camera space map (CameraSpace): its smallest w over the view (the constant depth
   /// bias scales by it over the point's w); 0 for cascades and face partitions.
   double GetCascadeDepthW(int i) const;
+
+  /// Are the last plan's maps selected per point by their planes (face partitions, camera
+  /// space maps of the dueling frustum case), not by view depth?
+  bool GetCascadesSelectedByPlanes() const;
 
   ///@{
   /// Fit the light depth range to the receivers only and let the GPU clamp casters in front of

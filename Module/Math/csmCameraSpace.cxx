@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace csm
@@ -154,6 +155,125 @@ CameraSpaceMap computeCameraSpaceMap(const Camera& camera, const glm::dvec3& wsL
   map.wMin = wMin;
   map.status = Status::Ok;
   return map;
+}
+
+std::vector<CameraSpaceFace> computeCameraSpaceDueling(const Camera& camera,
+  const glm::dvec3& wsLightDirection)
+{
+  std::vector<CameraSpaceFace> faces;
+  const bool lightOk = std::isfinite(wsLightDirection.x) && std::isfinite(wsLightDirection.y) &&
+    std::isfinite(wsLightDirection.z) && glm::length(wsLightDirection) > 0.0;
+  if (!cameraError(camera).empty() || !lightOk || camera.parallel)
+  {
+    return faces;
+  }
+  const glm::dvec3 L = glm::normalize(wsLightDirection);
+  const glm::dvec3 view = glm::normalize(camera.wsDirection);
+  const double along = glm::dot(L, view);
+  if (std::abs(along) < kAlongView)
+  {
+    return faces;
+  }
+  glm::dvec3 up = camera.wsViewUp - glm::dot(camera.wsViewUp, view) * view;
+  if (!(glm::length(up) > 1e-9))
+  {
+    up = std::abs(view.x) < 0.6 ? glm::cross(view, glm::dvec3(1, 0, 0))
+                                : glm::cross(view, glm::dvec3(0, 1, 0));
+  }
+  up = glm::normalize(up);
+  const glm::dvec3 right = glm::cross(view, up);
+  const double tanY = std::tan(glm::radians(0.5 * camera.fovyDeg));
+  const double tanX = tanY * camera.aspect;
+  // Camera-centred: t on the near plane on the line through the eye along the light; the far
+  // corners counter-clockwise.
+  const glm::dvec3 t = L * (camera.vsNear / along);
+  std::array<glm::dvec3, 4> far;
+  const double sx[4] = { -1, 1, 1, -1 };
+  const double sy[4] = { -1, -1, 1, 1 };
+  for (int i = 0; i < 4; ++i)
+  {
+    far[i] = (view + right * (sx[i] * tanX) + up * (sy[i] * tanY)) * camera.vsFar;
+  }
+  std::vector<glm::dvec3> corners(far.begin(), far.end());
+  for (int i = 0; i < 4; ++i)
+  {
+    corners.push_back(far[i] * (camera.vsNear / camera.vsFar));
+  }
+  double depthMin = kInf, depthMax = -kInf;
+  for (const glm::dvec3& q : corners)
+  {
+    depthMin = std::min(depthMin, glm::dot(q, L));
+    depthMax = std::max(depthMax, glm::dot(q, L));
+  }
+  glm::dmat4 capture(0.0);
+  for (int column = 0; column < 3; ++column)
+  {
+    capture[column] = glm::dvec4(right[column], up[column], 0.0, view[column]);
+  }
+  glm::dmat4 fromWorld(1.0);
+  fromWorld[3] = glm::dvec4(-camera.wsPosition, 1.0);
+  for (int k = 0; k < 4; ++k)
+  {
+    const glm::dvec3& a = far[k];
+    const glm::dvec3& b = far[(k + 1) & 3];
+    const glm::dvec3 normal = glm::normalize(glm::cross(a - t, b - t));
+    const double offset = -glm::dot(normal, t);
+    const double across = glm::dot(normal, L);
+    if (std::abs(across) < kParallelToPlane)
+    {
+      return {};
+    }
+    glm::dmat4 toPlane(1.0);
+    for (int column = 0; column < 3; ++column)
+    {
+      for (int row = 0; row < 3; ++row)
+      {
+        toPlane[column][row] -= L[row] * normal[column] / across;
+      }
+    }
+    toPlane[3] = glm::dvec4(-L * (offset / across), 1.0);
+    const glm::dmat4 projected = capture * toPlane;
+    // The face's triangle is where its points land: fit s, t to it (its w is n at t, f at the
+    // far edge).
+    double sMin = kInf, sMax = -kInf, tMin = kInf, tMax = -kInf, wMin = kInf;
+    for (const glm::dvec3& q : { t, a, b })
+    {
+      const glm::dvec4 h = capture * glm::dvec4(q, 1.0);
+      sMin = std::min(sMin, h.x / h.w);
+      sMax = std::max(sMax, h.x / h.w);
+      tMin = std::min(tMin, h.y / h.w);
+      tMax = std::max(tMax, h.y / h.w);
+      wMin = std::min(wMin, h.w);
+    }
+    const double sScale = 2.0 / std::max(sMax - sMin, 1e-12);
+    const double tScale = 2.0 / std::max(tMax - tMin, 1e-12);
+    const double scale = 2.0 * kDepthRoom * wMin / std::max(depthMax - depthMin, 1e-12 * camera.vsFar);
+    const double shift = -0.5 * scale * (depthMin + depthMax);
+    glm::dmat4 clip(0.0);
+    for (int column = 0; column < 4; ++column)
+    {
+      const glm::dvec4 c = projected[column];
+      clip[column].x = sScale * (c.x - sMin * c.w) - c.w;
+      clip[column].y = tScale * (c.y - tMin * c.w) - c.w;
+      clip[column].z = column < 3 ? scale * L[column] : shift;
+      clip[column].w = c.w;
+    }
+    CameraSpaceFace face;
+    face.wsToClip = clip * fromWorld;
+    face.wMin = wMin;
+    // The planes through t, a far corner and the light, each facing the face's other corner.
+    for (const auto& edge : { std::make_pair(a, b), std::make_pair(b, a) })
+    {
+      glm::dvec3 n = glm::normalize(glm::cross(edge.first - t, L));
+      if (glm::dot(n, edge.second - t) < 0.0)
+      {
+        n = -n;
+      }
+      face.wsPlanes.emplace_back(n, -glm::dot(n, t) - glm::dot(n, camera.wsPosition));
+    }
+    faces.push_back(face);
+  }
+  return faces;
 }
 
 } // namespace csm

@@ -21,8 +21,10 @@
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include <string>
+#include <vector>
 
 namespace csm
 {
@@ -45,5 +47,24 @@ struct CameraSpaceMap
 /// frustum case, Kolić & Mihajlović Fig. 2, which needs four planes), or a light (nearly)
 /// parallel to the plane P.
 CameraSpaceMap computeCameraSpaceMap(const Camera& camera, const glm::dvec3& wsLightDirection);
+
+/// One map of the dueling frustum case: its matrix, the half-spaces that select it (world,
+/// as FacePartition::wsPlanes) and its smallest w.
+struct CameraSpaceFace
+{
+  glm::dmat4 wsToClip{ 1.0 };
+  std::vector<glm::dvec4> wsPlanes;
+  double wMin = 0.0;
+};
+
+/// The dueling frustum case (Kolić & Mihajlović §3.1, Fig. 2): the point t where the line
+/// through the eye along the light meets the near plane, four planes through t and the far
+/// plane's edges, the casters projected along the light onto each and captured by the camera:
+/// four maps, a point taking the one whose triangle (t and a far edge) its light ray crosses,
+/// i.e. whose two planes through t, a far corner and the light hold it. Empty for an invalid
+/// or parallel camera, a bad light, or a light (nearly) perpendicular to the view (t at
+/// infinity).
+std::vector<CameraSpaceFace> computeCameraSpaceDueling(const Camera& camera,
+  const glm::dvec3& wsLightDirection);
 
 } // namespace csm

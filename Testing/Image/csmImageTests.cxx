@@ -385,6 +385,22 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     LightAtGamma(t, 178.0); // light facing the viewer
     t.MinShadowPixels = 8000;
   };
+  cases["TestPlatformCameraSpaceDueling"] = [](Test& t) {
+    // Camera space shadow maps' dueling frustum case (Kolić & Mihajlović, Fig. 2): the view of
+    // TestPlatformDuelingFrusta, four maps through the point t.
+    Platform(t);
+    vtkCamera* camera = t.Renderer->GetActiveCamera();
+    camera->SetPosition(100.0, 5.0, 125.0);
+    camera->SetFocalPoint(0.0, 50.0, 0.0);
+    camera->SetViewAngle(60.0);
+    camera->SetViewUp(0.0, 1.0, 0.0);
+    camera->OrthogonalizeViewUp();
+    t.Renderer->ResetCameraClippingRange();
+    LightAtGamma(t, 178.0);
+    t.Options.Cascades = 4;
+    t.Options.CameraSpace = true;
+    t.MinShadowPixels = 8000;
+  };
   cases["TestTowersLongRange"] = [](Test& t) {
     csmScenes::Install(csmScenes::Towers(), t.Renderer, double(t.Width) / t.Height);
     const double d[3] = { 0.8, -1.0, 0.25 };

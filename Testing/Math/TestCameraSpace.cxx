@@ -86,3 +86,61 @@ TEST(CameraSpace, DuelingFrustaAndBadInputAreRefused)
   parallel.parallel = true;
   EXPECT_EQ(csm::computeCameraSpaceMap(parallel, lightAt(60.0)).status, csm::Status::InvalidInput);
 }
+
+// The dueling frustum case: four maps through the point t; every frustum point takes the map
+// whose planes hold it, lands inside it, and keeps its ray's texel and order.
+TEST(CameraSpace, DuelingFacesCoverTheFrustumAndRaysKeepTheirOrder)
+{
+  csm::Camera moved = camera(0.5, 300.0, 50.0, 1.5);
+  moved.wsPosition = { 40.0, -7.0, 1200.0 };
+  for (const csm::Camera& cam : { camera(1.0, 100.0, 60.0), moved })
+  {
+    for (double gamma : { 0.0, 10.0, 170.0, 180.0 })
+    {
+      for (double sideways : { 0.0, 0.2 })
+      {
+        const glm::dvec3 L = lightAt(gamma, sideways);
+        const std::vector<csm::CameraSpaceFace> faces = csm::computeCameraSpaceDueling(cam, L);
+        ASSERT_EQ(faces.size(), 4u) << "gamma " << gamma;
+        std::mt19937 random(5);
+        std::uniform_real_distribution<double> unit(-1.0, 1.0), share(0.0, 1.0);
+        const double tanY = std::tan(glm::radians(0.5 * cam.fovyDeg));
+        int outside = 0, moving = 0, unordered = 0;
+        for (int i = 0; i < 2000; ++i)
+        {
+          const double d = cam.vsNear * std::pow(cam.vsFar / cam.vsNear, share(random));
+          const glm::dvec3 p = cam.wsPosition +
+            glm::dvec3(unit(random) * tanY * cam.aspect * d, unit(random) * tanY * d, -d);
+          int chosen = 0;
+          double best = -1e300;
+          for (size_t k = 0; k < faces.size(); ++k)
+          {
+            double distance = 1e300;
+            for (const glm::dvec4& plane : faces[k].wsPlanes)
+              distance = std::min(distance, glm::dot(glm::dvec3(plane), p) + plane.w);
+            if (distance > best)
+            {
+              best = distance;
+              chosen = static_cast<int>(k);
+            }
+          }
+          const glm::dmat4& m = faces[chosen].wsToClip;
+          const glm::dvec4 h = m * glm::dvec4(p, 1.0);
+          const double slack = 1e-6;
+          outside += !(h.w > 0.0) || std::abs(h.x / h.w) > 1.0 + slack ||
+            std::abs(h.y / h.w) > 1.0 + slack || std::abs(h.z / h.w) > 1.0 + 1e-9;
+          const glm::dvec3 caster = p - L * (0.1 + 10.0 * share(random));
+          const glm::dvec4 c = m * glm::dvec4(caster, 1.0);
+          const double scale = 1e-9 * (1.0 + std::abs(h.x / h.w) + std::abs(h.y / h.w));
+          moving += std::abs(c.x / c.w - h.x / h.w) > scale || std::abs(c.y / c.w - h.y / h.w) > scale;
+          unordered += !(c.z / c.w < h.z / h.w);
+        }
+        EXPECT_EQ(outside, 0) << "gamma " << gamma << " sideways " << sideways;
+        EXPECT_EQ(moving, 0) << "gamma " << gamma << " sideways " << sideways;
+        EXPECT_EQ(unordered, 0) << "gamma " << gamma << " sideways " << sideways;
+      }
+    }
+  }
+  // A light perpendicular to the view has no t.
+  EXPECT_TRUE(csm::computeCameraSpaceDueling(camera(1.0, 100.0, 60.0), lightAt(90.0)).empty());
+}

@@ -1475,9 +1475,9 @@ TEST(Passes, FacePartitionsFallBackToCascadesWhereTheyDoNotApply)
   EXPECT_GT(spot, 300);
 }
 
-// Issue 12: camera space shadow maps (Kolić & Mihajlović), the general case. One map whose
-// depth bias follows each ray's w: the box's shadow as the cascades give it (within 3 %); with
-// the light inside the view's cone (the dueling frustum case, not built) the cascades.
+// Issue 12: camera space shadow maps (Kolić & Mihajlović). The general case: one map whose
+// depth bias follows each ray's w, the box's shadow as the cascades give it (within 3 %); the
+// light inside the view's cone: the dueling frustum case's four maps, the same shadow.
 TEST(Passes, CameraSpaceMapShadesLikeCascades)
 {
   BoxOverPlaneSettings settings;
@@ -1497,14 +1497,23 @@ TEST(Passes, CameraSpaceMapShadesLikeCascades)
   EXPECT_GT(baker->GetLightMaps()[0].DepthW[0], 0.0);
   EXPECT_GT(cascaded, 500);
   EXPECT_NEAR(cssm, cascaded, 0.03 * cascaded);
-  // The light from straight behind the viewer: the cascades, with their shadow.
+  // The light from straight behind the viewer (inside the view's cone): the dueling frustum
+  // case, four maps selected by their planes, the same shadow.
   vtkCamera* camera = scene.Renderer->GetActiveCamera();
   double position[3], focal[3];
   camera->GetPosition(position);
   camera->GetFocalPoint(focal);
   scene.Light->SetPosition(position);
   scene.Light->SetFocalPoint(focal);
-  scene.Render();
-  EXPECT_EQ(baker->GetLightMaps()[0].DepthW[0], 0.0);
-  EXPECT_GT(baker->GetLightMaps()[0].NumberOfCascades, 0);
+  baker->CameraSpaceOff();
+  const long behindCascaded = DarkenedPixels(scene.Render(), plain);
+  baker->CameraSpaceOn();
+  const long behind = DarkenedPixels(scene.Render(), plain);
+  const auto& maps = baker->GetLightMaps()[0];
+  EXPECT_EQ(maps.NumberOfCascades, 4);
+  EXPECT_TRUE(maps.Faces);
+  for (int c = 0; c < 4; ++c)
+    EXPECT_GT(maps.DepthW[c], 0.0);
+  EXPECT_GT(behindCascaded, 100);
+  EXPECT_NEAR(behind, behindCascaded, 0.05 * behindCascaded + 10);
 }
