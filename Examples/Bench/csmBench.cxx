@@ -178,8 +178,8 @@ std::vector<Technique> Techniques(const Options& o)
     list.back().Shadow.FacePartitions = 1;
     add("fp-zp-w", "csm", P::WARP_GENERALIZED, P::SPLIT_ADAPTIVE, 4, 3);
     list.back().Shadow.FacePartitions = 2;
-    // Camera space shadow maps (Kolić & Mihajlović), the general case: one map of the budget
-    // (the cascades where the light lies in the view's cone).
+    // Camera space shadow maps (Kolić & Mihajlović): one map of the budget, or four sharing it
+    // in the dueling frustum case.
     add("cssm", "csm", P::WARP_GENERALIZED, P::SPLIT_ADAPTIVE, 1, 3);
     list.back().Shadow.CameraSpace = true;
   }

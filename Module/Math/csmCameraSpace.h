@@ -43,9 +43,9 @@ struct CameraSpaceMap
 
 /// The general-case CSSM map of the camera's view frustum [vsNear, vsFar] for a directional
 /// light travelling along wsLightDirection. InvalidInput, with a message, for an invalid or
-/// parallel camera, a zero or non-finite light, a light (nearly) along the view (the dueling
-/// frustum case, Kolić & Mihajlović Fig. 2, which needs four planes), or a light (nearly)
-/// parallel to the plane P.
+/// parallel camera, a zero or non-finite light, a light (nearly) along the view or inside the
+/// view's cone (the dueling frustum case, Kolić & Mihajlović Fig. 2, which needs four planes:
+/// computeCameraSpaceDueling()), or a light (nearly) parallel to the plane P.
 CameraSpaceMap computeCameraSpaceMap(const Camera& camera, const glm::dvec3& wsLightDirection);
 
 /// One map of the dueling frustum case: its matrix, the half-spaces that select it (world,
