@@ -2,6 +2,7 @@
 #include "csmCameraSpace.h"
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
@@ -23,6 +24,54 @@ constexpr double kAlongView = 1e-3;
 constexpr double kParallelToPlane = 1e-6;
 /// Share of each ray's w that the depth may use (room for rounding at the ends).
 constexpr double kDepthRoom = 0.99;
+
+/// Camera-centred point -> its projection along L onto the plane dot(normal, q) + offset = 0,
+/// captured by a camera looking along view with the given right and up axes: rows x, y, (0), w.
+glm::dmat4 projectAndCapture(const glm::dvec3& normal, double offset, const glm::dvec3& L,
+  const glm::dvec3& right, const glm::dvec3& up, const glm::dvec3& view)
+{
+  const double across = glm::dot(normal, L);
+  glm::dmat4 toPlane(1.0);
+  for (int column = 0; column < 3; ++column)
+  {
+    for (int row = 0; row < 3; ++row)
+    {
+      toPlane[column][row] -= L[row] * normal[column] / across;
+    }
+  }
+  toPlane[3] = glm::dvec4(-L * (offset / across), 1.0);
+  glm::dmat4 capture(0.0);
+  for (int column = 0; column < 3; ++column)
+  {
+    capture[column] = glm::dvec4(right[column], up[column], 0.0, view[column]);
+  }
+  return capture * toPlane;
+}
+
+/// The world -> clip matrix: s, t of `projected` fitted to [sMin, sMax] x [tMin, tMax] (after
+/// the division by w), the light depth dot(q, L) over [depthMin, depthMax] in kDepthRoom of
+/// wMin, for a camera at wsEye.
+glm::dmat4 fitClip(const glm::dmat4& projected, const glm::dvec3& L, const glm::dvec2& s,
+  const glm::dvec2& t, const glm::dvec2& depth, double wMin, double far, const glm::dvec3& wsEye)
+{
+  const double sScale = 2.0 / std::max(s.y - s.x, 1e-12);
+  const double tScale = 2.0 / std::max(t.y - t.x, 1e-12);
+  const double a = 2.0 * kDepthRoom * wMin / std::max(depth.y - depth.x, 1e-12 * far);
+  const double b = -0.5 * a * (depth.x + depth.y);
+  // Rows: s = sScale (x - sMin w) - w, t likewise, depth = a dot(q, L) + b, w.
+  glm::dmat4 clip(0.0);
+  for (int column = 0; column < 4; ++column)
+  {
+    const glm::dvec4 c = projected[column];
+    clip[column].x = sScale * (c.x - s.x * c.w) - c.w;
+    clip[column].y = tScale * (c.y - t.x * c.w) - c.w;
+    clip[column].z = column < 3 ? a * L[column] : b;
+    clip[column].w = c.w;
+  }
+  glm::dmat4 fromWorld(1.0); // q = p - eye
+  fromWorld[3] = glm::dvec4(-wsEye, 1.0);
+  return clip * fromWorld;
+}
 }
 
 CameraSpaceMap computeCameraSpaceMap(const Camera& camera, const glm::dvec3& wsLightDirection)
@@ -94,23 +143,7 @@ CameraSpaceMap computeCameraSpaceMap(const Camera& camera, const glm::dvec3& wsL
     map.message = "light parallel to the projection plane";
     return map;
   }
-  // Camera-centred point -> its projection onto P along L, as a 4x4 (affine).
-  glm::dmat4 toPlane(1.0);
-  for (int column = 0; column < 3; ++column)
-  {
-    for (int row = 0; row < 3; ++row)
-    {
-      toPlane[column][row] -= L[row] * normal[column] / across;
-    }
-  }
-  toPlane[3] = glm::dvec4(-L * (offset / across), 1.0);
-  // The rolled camera (x right, y up, w the view depth) and the light depth.
-  glm::dmat4 capture(0.0);
-  for (int column = 0; column < 3; ++column)
-  {
-    capture[column] = glm::dvec4(right[column], up[column], 0.0, view[column]);
-  }
-  const glm::dmat4 projected = capture * toPlane;
+  const glm::dmat4 projected = projectAndCapture(normal, offset, L, right, up, view);
   // Fit s, t to the frustum's corners (convex: the corners bound it) and the depth row to
   // their light depths and w.
   double sMin = kInf, sMax = -kInf, tMin = kInf, tMax = -kInf;
@@ -133,24 +166,8 @@ CameraSpaceMap computeCameraSpaceMap(const Camera& camera, const glm::dvec3& wsL
     depthMax = std::max(depthMax, depth);
     wMin = std::min(wMin, h.w);
   }
-  const double sScale = 2.0 / std::max(sMax - sMin, 1e-12);
-  const double tScale = 2.0 / std::max(tMax - tMin, 1e-12);
-  const double a = 2.0 * kDepthRoom * wMin / std::max(depthMax - depthMin, 1e-12 * camera.vsFar);
-  const double b = -0.5 * a * (depthMin + depthMax);
-  // Rows: s = sScale (x - sMin w) - w, t likewise, depth = a dot(q, L) + b, w.
-  glm::dmat4 clip(0.0);
-  for (int column = 0; column < 4; ++column)
-  {
-    const glm::dvec4 c = projected[column];
-    clip[column].x = sScale * (c.x - sMin * c.w) - c.w;
-    clip[column].y = tScale * (c.y - tMin * c.w) - c.w;
-    clip[column].z = column < 3 ? a * L[column] : b;
-    clip[column].w = c.w;
-  }
-  // From world space: q = p - eye.
-  glm::dmat4 fromWorld(1.0);
-  fromWorld[3] = glm::dvec4(-camera.wsPosition, 1.0);
-  map.wsToClip = clip * fromWorld;
+  map.wsToClip = fitClip(projected, L, { sMin, sMax }, { tMin, tMax }, { depthMin, depthMax },
+    wMin, camera.vsFar, camera.wsPosition);
   map.wsPlane = glm::dvec4(normal, offset - glm::dot(normal, camera.wsPosition));
   map.wMin = wMin;
   map.status = Status::Ok;
@@ -205,13 +222,6 @@ std::vector<CameraSpaceFace> computeCameraSpaceDueling(const Camera& camera,
     depthMin = std::min(depthMin, glm::dot(q, L));
     depthMax = std::max(depthMax, glm::dot(q, L));
   }
-  glm::dmat4 capture(0.0);
-  for (int column = 0; column < 3; ++column)
-  {
-    capture[column] = glm::dvec4(right[column], up[column], 0.0, view[column]);
-  }
-  glm::dmat4 fromWorld(1.0);
-  fromWorld[3] = glm::dvec4(-camera.wsPosition, 1.0);
   for (int k = 0; k < 4; ++k)
   {
     const glm::dvec3& a = far[k];
@@ -223,43 +233,22 @@ std::vector<CameraSpaceFace> computeCameraSpaceDueling(const Camera& camera,
     {
       return {};
     }
-    glm::dmat4 toPlane(1.0);
-    for (int column = 0; column < 3; ++column)
-    {
-      for (int row = 0; row < 3; ++row)
-      {
-        toPlane[column][row] -= L[row] * normal[column] / across;
-      }
-    }
-    toPlane[3] = glm::dvec4(-L * (offset / across), 1.0);
-    const glm::dmat4 projected = capture * toPlane;
+    const glm::dmat4 projected = projectAndCapture(normal, offset, L, right, up, view);
     // The face's triangle is where its points land: fit s, t to it (its w is n at t, f at the
     // far edge).
     double sMin = kInf, sMax = -kInf, tMin = kInf, tMax = -kInf, wMin = kInf;
     for (const glm::dvec3& q : { t, a, b })
     {
-      const glm::dvec4 h = capture * glm::dvec4(q, 1.0);
+      const glm::dvec4 h(glm::dot(q, right), glm::dot(q, up), 0.0, glm::dot(q, view));
       sMin = std::min(sMin, h.x / h.w);
       sMax = std::max(sMax, h.x / h.w);
       tMin = std::min(tMin, h.y / h.w);
       tMax = std::max(tMax, h.y / h.w);
       wMin = std::min(wMin, h.w);
     }
-    const double sScale = 2.0 / std::max(sMax - sMin, 1e-12);
-    const double tScale = 2.0 / std::max(tMax - tMin, 1e-12);
-    const double scale = 2.0 * kDepthRoom * wMin / std::max(depthMax - depthMin, 1e-12 * camera.vsFar);
-    const double shift = -0.5 * scale * (depthMin + depthMax);
-    glm::dmat4 clip(0.0);
-    for (int column = 0; column < 4; ++column)
-    {
-      const glm::dvec4 c = projected[column];
-      clip[column].x = sScale * (c.x - sMin * c.w) - c.w;
-      clip[column].y = tScale * (c.y - tMin * c.w) - c.w;
-      clip[column].z = column < 3 ? scale * L[column] : shift;
-      clip[column].w = c.w;
-    }
     CameraSpaceFace face;
-    face.wsToClip = clip * fromWorld;
+    face.wsToClip = fitClip(projected, L, { sMin, sMax }, { tMin, tMax }, { depthMin, depthMax },
+      wMin, camera.vsFar, camera.wsPosition);
     face.wMin = wMin;
     // The planes through t, a far corner and the light, each facing the face's other corner.
     for (const auto& edge : { std::make_pair(a, b), std::make_pair(b, a) })

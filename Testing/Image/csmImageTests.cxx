@@ -371,10 +371,10 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     t.Options.CameraSpace = true;
     t.MinShadowPixels = 3000;
   };
-  cases["TestPlatformDuelingFrusta"] = [](Test& t) {
+  // Low camera looking up at the derrick; the light comes from behind it toward the camera
+  // and down: light and view directions nearly opposite (dueling frusta).
+  auto duelingFrusta = [](Test& t) {
     Platform(t);
-    // Low camera looking up at the derrick; the light comes from behind it toward the camera
-    // and down: light and view directions nearly opposite (dueling frusta).
     vtkCamera* camera = t.Renderer->GetActiveCamera();
     camera->SetPosition(100.0, 5.0, 125.0);
     camera->SetFocalPoint(0.0, 50.0, 0.0);
@@ -385,21 +385,13 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     LightAtGamma(t, 178.0); // light facing the viewer
     t.MinShadowPixels = 8000;
   };
-  cases["TestPlatformCameraSpaceDueling"] = [](Test& t) {
+  cases["TestPlatformDuelingFrusta"] = duelingFrusta;
+  cases["TestPlatformCameraSpaceDueling"] = [duelingFrusta](Test& t) {
     // Camera space shadow maps' dueling frustum case (Kolić & Mihajlović, Fig. 2): the view of
     // TestPlatformDuelingFrusta, four maps through the point t.
-    Platform(t);
-    vtkCamera* camera = t.Renderer->GetActiveCamera();
-    camera->SetPosition(100.0, 5.0, 125.0);
-    camera->SetFocalPoint(0.0, 50.0, 0.0);
-    camera->SetViewAngle(60.0);
-    camera->SetViewUp(0.0, 1.0, 0.0);
-    camera->OrthogonalizeViewUp();
-    t.Renderer->ResetCameraClippingRange();
-    LightAtGamma(t, 178.0);
+    duelingFrusta(t);
     t.Options.Cascades = 4;
     t.Options.CameraSpace = true;
-    t.MinShadowPixels = 8000;
   };
   cases["TestTowersLongRange"] = [](Test& t) {
     csmScenes::Install(csmScenes::Towers(), t.Renderer, double(t.Width) / t.Height);

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <random>
 
 namespace
@@ -19,6 +20,41 @@ glm::dvec3 lightAt(double gammaDeg, double sideways = 0.0)
 {
   const double g = glm::radians(gammaDeg);
   return glm::normalize(glm::dvec3(sideways, -std::sin(g), -std::cos(g)));
+}
+
+struct RayCheck
+{
+  int outside = 0;   ///< frustum points outside their map ([-1, 1]^3 after the division, w > 0)
+  int moving = 0;    ///< casters on the same light ray that land on another texel
+  int unordered = 0; ///< casters nearer the light that do not have the smaller depth
+};
+
+/// 2000 points of the camera's frustum (depth log-uniform), each with the matrix mapFor(p) gives
+/// it, and a caster 0.1 .. 10 units toward the light on its ray.
+template <typename MapFor>
+RayCheck checkRays(const csm::Camera& cam, const glm::dvec3& L, double slack, MapFor mapFor)
+{
+  RayCheck check;
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), share(0.0, 1.0);
+  const double tanY = std::tan(glm::radians(0.5 * cam.fovyDeg));
+  for (int i = 0; i < 2000; ++i)
+  {
+    const double d = cam.vsNear * std::pow(cam.vsFar / cam.vsNear, share(random));
+    const glm::dvec3 p = cam.wsPosition +
+      glm::dvec3(unit(random) * tanY * cam.aspect * d, unit(random) * tanY * d, -d);
+    const glm::dmat4& m = mapFor(p);
+    const glm::dvec4 h = m * glm::dvec4(p, 1.0);
+    check.outside += !(h.w > 0.0) || std::abs(h.x / h.w) > 1.0 + slack ||
+      std::abs(h.y / h.w) > 1.0 + slack || std::abs(h.z / h.w) > 1.0 + 1e-9;
+    const glm::dvec3 caster = p - L * (0.1 + 10.0 * share(random));
+    const glm::dvec4 c = m * glm::dvec4(caster, 1.0);
+    const double scale = 1e-9 * (1.0 + std::abs(h.x / h.w) + std::abs(h.y / h.w));
+    check.moving +=
+      std::abs(c.x / c.w - h.x / h.w) > scale || std::abs(c.y / c.w - h.y / h.w) > scale;
+    check.unordered += !(c.z / c.w < h.z / h.w);
+  }
+  return check;
 }
 }
 
@@ -39,28 +75,11 @@ TEST(CameraSpace, TheFrustumLandsInTheMapAndRaysKeepTheirOrder)
         const csm::CameraSpaceMap map = csm::computeCameraSpaceMap(cam, L);
         ASSERT_EQ(map.status, csm::Status::Ok) << "gamma " << gamma << ": " << map.message;
         EXPECT_EQ(map.lightFromFront, gamma > 90.0);
-        std::mt19937 random(3);
-        std::uniform_real_distribution<double> unit(-1.0, 1.0), share(0.0, 1.0);
-        const double tanY = std::tan(glm::radians(0.5 * cam.fovyDeg));
-        int outside = 0, moving = 0, unordered = 0;
-        for (int i = 0; i < 2000; ++i)
-        {
-          const double d = cam.vsNear * std::pow(cam.vsFar / cam.vsNear, share(random));
-          const glm::dvec3 p = cam.wsPosition +
-            glm::dvec3(unit(random) * tanY * cam.aspect * d, unit(random) * tanY * d, -d);
-          const glm::dvec4 h = map.wsToClip * glm::dvec4(p, 1.0);
-          outside += !(h.w > 0.0) || std::abs(h.x / h.w) > 1.0 + 1e-9 ||
-            std::abs(h.y / h.w) > 1.0 + 1e-9 || std::abs(h.z / h.w) > 1.0 + 1e-9;
-          // A caster 0.1 .. 10 units toward the light on the same ray.
-          const glm::dvec3 caster = p - L * (0.1 + 10.0 * share(random));
-          const glm::dvec4 c = map.wsToClip * glm::dvec4(caster, 1.0);
-          const double scale = 1e-9 * (1.0 + std::abs(h.x / h.w) + std::abs(h.y / h.w));
-          moving += std::abs(c.x / c.w - h.x / h.w) > scale || std::abs(c.y / c.w - h.y / h.w) > scale;
-          unordered += !(c.z / c.w < h.z / h.w);
-        }
-        EXPECT_EQ(outside, 0) << "gamma " << gamma << " sideways " << sideways;
-        EXPECT_EQ(moving, 0) << "gamma " << gamma << " sideways " << sideways;
-        EXPECT_EQ(unordered, 0) << "gamma " << gamma << " sideways " << sideways;
+        const RayCheck check =
+          checkRays(cam, L, 1e-9, [&](const glm::dvec3&) -> const glm::dmat4& { return map.wsToClip; });
+        EXPECT_EQ(check.outside, 0) << "gamma " << gamma << " sideways " << sideways;
+        EXPECT_EQ(check.moving, 0) << "gamma " << gamma << " sideways " << sideways;
+        EXPECT_EQ(check.unordered, 0) << "gamma " << gamma << " sideways " << sideways;
       }
     }
   }
@@ -102,16 +121,8 @@ TEST(CameraSpace, DuelingFacesCoverTheFrustumAndRaysKeepTheirOrder)
         const glm::dvec3 L = lightAt(gamma, sideways);
         const std::vector<csm::CameraSpaceFace> faces = csm::computeCameraSpaceDueling(cam, L);
         ASSERT_EQ(faces.size(), 4u) << "gamma " << gamma;
-        std::mt19937 random(5);
-        std::uniform_real_distribution<double> unit(-1.0, 1.0), share(0.0, 1.0);
-        const double tanY = std::tan(glm::radians(0.5 * cam.fovyDeg));
-        int outside = 0, moving = 0, unordered = 0;
-        for (int i = 0; i < 2000; ++i)
-        {
-          const double d = cam.vsNear * std::pow(cam.vsFar / cam.vsNear, share(random));
-          const glm::dvec3 p = cam.wsPosition +
-            glm::dvec3(unit(random) * tanY * cam.aspect * d, unit(random) * tanY * d, -d);
-          int chosen = 0;
+        const RayCheck check = checkRays(cam, L, 1e-6, [&](const glm::dvec3& p) -> const glm::dmat4& {
+          size_t chosen = 0;
           double best = -1e300;
           for (size_t k = 0; k < faces.size(); ++k)
           {
@@ -121,23 +132,14 @@ TEST(CameraSpace, DuelingFacesCoverTheFrustumAndRaysKeepTheirOrder)
             if (distance > best)
             {
               best = distance;
-              chosen = static_cast<int>(k);
+              chosen = k;
             }
           }
-          const glm::dmat4& m = faces[chosen].wsToClip;
-          const glm::dvec4 h = m * glm::dvec4(p, 1.0);
-          const double slack = 1e-6;
-          outside += !(h.w > 0.0) || std::abs(h.x / h.w) > 1.0 + slack ||
-            std::abs(h.y / h.w) > 1.0 + slack || std::abs(h.z / h.w) > 1.0 + 1e-9;
-          const glm::dvec3 caster = p - L * (0.1 + 10.0 * share(random));
-          const glm::dvec4 c = m * glm::dvec4(caster, 1.0);
-          const double scale = 1e-9 * (1.0 + std::abs(h.x / h.w) + std::abs(h.y / h.w));
-          moving += std::abs(c.x / c.w - h.x / h.w) > scale || std::abs(c.y / c.w - h.y / h.w) > scale;
-          unordered += !(c.z / c.w < h.z / h.w);
-        }
-        EXPECT_EQ(outside, 0) << "gamma " << gamma << " sideways " << sideways;
-        EXPECT_EQ(moving, 0) << "gamma " << gamma << " sideways " << sideways;
-        EXPECT_EQ(unordered, 0) << "gamma " << gamma << " sideways " << sideways;
+          return faces[chosen].wsToClip;
+        });
+        EXPECT_EQ(check.outside, 0) << "gamma " << gamma << " sideways " << sideways;
+        EXPECT_EQ(check.moving, 0) << "gamma " << gamma << " sideways " << sideways;
+        EXPECT_EQ(check.unordered, 0) << "gamma " << gamma << " sideways " << sideways;
       }
     }
   }
