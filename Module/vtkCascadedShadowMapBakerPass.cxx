@@ -1105,11 +1105,12 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
     light->GetTransformedPosition(maps.LightGeometry);
     light->GetTransformedFocalPoint(maps.LightGeometry + 3);
     maps.LightGeometry[6] = light->GetPositional() ? light->GetConeAngle() : -1.0;
-    // (Face partitions are re-rendered every frame: compareKeptMap measures the error along
-    // the cascades' map axes, which are not a face partition's.)
-    const bool faces =
+    // (Face partitions and camera space maps are re-rendered every frame: compareKeptMap
+    // measures the error along the cascades' map axes, which their maps do not have.)
+    const bool ownMapAxes =
       this->Planner->GetFacePartitions() > 0 || this->Planner->GetCameraSpace();
-    const LightMaps* kept = !props.Changed && depthClamp && !faces && slot < state.Maps.size() &&
+    const LightMaps* kept = !props.Changed && depthClamp && !ownMapAxes &&
+        slot < state.Maps.size() &&
         state.Maps[slot].Light == light &&
         std::equal(maps.LightGeometry, maps.LightGeometry + 7, state.Maps[slot].LightGeometry) &&
         state.Maps[slot].NumberOfCascades == maps.NumberOfCascades

@@ -65,8 +65,8 @@ struct vtkCascadedShadowMapPlanner::Internals
   /// CameraSpace: the smallest w of each of the last plan's maps (empty: not camera space maps).
   std::vector<double> DepthW;
 
-  /// Setup for CameraSpace: one camera space map of the fitted frustum; false (Setup
-  /// untouched) where the general case does not apply.
+  /// Setup (and DepthW, and Planes for the dueling case) for CameraSpace: the camera space
+  /// maps of the fitted frustum; false (Setup untouched) where neither case applies.
   bool PlanCameraSpace(const csm::Camera& camera, const glm::dvec3& direction,
     const csm::Bounds* scene, const csm::Settings& settings, const std::vector<csm::Bounds>* parts);
 
@@ -189,28 +189,29 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   this->Internal->Directional = true;
   this->Internal->Planes.clear();
   this->Internal->DepthW.clear();
-  if (this->FacePartitions == 0 && this->CameraSpace && !cam.parallel &&
-    this->Internal->PlanCameraSpace(cam, direction, bounds ? &scene : nullptr, settings, parts))
+  // The comparison techniques (perspective views only), else the cascades.
+  const csm::Bounds* sceneOrNull = bounds ? &scene : nullptr;
+  bool planned = false;
+  if (this->FacePartitions > 0 && !cam.parallel)
   {
-    // one camera space map
+    this->Internal->PlanFaces(cam, direction, sceneOrNull, settings, parts, this->FacePartitions);
+    planned = true;
   }
-  else if (this->FacePartitions > 0 && !cam.parallel)
+  else if (this->CameraSpace && !cam.parallel)
   {
-    this->Internal->PlanFaces(
-      cam, direction, bounds ? &scene : nullptr, settings, parts, this->FacePartitions);
+    planned = this->Internal->PlanCameraSpace(cam, direction, sceneOrNull, settings, parts);
   }
-  else if (this->AdaptiveCascades && this->ErrorTarget > 0.0 && imageHeight > 0 &&
+  if (!planned && this->AdaptiveCascades && this->ErrorTarget > 0.0 && imageHeight > 0 &&
     maximumResolution > 0)
   {
     auto last = this->Internal->LastCount.find(lightKey);
-    this->Internal->Setup = csm::computeShadowSetupForError(cam, direction,
-      bounds ? &scene : nullptr, settings, parts, imageHeight, maximumResolution,
-      this->ErrorTarget, last == this->Internal->LastCount.end() ? 0 : last->second);
+    this->Internal->Setup = csm::computeShadowSetupForError(cam, direction, sceneOrNull, settings,
+      parts, imageHeight, maximumResolution, this->ErrorTarget,
+      last == this->Internal->LastCount.end() ? 0 : last->second);
   }
-  else
+  else if (!planned)
   {
-    this->Internal->Setup =
-      csm::computeShadowSetup(cam, direction, bounds ? &scene : nullptr, settings, parts);
+    this->Internal->Setup = csm::computeShadowSetup(cam, direction, sceneOrNull, settings, parts);
   }
   if (this->Internal->LastCount.size() > 64)
   {
@@ -219,24 +220,38 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   this->Internal->LastCount[lightKey] = static_cast<int>(this->Internal->Setup.cascades.size());
 }
 
+namespace
+{
+/// The single-cascade plan of the frustum clipped by the scene (the same input checks and depth
+/// fit as the cascades'), and the camera narrowed to its fitted depth range: what the comparison
+/// techniques partition.
+csm::ShadowSetup fitDepthRange(const csm::Camera& camera, const glm::dvec3& direction,
+  const csm::Bounds* scene, const csm::Settings& settings, const std::vector<csm::Bounds>* parts,
+  csm::Camera& fitted)
+{
+  csm::Settings one = settings;
+  one.split.scheme = csm::SplitScheme::Single;
+  one.split.k = 1;
+  csm::ShadowSetup setup = csm::computeShadowSetup(camera, direction, scene, one, parts);
+  fitted = camera;
+  fitted.vsNear = setup.vsNear;
+  fitted.vsFar = setup.vsFar;
+  return setup;
+}
+}
+
 void vtkCascadedShadowMapPlanner::Internals::PlanFaces(const csm::Camera& camera,
   const glm::dvec3& direction, const csm::Bounds* scene, const csm::Settings& settings,
   const std::vector<csm::Bounds>* parts, int k)
 {
-  // The depth range fitted to the scene as for the cascades (and the same input checks), then
-  // the face partitions of that part of the frustum.
-  csm::Settings one = settings;
-  one.split.scheme = csm::SplitScheme::Single;
-  one.split.k = 1;
+  // The face partitions of the part of the frustum the scene fills.
+  csm::Camera fitted;
   csm::ShadowSetup& setup = this->Setup;
-  setup = csm::computeShadowSetup(camera, direction, scene, one, parts);
+  setup = fitDepthRange(camera, direction, scene, settings, parts, fitted);
   if (setup.status != csm::Status::Ok)
   {
     return;
   }
-  csm::Camera fitted = camera;
-  fitted.vsNear = setup.vsNear;
-  fitted.vsFar = setup.vsFar;
   csm::FacePartitionSettings faces;
   faces.warp = settings.warp;
   faces.k = k;
@@ -265,18 +280,13 @@ bool vtkCascadedShadowMapPlanner::Internals::PlanCameraSpace(const csm::Camera& 
   const glm::dvec3& direction, const csm::Bounds* scene, const csm::Settings& settings,
   const std::vector<csm::Bounds>* parts)
 {
-  csm::Settings one = settings;
-  one.split.scheme = csm::SplitScheme::Single;
-  one.split.k = 1;
-  csm::ShadowSetup setup = csm::computeShadowSetup(camera, direction, scene, one, parts);
+  csm::Camera fitted;
+  csm::ShadowSetup setup = fitDepthRange(camera, direction, scene, settings, parts, fitted);
   if (setup.status != csm::Status::Ok || setup.cascades.empty())
   {
     this->Setup = setup;
     return true; // nothing to shadow, or bad input: the same answer as the cascades'
   }
-  csm::Camera fitted = camera;
-  fitted.vsNear = setup.vsNear;
-  fitted.vsFar = setup.vsFar;
   // The general case (one plane), else the dueling frustum case (four planes through t).
   std::vector<csm::CameraSpaceFace> maps;
   const csm::CameraSpaceMap general = csm::computeCameraSpaceMap(fitted, direction);

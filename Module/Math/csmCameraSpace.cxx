@@ -78,11 +78,9 @@ CameraSpaceMap computeCameraSpaceMap(const Camera& camera, const glm::dvec3& wsL
 {
   CameraSpaceMap map;
   map.message = cameraError(camera);
-  const bool lightOk = std::isfinite(wsLightDirection.x) && std::isfinite(wsLightDirection.y) &&
-    std::isfinite(wsLightDirection.z) && glm::length(wsLightDirection) > 0.0;
-  if (map.message.empty() && !lightOk)
+  if (map.message.empty())
   {
-    map.message = "light direction must be finite and non-zero";
+    map.message = lightDirectionError(wsLightDirection);
   }
   if (map.message.empty() && camera.parallel)
   {
@@ -178,9 +176,8 @@ std::vector<CameraSpaceFace> computeCameraSpaceDueling(const Camera& camera,
   const glm::dvec3& wsLightDirection)
 {
   std::vector<CameraSpaceFace> faces;
-  const bool lightOk = std::isfinite(wsLightDirection.x) && std::isfinite(wsLightDirection.y) &&
-    std::isfinite(wsLightDirection.z) && glm::length(wsLightDirection) > 0.0;
-  if (!cameraError(camera).empty() || !lightOk || camera.parallel)
+  if (!cameraError(camera).empty() || !lightDirectionError(wsLightDirection).empty() ||
+    camera.parallel)
   {
     return faces;
   }

@@ -145,11 +145,9 @@ FacePartitioning computeFacePartitions(const Camera& camera, const glm::dvec3& w
 {
   FacePartitioning result;
   result.message = cameraError(camera);
-  const bool lightOk = std::isfinite(wsLightDirection.x) && std::isfinite(wsLightDirection.y) &&
-    std::isfinite(wsLightDirection.z) && glm::length(wsLightDirection) > 0.0;
-  if (result.message.empty() && !lightOk)
+  if (result.message.empty())
   {
-    result.message = "light direction must be finite and non-zero";
+    result.message = lightDirectionError(wsLightDirection);
   }
   if (result.message.empty() && camera.parallel)
   {

@@ -217,9 +217,10 @@ std::string validate(const Camera& camera, const glm::dvec3& light, const Bounds
   {
     return cameraError;
   }
-  if (!finite(light) || !(glm::length(light) > 0.0))
+  const std::string lightError = lightDirectionError(light);
+  if (!lightError.empty())
   {
-    return "light direction must be finite and non-zero";
+    return lightError;
   }
   const SplitParameters& split = settings.split;
   if (split.k < 1 || split.k > kMaxSplits)
@@ -905,6 +906,13 @@ Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera, const glm:
 std::string cameraError(const Camera& camera)
 {
   return validateCamera(camera, nullptr);
+}
+
+std::string lightDirectionError(const glm::dvec3& wsLightDirection)
+{
+  return finite(wsLightDirection) && glm::length(wsLightDirection) > 0.0
+    ? std::string()
+    : "light direction must be finite and non-zero";
 }
 
 bool boxOutsideClipVolume(const glm::dmat4& wsToClip, const Bounds& box, bool depthClamp)

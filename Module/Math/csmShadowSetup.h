@@ -199,6 +199,9 @@ Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera, const glm:
 /// Why computeShadowSetup would refuse this camera; empty when it is valid.
 std::string cameraError(const Camera& camera);
 
+/// Why a directional light's direction cannot be used (not finite, or zero); empty when it can.
+std::string lightDirectionError(const glm::dvec3& wsLightDirection);
+
 /// The map resolution (texels a side) at which a cascade whose worst perspective aliasing is
 /// maxAliasing (max(M_x, M_z) of Lloyd et al. 2006, Eq. 9-10, for a map of 1 texel and an image
 /// 1 pixel high) reaches the error targetError (m, a texel's width over a pixel's, Eq. 1) in an
