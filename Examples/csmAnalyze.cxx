@@ -228,10 +228,10 @@ void printJson(const Options& o, const csm::ShadowSetup& s)
   if (o.errorTarget > 0.0)
   {
     const int k = static_cast<int>(s.cascades.size());
-    const int r = csm::resolutionCeilingForCount(k, o.settings.split.k, o.resolution);
-    std::printf(",\n \"error_target\": %s, \"chosen_cascades\": %d, \"resolution\": %d, "
+    const csm::MapSize r = csm::resolutionCeilingForCount(k, o.settings.split.k, o.resolution);
+    std::printf(",\n \"error_target\": %s, \"chosen_cascades\": %d, \"resolution\": [%d, %d], "
                 "\"predicted_error\": %s",
-      jsonNumber(o.errorTarget).c_str(), k, r,
+      jsonNumber(o.errorTarget).c_str(), k, r.width, r.height,
       jsonNumber(csm::predictedError(s, o.imageHeight, r)).c_str());
   }
   std::printf("}\n");
@@ -265,14 +265,15 @@ void printText(const Options& o, const csm::ShadowSetup& s)
     std::printf("error target %g at %g pixels, maps of at most %d texels: %zu cascade(s) "
                 "chosen of up to %d\n",
       o.errorTarget, o.imageHeight, o.resolution, s.cascades.size(), o.settings.split.k);
-    std::printf("%-3s %10s %16s\n", "k", "texels", "predicted m");
+    std::printf("%-3s %12s %16s\n", "k", "texels", "predicted m");
     for (int k = 1; k <= o.settings.split.k; ++k)
     {
       const csm::ShadowSetup plan = csm::computeShadowSetupForCount(
         makeCamera(o), lightDirection(o.gamma), nullptr, o.settings, nullptr, k);
-      const int r = csm::resolutionCeilingForCount(
+      const csm::MapSize r = csm::resolutionCeilingForCount(
         static_cast<int>(plan.cascades.size()), o.settings.split.k, o.resolution);
-      std::printf("%-3zu %10d %16.4g%s\n", plan.cascades.size(), r,
+      const std::string texels = std::to_string(r.width) + "x" + std::to_string(r.height);
+      std::printf("%-3zu %12s %16.4g%s\n", plan.cascades.size(), texels.c_str(),
         csm::predictedError(plan, o.imageHeight, r),
         plan.cascades.size() == s.cascades.size() ? "   <- chosen" : "");
     }

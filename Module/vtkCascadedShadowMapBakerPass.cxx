@@ -371,17 +371,17 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(vtkOpenGLRenderWindow* window,
   csm::AtlasGrid layout = csm::atlasLayout(tiles, wanted);
   GLint maxSize = 4096;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  if (layout.tile * layout.columns > maxSize)
+  if (layout.tile.width * layout.columns > maxSize)
   {
-    layout.tile = maxSize / layout.columns;
+    layout.tile = csm::MapSize(maxSize / layout.columns);
     std::ostringstream message;
     message << "Shadow map resolution " << wanted << " x " << layout.columns
-            << " cascades exceeds the GL limit " << maxSize << "; using " << layout.tile;
+            << " cascades exceeds the GL limit " << maxSize << "; using " << layout.tile.width;
     this->ReportOnce(false, message.str());
   }
   vtkTextureObject* atlas = maps.Atlas;
-  const unsigned int width = static_cast<unsigned int>(layout.columns * layout.tile);
-  const unsigned int height = static_cast<unsigned int>(layout.rows * layout.tile);
+  const unsigned int width = static_cast<unsigned int>(layout.columns * layout.tile.width);
+  const unsigned int height = static_cast<unsigned int>(layout.rows * layout.tile.height);
   if (atlas->GetContext() != window || atlas->GetWidth() != width ||
     atlas->GetHeight() != height || !atlas->GetHandle())
   {
@@ -405,16 +405,17 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(vtkOpenGLRenderWindow* window,
     atlas->Modified();
     reallocated = true;
   }
-  // This frame's cascades in equal square tiles (up to kAtlasFullMaps of the atlas's own, more
-  // in smaller ones).
+  // This frame's cascades in equal tiles (up to kAtlasFullMaps of the atlas's own, more in
+  // smaller ones, not always square).
   const csm::AtlasGrid grid = csm::atlasGrid(std::max(maps.NumberOfCascades, 1), layout);
-  maps.Resolution = grid.tile;
+  maps.Resolution[0] = grid.tile.width;
+  maps.Resolution[1] = grid.tile.height;
   for (int i = 0; i < maps.NumberOfCascades; ++i)
   {
-    maps.Tile[i][0] = double((i % grid.columns) * grid.tile) / width;
-    maps.Tile[i][1] = double((i / grid.columns) * grid.tile) / height;
-    maps.Tile[i][2] = double(grid.tile) / width;
-    maps.Tile[i][3] = double(grid.tile) / height;
+    maps.Tile[i][0] = double((i % grid.columns) * grid.tile.width) / width;
+    maps.Tile[i][1] = double((i / grid.columns) * grid.tile.height) / height;
+    maps.Tile[i][2] = double(grid.tile.width) / width;
+    maps.Tile[i][3] = double(grid.tile.height) / height;
   }
   return true;
 }
@@ -1119,30 +1120,36 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
     vtkNew<vtkMatrix4x4> m;
     // The largest map this count of cascades has in the atlas (csm::resolutionCeilingForCount:
     // the planner judged the count at the same).
-    const int countCeiling = csm::resolutionCeilingForCount(
+    const csm::MapSize countTile = csm::resolutionCeilingForCount(
       maps.NumberOfCascades, this->Planner->GetNumberOfCascades(), ceiling);
+    const int countCeiling[2] = { countTile.width, countTile.height };
     for (int c = 0; c < maps.NumberOfCascades; ++c)
     {
-      maps.CascadeResolution[c] =
-        this->Planner->GetCascadeResolution(c, imageHeight, RESOLUTION_STEP, countCeiling);
-      this->Planner->GetCascadeMatrix(c, m, border, maps.CascadeResolution[c]);
+      int* resolution = maps.CascadeResolution[c];
+      this->Planner->GetCascadeResolution(c, imageHeight, RESOLUTION_STEP, countCeiling, resolution);
+      maps.MapTurned[c] = this->Planner->GetCascadeMapTurned(c);
+      this->Planner->GetCascadeMatrix(c, m, border, resolution);
       std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
       maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
       this->Planner->GetCascadePlanes(c, maps.Planes[c]);
       maps.DepthW[c] = this->Planner->GetCascadeDepthW(c);
       // A kept map serves if it has the texels this view needs (or all its tile holds, where the
       // GL's texture size limit made the tiles smaller than Resolution).
+      // (Turned the same way: the error ratio compares the maps at equal resolution.)
+      const int* keptResolution = kept ? kept->CascadeResolution[c] : nullptr;
       const bool keep = kept &&
         (interacting || !screenSized ||
           std::equal(viewKey, viewKey + 18, kept->CasterView[c])) &&
-        kept->CascadeResolution[c] >= std::min(maps.CascadeResolution[c], kept->Resolution) &&
+        kept->MapTurned[c] == maps.MapTurned[c] &&
+        keptResolution[0] >= std::min(resolution[0], kept->Resolution[0]) &&
+        keptResolution[1] >= std::min(resolution[1], kept->Resolution[1]) &&
         this->Planner->CompareKeptMap(c, kept->WorldToMap[c], kReuseMarginTexels,
-          kept->CascadeResolution[c]) <= tolerance;
+          std::min(keptResolution[0], keptResolution[1])) <= tolerance;
       if (keep)
       {
         std::copy(kept->WorldToMap[c], kept->WorldToMap[c] + 16, maps.WorldToMap[c]);
         std::copy(kept->CasterView[c], kept->CasterView[c] + 18, maps.CasterView[c]);
-        maps.CascadeResolution[c] = kept->CascadeResolution[c];
+        std::copy(keptResolution, keptResolution + 2, resolution);
       }
       render.push_back(keep ? 0 : 1);
     }
@@ -1226,9 +1233,11 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
     }
     for (int c = 0; c < maps.NumberOfCascades; ++c)
     {
-      maps.CascadeResolution[c] = std::max(1, std::min(maps.CascadeResolution[c], maps.Resolution));
-      maps.Tile[c][2] = double(maps.CascadeResolution[c]) / maps.Atlas->GetWidth();
-      maps.Tile[c][3] = double(maps.CascadeResolution[c]) / maps.Atlas->GetHeight();
+      int* resolution = maps.CascadeResolution[c];
+      resolution[0] = std::max(1, std::min(resolution[0], maps.Resolution[0]));
+      resolution[1] = std::max(1, std::min(resolution[1], maps.Resolution[1]));
+      maps.Tile[c][2] = double(resolution[0]) / maps.Atlas->GetWidth();
+      maps.Tile[c][3] = double(resolution[1]) / maps.Atlas->GetHeight();
     }
     int* renderCascade = render.data() + kMaxCascades * slot;
     bool any = false;

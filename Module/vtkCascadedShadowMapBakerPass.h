@@ -89,7 +89,9 @@ public:
   ///@{
   /**
    * How the cascades are planned; these forward to GetPlanner(), which documents them:
-   * number of cascades (1..MAXIMUM_NUMBER_OF_CASCADES, default 4: the most AdaptiveCascades may use; Barroso & Celes §4 use 2-4), warp mode and split scheme
+   * number of cascades (1..MAXIMUM_NUMBER_OF_CASCADES, default 8: the most AdaptiveCascades
+   * may use; Barroso & Celes §4 use 2-4, the error model takes more only where four cannot
+   * reach ErrorTarget), warp mode and split scheme
    * (vtkCascadedShadowMapPlanner::WarpModes / SplitSchemes; defaults generalized LiSPSM and
    * adaptive), lambda (practical splits, 0.5), alpha (adaptive splits, 2) and depth clamping
    * (Lloyd et al. §6.4, on).
@@ -310,9 +312,14 @@ public:
     /// point's w); 0 otherwise.
     double DepthW[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     double Tile[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][4] = {};            ///< atlas tile: offset x, y and scale x, y in [0, 1]
-    int Resolution = 0;           ///< texels a side of each cascade's tile (Resolution; less beyond csm::kAtlasFullMaps cascades or where GL limits)
-    /// Texels a side of each cascade's map (from ErrorTarget), in the lower left of its tile.
-    int CascadeResolution[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
+    /// Texels of each cascade's tile, width and height (Resolution a side; less beyond
+    /// csm::kAtlasFullMaps cascades, in non-square tiles, or where GL limits).
+    int Resolution[2] = { 0, 0 };
+    /// Texels of each cascade's map along its s and t axes (from ErrorTarget), in the lower left
+    /// of its tile.
+    int CascadeResolution[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][2] = {};
+    /// Each cascade's map is turned a quarter to its tile (vtkCascadedShadowMapPlanner::GetCascadeMapTurned).
+    bool MapTurned[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     double LightGeometry[7] = { 0, 0, 0, 0, 0, 0, 0 }; ///< position, focal point, cone angle (-1: directional) the maps were rendered for
     /// Per cascade: the main view its screen-sized casters (tubes, spheres, wide lines, big
     /// points) were sized for: world -> view (row-major) and the pixel size (see CasterView()).

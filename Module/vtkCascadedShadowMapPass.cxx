@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapPass.h"
 
+#include "csmShadowSetup.h" // csm::kAtlasFullMaps
+
 #include "vtkActor.h"
 #include "vtkAbstractMapper.h"
 #include "vtkCamera.h"
@@ -201,7 +203,10 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
         u.Tile.push_back(static_cast<float>(maps.Tile[c][k]));
       }
       u.SplitFar.push_back(c < maps.NumberOfCascades ? static_cast<float>(maps.SplitFar[c]) : 0.0f);
-      u.Texel.push_back(1.0f / static_cast<float>(std::max(1, maps.CascadeResolution[c])));
+      for (int axis = 0; axis < 2; ++axis)
+      {
+        u.Texel.push_back(1.0f / static_cast<float>(std::max(1, maps.CascadeResolution[c][axis])));
+      }
       // A face partition's half-spaces in view space: the world plane (a row) times view -> world.
       for (int k = 0; k < 4; ++k)
       {
@@ -238,15 +243,18 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   {
     signature += " radius " + std::to_string(this->PCFSize / 2);
   }
-  // Map coordinates from the vertices: for as many cascades as the baker may plan (a stable
-  // option: AdaptiveCascades changes the count with the view, and a count compiled in would
-  // rebuild every shader; measured, two more varyings cost a vertex-heavy frame ~2 %).
+  // Map coordinates from the vertices: for as many cascades as fill the atlas with full maps
+  // (csm::kAtlasFullMaps), or as many as the baker may plan while a light uses more. Two
+  // variants, not one per count: AdaptiveCascades changes the count with the view, and a count
+  // compiled in would rebuild every shader; measured, two more varyings cost a vertex-heavy
+  // frame ~2 %, so the up to 8 of NumberOfCascades are compiled in only where they are used.
   if (this->MapCoordinatesFromVertices)
   {
-    int cascades = baker->GetNumberOfCascades();
+    const int most = baker->GetNumberOfCascades();
+    int cascades = std::min(most, csm::kAtlasFullMaps);
     for (int count : u.Count)
     {
-      cascades = std::max(cascades, count);
+      cascades = count > cascades ? std::max(most, count) : cascades;
     }
     if (u.Lights() * cascades <= static_cast<size_t>(MAXIMUM_MAP_COORDINATE_VARYINGS))
     {
@@ -460,7 +468,7 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   program->SetUniformMatrix4x4v(
     "csmToMap", lights * kMaxCascades, const_cast<float*>(u.ToMap.data()));
   program->SetUniform4fv("csmTile", lights * kMaxCascades, u.Tile.data());
-  program->SetUniform1fv("csmTexel", lights * kMaxCascades, u.Texel.data());
+  program->SetUniform2fv("csmTexel", lights * kMaxCascades, u.Texel.data());
   program->SetUniform1fv("csmSplitFar", lights * kMaxCascades, u.SplitFar.data());
   if (u.Faces)
   {

@@ -199,7 +199,7 @@ protected:
     std::vector<float> ToMap;     ///< per cascade: view -> map, 16 floats column-major
     std::vector<float> Tile;      ///< per cascade: atlas offset and scale, 4 floats
     std::vector<float> SplitFar;  ///< per cascade
-    std::vector<float> Texel;     ///< per cascade: one texel in the cascade's [0,1] coordinates
+    std::vector<float> Texel;     ///< per cascade: one texel along s and t in the cascade's [0,1] coordinates
     std::vector<float> Planes;    ///< per cascade: 4 view-space half-spaces (face partitions)
     bool Faces = false;           ///< some light's maps are face partitions
     std::vector<float> DepthW;    ///< per cascade: a camera space map's smallest w (0: none)

@@ -213,6 +213,14 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   {
     this->Internal->Setup = csm::computeShadowSetup(cam, direction, sceneOrNull, settings, parts);
   }
+  if (maximumResolution > 0)
+  {
+    // Each map turned to the tile it gets in the atlas (more than csm::kAtlasFullMaps cascades
+    // share it in non-square tiles).
+    csm::orientToTile(this->Internal->Setup,
+      csm::resolutionCeilingForCount(static_cast<int>(this->Internal->Setup.cascades.size()),
+        this->NumberOfCascades, maximumResolution));
+  }
   if (this->Internal->LastCount.size() > 64)
   {
     this->Internal->LastCount.clear(); // lights come and go: keep the memory bounded
@@ -475,11 +483,12 @@ void vtkCascadedShadowMapPlanner::GetCascadeMatrix(int i, vtkMatrix4x4* matrix) 
 
 void vtkCascadedShadowMapPlanner::GetCascadeMatrix(int i, vtkMatrix4x4* matrix, double border) const
 {
-  this->GetCascadeMatrix(i, matrix, border, 0);
+  const int none[2] = { 0, 0 };
+  this->GetCascadeMatrix(i, matrix, border, none);
 }
 
 void vtkCascadedShadowMapPlanner::GetCascadeMatrix(
-  int i, vtkMatrix4x4* matrix, double border, int resolution) const
+  int i, vtkMatrix4x4* matrix, double border, const int resolution[2]) const
 {
   if (!matrix)
   {
@@ -491,9 +500,9 @@ void vtkCascadedShadowMapPlanner::GetCascadeMatrix(
     return;
   }
   glm::dmat4 m = csm::withBorder(this->Internal->Setup.cascades[i].wsToClip, border);
-  if (this->WarpMode == WARP_NONE && resolution > 0)
+  if (this->WarpMode == WARP_NONE && resolution)
   {
-    m = csm::snapToTexels(m, resolution);
+    m = csm::snapToTexels(m, csm::MapSize(resolution[0], resolution[1]));
   }
   for (int row = 0; row < 4; ++row)
   {
@@ -528,11 +537,22 @@ double vtkCascadedShadowMapPlanner::GetCascadeMaximumAliasing(int i) const
   return i >= 0 && i < static_cast<int>(c.size()) ? std::max(c[i].Mx, c[i].Mz) : 0.0;
 }
 
-int vtkCascadedShadowMapPlanner::GetCascadeResolution(
-  int i, int imageHeight, int step, int ceiling) const
+void vtkCascadedShadowMapPlanner::GetCascadeResolution(
+  int i, int imageHeight, int step, const int ceiling[2], int resolution[2]) const
 {
-  return csm::resolutionForError(
-    this->GetCascadeMaximumAliasing(i), imageHeight, this->ErrorTarget, step, ceiling);
+  const auto& c = this->Internal->Setup.cascades;
+  const csm::MapSize most(ceiling[0], ceiling[1]);
+  const csm::MapSize size = i >= 0 && i < static_cast<int>(c.size())
+    ? csm::resolutionForError(c[i], imageHeight, this->ErrorTarget, step, most)
+    : most;
+  resolution[0] = size.width;
+  resolution[1] = size.height;
+}
+
+bool vtkCascadedShadowMapPlanner::GetCascadeMapTurned(int i) const
+{
+  const auto& c = this->Internal->Setup.cascades;
+  return i >= 0 && i < static_cast<int>(c.size()) && c[i].mapTurned;
 }
 
 double vtkCascadedShadowMapPlanner::GetStorageTotal() const

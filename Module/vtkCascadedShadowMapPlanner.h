@@ -54,7 +54,9 @@ public:
 
   ///@{
   /// Number of z-partitions (cascades), 1..MAXIMUM_NUMBER_OF_CASCADES; with AdaptiveCascades
-  /// (the default) the most a frame may use. Default 4.
+  /// (the default) the most a frame may use. Default 8 (MAXIMUM_NUMBER_OF_CASCADES: the error
+  /// model chooses; beyond csm::kAtlasFullMaps they share four full maps' texels in non-square
+  /// tiles, so more cascades never cost more texels).
   vtkSetClampMacro(NumberOfCascades, int, 1, MAXIMUM_NUMBER_OF_CASCADES);
   vtkGetMacro(NumberOfCascades, int);
   ///@}
@@ -228,10 +230,12 @@ public:
   /// (0: none), so that a camera that moves a little stays covered (see csm::withBorder).
   void GetCascadeMatrix(int i, vtkMatrix4x4* worldToLightClip, double border) const;
 
-  /// The same for a map of the given resolution: with WARP_NONE (orthographic cascades, whose
-  /// width is quantized) its texel grid is fixed in the world (csm::snapToTexels), so that the
-  /// shadow edges of a translating camera do not crawl. Other warp modes: as above.
-  void GetCascadeMatrix(int i, vtkMatrix4x4* worldToLightClip, double border, int resolution) const;
+  /// The same for a map of the given resolution (texels along its s and t axes): with WARP_NONE
+  /// (orthographic cascades, whose width is quantized) its texel grid is fixed in the world
+  /// (csm::snapToTexels), so that the shadow edges of a translating camera do not crawl. Other
+  /// warp modes: as above.
+  void GetCascadeMatrix(
+    int i, vtkMatrix4x4* worldToLightClip, double border, const int resolution[2]) const;
 
   /// The half-spaces that hold piece i of a face partitioning (world space, 4 planes of 4
   /// numbers: a point p is inside when a p_x + b p_y + c p_z + d >= 0; (0, 0, 0, 1) where a
@@ -251,11 +255,17 @@ public:
   /// image height / map resolution for texels per pixel. 0 for spot lights and bad indices.
   double GetCascadeMaximumAliasing(int i) const;
 
-  /// The map resolution (texels a side) cascade i needs for an aliasing error m of at most
-  /// ErrorTarget in an image imageHeight pixels high: a multiple of step, at most ceiling; the
-  /// ceiling where the error is not defined (spot lights) or ErrorTarget is 0
-  /// (csm::resolutionForError).
-  int GetCascadeResolution(int i, int imageHeight, int step, int ceiling) const;
+  /// The map resolution (texels along its s and t axes) cascade i needs for an aliasing error m
+  /// of at most ErrorTarget in an image imageHeight pixels high: multiples of step, at most
+  /// ceiling; the ceiling where the error is not defined (spot lights) or ErrorTarget is 0
+  /// (csm::resolutionForError, along each map axis).
+  void GetCascadeResolution(
+    int i, int imageHeight, int step, const int ceiling[2], int resolution[2]) const;
+
+  /// Is cascade i's map turned a quarter to fit a non-square tile (csm::orientToTile: its s axis
+  /// follows light space z)? Plan() turns the maps for the tiles of the atlas that
+  /// maximumResolution and NumberOfCascades give (csm::resolutionCeilingForCount).
+  bool GetCascadeMapTurned(int i) const;
 
   /// Storage factor of the plan (Lloyd Eq. 12 summed over the cascades) and its optimum.
   double GetStorageTotal() const;
@@ -306,7 +316,7 @@ protected:
   vtkCascadedShadowMapPlanner();
   ~vtkCascadedShadowMapPlanner() override;
 
-  int NumberOfCascades = 4;
+  int NumberOfCascades = MAXIMUM_NUMBER_OF_CASCADES;
   int WarpMode = WARP_GENERALIZED;
   int SplitScheme = SPLIT_ADAPTIVE;
   double Lambda = 0.5;

@@ -367,7 +367,8 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
   vtkCamera* camera = renderer->GetActiveCamera();
   const double aspect = renderer->GetTiledAspectRatio();
   double m[2] = { 0, 0 };
-  double resolution = t.Shadow.Resolution;
+  // Texels along the map axes that follow light space x and z.
+  double resolution[2] = { double(t.Shadow.Resolution), double(t.Shadow.Resolution) };
   if (t.Passes.Cascaded)
   {
     const auto& maps = t.Passes.Cascaded->GetShadowMapBakerPass()->GetLightMaps();
@@ -384,7 +385,10 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
     if (c < 0)
       return NAN;
     vtkCascadedShadowMapPlanner::ComputeAliasing(camera, aspect, light, lm.WorldToMap[c], p, m);
-    resolution = lm.CascadeResolution[c]; // the resolution this view's map was rendered at
+    // The resolution this view's map was rendered at (t along light space x if it was turned).
+    const bool turned = lm.MapTurned[c];
+    resolution[0] = lm.CascadeResolution[c][turned ? 1 : 0];
+    resolution[1] = lm.CascadeResolution[c][turned ? 0 : 1];
   }
   else if (t.Passes.Vtk)
   {
@@ -398,7 +402,7 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
   }
   else
     return NAN;
-  return std::max(m[0], m[1]) * imageHeight / resolution;
+  return std::max(m[0] / resolution[0], m[1] / resolution[1]) * imageHeight;
 }
 
 /// After a timed frame: what the baker did (maps rendered and kept; with --breakdown, the

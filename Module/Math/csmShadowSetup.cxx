@@ -445,11 +445,11 @@ glm::dmat4 focusMatrix(const std::vector<glm::dvec3>& lsPoints, const glm::dmat4
     { 0, 0, scale.z, -scale.z * 0.5 * (lo.z + hi.z) }, { 0, 0, 0, 1 });
 }
 
-glm::dmat4 snapToTexels(const glm::dmat4& wsToClip, int resolution)
+glm::dmat4 snapToTexels(const glm::dmat4& wsToClip, const MapSize& resolution)
 {
   // Affine: the last row is (0, 0, 0, 1).
-  if (resolution <= 0 || wsToClip[0][3] != 0.0 || wsToClip[1][3] != 0.0 ||
-    wsToClip[2][3] != 0.0 || wsToClip[3][3] != 1.0)
+  if (resolution.width <= 0 || resolution.height <= 0 || wsToClip[0][3] != 0.0 ||
+    wsToClip[1][3] != 0.0 || wsToClip[2][3] != 0.0 || wsToClip[3][3] != 1.0)
   {
     return wsToClip;
   }
@@ -459,8 +459,9 @@ glm::dmat4 snapToTexels(const glm::dmat4& wsToClip, int resolution)
     // clip = s u + b with u the world coordinate along the row's unit axis; the texel edges are
     // at u = (k 2 / R - 1 - b) / s: fixed in the world when b / (2 / R) is a whole number (R
     // even) or a half (R odd).
-    const double texel = 2.0 / resolution;
-    const double shift = resolution % 2 == 0 ? 0.0 : 0.5;
+    const int texels = row == 0 ? resolution.width : resolution.height;
+    const double texel = 2.0 / texels;
+    const double shift = texels % 2 == 0 ? 0.0 : 0.5;
     const double b = wsToClip[3][row];
     const double snappedB = (std::round(b / texel - shift) + shift) * texel;
     if (std::isfinite(snappedB))
@@ -727,18 +728,69 @@ ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosi
   return setup;
 }
 
-double predictedError(const ShadowSetup& setup, double imageHeight, int resolution)
+glm::dvec2 mapAxisAliasing(const Cascade& cascade)
 {
-  if (setup.cascades.empty() || resolution <= 0)
+  return cascade.mapTurned ? glm::dvec2(cascade.Mz, cascade.Mx) : glm::dvec2(cascade.Mx, cascade.Mz);
+}
+
+namespace
+{
+/// max(M_s / width, M_t / height) for the map as it is turned now.
+double errorAsTurned(const Cascade& cascade, const MapSize& map)
+{
+  const glm::dvec2 m = mapAxisAliasing(cascade);
+  return std::max(m.x / map.width, m.y / map.height);
+}
+}
+
+double predictedError(const Cascade& cascade, double imageHeight, const MapSize& map)
+{
+  if (map.width <= 0 || map.height <= 0)
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  Cascade turned = cascade;
+  turned.mapTurned = !cascade.mapTurned;
+  return imageHeight * std::min(errorAsTurned(cascade, map), errorAsTurned(turned, map));
+}
+
+double predictedError(const ShadowSetup& setup, double imageHeight, const MapSize& map)
+{
+  if (setup.cascades.empty() || map.width <= 0 || map.height <= 0)
   {
     return std::numeric_limits<double>::infinity();
   }
   double worst = 0.0;
   for (const Cascade& c : setup.cascades)
   {
-    worst = std::max({ worst, c.Mx, c.Mz });
+    worst = std::max(worst, predictedError(c, imageHeight, map));
   }
-  return worst * imageHeight / resolution;
+  return worst;
+}
+
+void orientToTile(ShadowSetup& setup, const MapSize& tile)
+{
+  if (tile.width <= 0 || tile.height <= 0 || tile.width == tile.height)
+  {
+    return;
+  }
+  for (Cascade& c : setup.cascades)
+  {
+    Cascade turned = c;
+    turned.mapTurned = !c.mapTurned;
+    if (!(errorAsTurned(turned, tile) < errorAsTurned(c, tile)))
+    {
+      continue;
+    }
+    // New s = old t, new t = -old s (glm is column-major: m[column][row]).
+    for (int column = 0; column < 4; ++column)
+    {
+      const double s = c.wsToClip[column][0];
+      c.wsToClip[column][0] = c.wsToClip[column][1];
+      c.wsToClip[column][1] = -s;
+    }
+    c.mapTurned = !c.mapTurned;
+  }
 }
 
 ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& wsLightDirection,
@@ -756,7 +808,8 @@ ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& w
   ShadowSetup logPlan =
     computeShadowSetup(camera, wsLightDirection, sceneBounds, s, receiverParts);
   // The common factor imageHeight / resolution does not change the order.
-  return logPlan.status == Status::Ok && predictedError(logPlan, 1.0, 1) < predictedError(plan, 1.0, 1)
+  return logPlan.status == Status::Ok &&
+      predictedError(logPlan, 1.0, MapSize(1)) < predictedError(plan, 1.0, MapSize(1))
     ? logPlan
     : plan;
 }
@@ -823,27 +876,35 @@ AtlasGrid atlasLayout(int mostCascades, int resolution)
   AtlasGrid atlas;
   if (mostCascades < 1 || resolution < 1)
   {
+    atlas.tile = MapSize(0);
     return atlas;
   }
   atlas.columns = std::min(mostCascades, kAtlasFullMaps);
-  atlas.tile = resolution;
+  atlas.tile = MapSize(resolution);
   return atlas;
 }
 
 AtlasGrid atlasGrid(int count, const AtlasGrid& atlas)
 {
   AtlasGrid grid;
-  if (count < 1 || atlas.tile < 1)
+  if (count < 1 || atlas.tile.width < 1 || atlas.tile.height < 1)
   {
     return grid;
   }
-  const long long width = static_cast<long long>(atlas.columns) * atlas.tile;
-  const long long height = static_cast<long long>(atlas.rows) * atlas.tile;
+  const long long width = static_cast<long long>(atlas.columns) * atlas.tile.width;
+  const long long height = static_cast<long long>(atlas.rows) * atlas.tile.height;
+  auto better = [](const MapSize& a, const MapSize& b) {
+    const int shortA = std::min(a.width, a.height), shortB = std::min(b.width, b.height);
+    return shortA != shortB ? shortA > shortB
+                            : static_cast<long long>(a.width) * a.height >
+        static_cast<long long>(b.width) * b.height;
+  };
   for (int columns = 1; columns <= count; ++columns)
   {
     const int rows = (count + columns - 1) / columns;
-    const int tile = static_cast<int>(std::min(width / columns, height / rows));
-    if (tile > grid.tile)
+    const MapSize tile(static_cast<int>(std::min<long long>(width / columns, atlas.tile.width)),
+      static_cast<int>(std::min<long long>(height / rows, atlas.tile.height)));
+    if (better(tile, grid.tile))
     {
       grid.columns = columns;
       grid.rows = rows;
@@ -853,10 +914,11 @@ AtlasGrid atlasGrid(int count, const AtlasGrid& atlas)
   return grid;
 }
 
-int resolutionCeilingForCount(int count, int mostCascades, int resolution)
+MapSize resolutionCeilingForCount(int count, int mostCascades, int resolution)
 {
   const AtlasGrid atlas = atlasLayout(std::max(mostCascades, count), resolution);
-  return std::min(resolution, atlasGrid(count, atlas).tile);
+  const MapSize tile = atlasGrid(count, atlas).tile;
+  return MapSize(std::min(resolution, tile.width), std::min(resolution, tile.height));
 }
 
 int resolutionForError(double maxAliasing, double imageHeight, double targetError, int step,
@@ -872,6 +934,16 @@ int resolutionForError(double maxAliasing, double imageHeight, double targetErro
   }
   const int steps = static_cast<int>(std::ceil(texels / step));
   return std::min(ceiling, std::max(step, steps * step));
+}
+
+MapSize resolutionForError(const Cascade& cascade, double imageHeight, double targetError,
+  int step, const MapSize& ceiling)
+{
+  // Both axes get the texels of the larger M (a map sharper along its other axis than the target
+  // asks costs little and keeps the filter's footprint round); each within its side of the tile.
+  const double m = std::max(cascade.Mx, cascade.Mz);
+  return MapSize(resolutionForError(m, imageHeight, targetError, step, ceiling.width),
+    resolutionForError(m, imageHeight, targetError, step, ceiling.height));
 }
 
 Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
@@ -894,9 +966,14 @@ Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera, const glm:
   auto gradient = [&](int row) { // d(ndc_row)/d(ws point)
     return (glm::dvec3(t[row]) * h.w - glm::dvec3(t[3]) * h[row]) / (h.w * h.w);
   };
-  // Lloyd et al. 2006, Eq. 3-4 with res = 1: s, t in [0, 1] are half the NDC.
-  const double dsdx = 0.5 * std::abs(glm::dot(gradient(0), wsMapX));
-  const double dtdz = 0.5 * std::abs(glm::dot(gradient(1), wsMapZ));
+  // Lloyd et al. 2006, Eq. 3-4 with res = 1: s, t in [0, 1] are half the NDC. The map axis
+  // along ls x is s, or t for a map turned a quarter (orientToTile: its s row has nothing
+  // along ls x; a map whose axes are not ls x and z, VTK's say, is read as it is).
+  const double sAlongX = std::abs(glm::dot(glm::dvec3(t[0]), wsMapX));
+  const double tAlongX = std::abs(glm::dot(glm::dvec3(t[1]), wsMapX));
+  const bool turned = sAlongX <= 1e-9 * tAlongX;
+  const double dsdx = 0.5 * std::abs(glm::dot(gradient(turned ? 1 : 0), wsMapX));
+  const double dtdz = 0.5 * std::abs(glm::dot(gradient(turned ? 0 : 1), wsMapZ));
   Aliasing m;
   m.mx = (dsdx > 0.0 ? 1.0 / dsdx : kInf) / wi;
   m.mz = (dtdz > 0.0 ? 1.0 / dtdz : kInf) / wi;

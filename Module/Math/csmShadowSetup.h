@@ -77,6 +77,31 @@ struct Cascade
   double Mx = 0.0;               ///< Lloyd et al. 2006, Eq. 9-10 as in §4.4: maxima over wsBody
   double Mz = 0.0;
   double storage = 0.0;          ///< Lloyd et al. 2006, Eq. 12: critical texels / image pixels = Mx Mz / aspect
+  /// The map is turned a quarter (orientToTile): its s axis follows ls z and its t axis ls x, so
+  /// that Mz gets the tile's width and Mx its height.
+  bool mapTurned = false;
+};
+
+/// Texels of a map or a tile along its s axis (width) and t axis (height).
+struct MapSize
+{
+  int width = 0;
+  int height = 0;
+  MapSize() = default;
+  MapSize(int side) // NOLINT: a square map of side texels
+    : width(side)
+    , height(side)
+  {
+  }
+  MapSize(int w, int h)
+    : width(w)
+    , height(h)
+  {
+  }
+  bool operator==(const MapSize& other) const
+  {
+    return width == other.width && height == other.height;
+  }
 };
 
 enum class Status
@@ -150,32 +175,49 @@ constexpr double kCountHysteresis = 0.8;
 /// texels (and the memory) do not grow with the number of cascades.
 constexpr int kAtlasFullMaps = 4;
 
-/// An atlas, or a grid of equal square tiles in one: texels a side of the tiles, and their
+/// An atlas, or a grid of equal tiles in one: texels of the tiles along s and t, and their
 /// columns and rows.
 struct AtlasGrid
 {
   int columns = 1;
   int rows = 1;
-  int tile = 0;
+  MapSize tile;
 };
 
 /// The atlas for at most mostCascades maps of resolution texels a side: min(mostCascades,
-/// kAtlasFullMaps) tiles of that resolution in one row (a 1 x 1 grid of 0 texels for counts or
-/// resolutions below 1).
+/// kAtlasFullMaps) square tiles of that resolution in one row (a 1 x 1 grid of 0 texels for
+/// counts or resolutions below 1).
 AtlasGrid atlasLayout(int mostCascades, int resolution);
 
-/// The grid of count equal square tiles in an atlas of atlas.columns x atlas.rows tiles of
-/// atlas.tile texels: of the grids with columns x rows >= count, the one whose tiles are largest
-/// (ties: fewer columns).
+/// The grid of count equal tiles in an atlas of atlas.columns x atlas.rows tiles of atlas.tile
+/// texels, no side longer than atlas.tile's: of the grids with columns x rows >= count, the one
+/// whose tiles have the longest short side, then the largest area (ties: fewer columns). Tiles
+/// need not be square: 5 cascades in a row of 4 x 2048 texels get 1638 x 2048 each, and a
+/// cascade turned to its tile (orientToTile) keeps 2048 texels where its error is largest.
 AtlasGrid atlasGrid(int count, const AtlasGrid& atlas);
 
-/// The largest map resolution count cascades can have in the atlas of atlasLayout(mostCascades,
-/// resolution): resolution up to kAtlasFullMaps cascades, less beyond (4 x 2048 texels a row: 5
-/// cascades 1638, 6 cascades 1365, 8 cascades 1024). 0 for counts or resolutions below 1.
-int resolutionCeilingForCount(int count, int mostCascades, int resolution);
+/// The largest map count cascades can have in the atlas of atlasLayout(mostCascades,
+/// resolution): resolution a side up to kAtlasFullMaps cascades, less beyond (4 x 2048 texels a
+/// row: 5 cascades 1638 x 2048, 6 cascades 1365 x 2048, 8 cascades 2048 x 1024). 0 x 0 for counts
+/// or resolutions below 1.
+MapSize resolutionCeilingForCount(int count, int mostCascades, int resolution);
 
-/// The predicted worst error of a plan (see computeShadowSetupForError): +infinity without cascades.
-double predictedError(const ShadowSetup& setup, double imageHeight, int resolution);
+/// A cascade's predicted worst error on a map of the given size, turned as orientToTile would
+/// turn it: min over both orientations of max(M_s / width, M_t / height) times imageHeight.
+/// +infinity for a map without texels.
+double predictedError(const Cascade& cascade, double imageHeight, const MapSize& map);
+
+/// The predicted worst error of a plan (see computeShadowSetupForError): the largest of its
+/// cascades' on maps of the given size; +infinity without cascades.
+double predictedError(const ShadowSetup& setup, double imageHeight, const MapSize& map);
+
+/// Turn each cascade's map a quarter (rows s, t of wsToClip to t, -s: a rotation, so the
+/// triangles keep their winding) where that gives its larger error the longer side of a
+/// non-square tile, and set its mapTurned. A square tile changes nothing.
+void orientToTile(ShadowSetup& setup, const MapSize& tile);
+
+/// Lloyd's M along the cascade's map axes s and t: (Mx, Mz), or (Mz, Mx) where its map is turned.
+glm::dvec2 mapAxisAliasing(const Cascade& cascade);
 
 /// One perspective map for a spot light at wsLightPosition shining along wsLightAxis with the
 /// given cone half-angle (< 90 degrees), fitted to what the view needs: the part of the visible
@@ -187,6 +229,8 @@ ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosi
 
 /// Lloyd et al. 2006, Eq. 2-4 at a world point for a light clip matrix: beam widths of one shadow-map texel
 /// (map resolution 1) along ls x and ls z over the width of one image pixel (image height 1).
+/// Each is measured along the map axis that follows it: s for ls x and t for ls z, the other
+/// way round for a map turned by orientToTile (whose s row has nothing along ls x).
 Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
   const glm::dvec3& wsLightDirection, const glm::dvec3& wsPoint);
 
@@ -211,6 +255,13 @@ std::string lightDirectionError(const glm::dvec3& wsLightDirection);
 int resolutionForError(double maxAliasing, double imageHeight, double targetError, int step,
   int ceiling);
 
+/// The same for a cascade's map on a tile of at most ceiling texels along s and t: the texels
+/// its larger M needs (max(Mx, Mz)) along both axes, each in [step, its side of the ceiling].
+/// (Sized per axis, the map would be sharper along one axis than the other and the filter's
+/// footprint elongated: the box and plane scene of the tests then darkens 4 % more pixels.)
+MapSize resolutionForError(const Cascade& cascade, double imageHeight, double targetError,
+  int step, const MapSize& ceiling);
+
 /// The warp of a cascade in light space (rows: map s, map t, depth, w): orthographic for an
 /// infinite n', else a perspective along ls z whose centre lies n' before the body's nearest
 /// ls z (Barroso & Celes 2007, Fig. 4 and 6).
@@ -229,7 +280,7 @@ glm::dmat4 focusMatrix(const std::vector<glm::dvec3>& lsPoints, const glm::dmat4
 /// frames of a translating camera coincide, and shadow edges do not crawl (the cascaded-maps
 /// stabilisation of Vázquez's and King's slides). Unchanged when the matrix is projective or the
 /// resolution is not positive.
-glm::dmat4 snapToTexels(const glm::dmat4& wsToClip, int resolution);
+glm::dmat4 snapToTexels(const glm::dmat4& wsToClip, const MapSize& resolution);
 
 /// True when no point of the box can land inside the light clip volume (conservative test in
 /// homogeneous clip space). With depthClamp, points nearer than the near plane count as inside.

@@ -26,7 +26,7 @@ float csmHash(vec2 p)
 }
 
 // One hardware bilinear compare at uv in a cascade's [0,1]^2, kept half a texel inside its tile.
-float csmTap(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float z)
+float csmTap(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float z)
 {
   vec2 inside = clamp(uv, vec2(0.5 * texel), vec2(1.0 - 0.5 * texel));
   return textureLod(map, vec3(tile.xy + inside * tile.zw, z), 0.0);
@@ -38,7 +38,7 @@ float csmTap(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float z)
 // centres); each adjacent pair of texels is one bilinear tap of weight w0 + w1 placed w1/(w0+w1)
 // past the first (the "optimized PCF" of The Witness / Castano 2013, exact for the box of
 // bilinear compares). Every tap keeps its own receiver-plane depth (Barroso & Celes 2007, §2.2).
-float csmGridPCF(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float zRef, vec2 dz)
+float csmGridPCF(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float zRef, vec2 dz)
 {
   int r = CSM_PCF_RADIUS;
   float maxStep = 0.05; // keep grazing receivers from throwing the taps far off their plane
@@ -69,7 +69,7 @@ float csmGridPCF(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float zRe
 
 // Jittered circular kernel of radius r + 0.5 texels: as many bilinear taps as the grid kernel,
 // on a spiral rotated per pixel, so that the taps stay unaligned (Barroso & Celes 2007, §2.2).
-float csmJitteredPCF(sampler2DShadow map, vec4 tile, float texel, vec2 uv, float zRef, vec2 dz)
+float csmJitteredPCF(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float zRef, vec2 dz)
 {
   int r = CSM_PCF_RADIUS;
   int n = (r + 1) * (r + 1);
@@ -103,7 +103,7 @@ vec4 csmDisplacement(mat4 toMap, vec3 d)
 // Visibility (1 lit, 0 shadowed) of a point given in a cascade's homogeneous map coordinates h,
 // with the screen derivatives hx, hy of those coordinates (exact for the projective map); the
 // aliasing error m there for the error view (Lloyd et al. 2006, Eq. 1).
-float csmVisibility(sampler2DShadow map, vec4 tile, float texel, vec4 h, vec4 hx, vec4 hy,
+float csmVisibility(sampler2DShadow map, vec4 tile, vec2 texel, vec4 h, vec4 hx, vec4 hy,
   float biasScale, out float m)
 {
   vec3 p = h.xyz / h.w;
@@ -112,7 +112,7 @@ float csmVisibility(sampler2DShadow map, vec4 tile, float texel, vec4 h, vec4 hx
   m = 0.0;
 #if CSM_DEBUG == CSM_DEBUG_ERROR
   // A texel's footprint in pixels, 1 / smallest singular value of d(texel)/d(pixel).
-  mat2 j = mat2(dx.xy, dy.xy) / texel;
+  mat2 j = mat2(dx.xy / texel, dy.xy / texel);
   float e = dot(j[0], j[0]) + dot(j[1], j[1]);
   float d = abs(determinant(j));
   float smin2 = 0.5 * (e - sqrt(max(e * e - 4.0 * d * d, 0.0)));
@@ -123,7 +123,7 @@ float csmVisibility(sampler2DShadow map, vec4 tile, float texel, vec4 h, vec4 hx
   vec2 dz = abs(det) > 1e-24
     ? vec2(dy.y * dx.z - dx.y * dy.z, dx.x * dy.z - dy.x * dx.z) / det
     : vec2(0.0);
-  float zSlopePerTexel = min((abs(dz.x) + abs(dz.y)) * texel, 0.05);
+  float zSlopePerTexel = min(dot(abs(dz), texel), 0.05);
   float zRef = p.z - biasScale * csmConstantBias - csmSlopeBias * zSlopePerTexel;
 #if CSM_KERNEL == CSM_KERNEL_GRID
   return csmGridPCF(map, tile, texel, p.xy, zRef, dz);
@@ -141,10 +141,11 @@ float csmDither()
 }
 
 // Per shadowed light j (CSM_LIGHTS of them), its cascades at [j * CSM_MAX_CASCADES, ...): view
-// space -> map matrices, atlas tiles, texel sizes (in the cascade's [0,1]), far split depths.
+// space -> map matrices, atlas tiles, texel sizes along s and t (in the cascade's [0,1]), far
+// split depths.
 uniform mat4 csmToMap[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform vec4 csmTile[CSM_LIGHTS * CSM_MAX_CASCADES];
-uniform float csmTexel[CSM_LIGHTS * CSM_MAX_CASCADES];
+uniform vec2 csmTexel[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmSplitFar[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmSplitNear[CSM_LIGHTS];
 #ifdef CSM_CAMERA_SPACE

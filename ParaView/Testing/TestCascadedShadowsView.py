@@ -199,7 +199,7 @@ settings = {"WarpMode": ("Generalized", "LiSPSM", "WarpMode: lispsm"),
             "PCFSize": ("3x3", "5x5", "PCFSize: 5"),
             "ShadowDarkness": (1.0, 0.5, "ShadowDarkness: 0.5"),
             "ShadowDebugMode": ("Off", "Cascades", "DebugMode: 1"),
-            "NumberOfCascades": (4, 3, "NumberOfCascades: 3"),
+            "NumberOfCascades": (8, 3, "NumberOfCascades: 3"),
             "ShadowMapResolution": ("2048", "1024", "Resolution: 1024")}
 for name, (default, _, _) in settings.items():
     start = view.GetProperty(name).GetData()

@@ -760,8 +760,9 @@ TEST(Steps, CascadeCountFromTheErrorModel)
     auto next = settingsUpTo8;
     next.split.k = kMost + 1;
     const double eNext = csm::predictedError(
-      csm::computeShadowSetup(longView, lightAt(longView, 0.0), nullptr, next, nullptr), 600.0,
-      csm::resolutionCeilingForCount(kMost + 1, 8, 2048));
+      csm::computeShadowSetupForCount(
+        longView, lightAt(longView, 0.0), nullptr, next, nullptr, kMost + 1),
+      600.0, csm::resolutionCeilingForCount(kMost + 1, 8, 2048));
     EXPECT_GE(eNext, csm::kCountHysteresis * eMost);
   }
   std::printf("unreachable target, f/n 1e4, light behind: %d cascades (error %.2f; four: %.2f)\n",
@@ -772,8 +773,9 @@ TEST(Steps, CascadeCountFromTheErrorModel)
     auto fewer = settingsUpTo8;
     fewer.split.k = kMost - 1;
     const double eFewer = csm::predictedError(
-      csm::computeShadowSetup(longView, lightAt(longView, 0.0), nullptr, fewer, nullptr), 600.0,
-      csm::resolutionCeilingForCount(kMost - 1, 8, 2048));
+      csm::computeShadowSetupForCount(
+        longView, lightAt(longView, 0.0), nullptr, fewer, nullptr, kMost - 1),
+      600.0, csm::resolutionCeilingForCount(kMost - 1, 8, 2048));
     const csm::ShadowSetup kept = csm::computeShadowSetupForError(longView,
       lightAt(longView, 0.0), nullptr, settingsUpTo8, nullptr, 600.0, 2048, 1e-6, kMost - 1);
     EXPECT_EQ(kept.cascades.size(),
@@ -812,30 +814,98 @@ TEST(Steps, CascadesShareOneAtlasOfFourFullMaps)
   const csm::AtlasGrid two = csm::atlasLayout(2, 2048);
   EXPECT_EQ(two.columns, 2);
   EXPECT_EQ(two.rows, 1);
-  EXPECT_EQ(two.tile, 2048);
+  EXPECT_EQ(two.tile, csm::MapSize(2048));
   const csm::AtlasGrid six = csm::atlasLayout(6, 2048);
   EXPECT_EQ(six.columns, 4); // never more than four full maps' texels
   EXPECT_EQ(six.rows, 1);
-  EXPECT_EQ(six.tile, 2048);
-  // More cascades share the row in the grid with the largest tiles.
-  const int expected[9] = { 0, 2048, 2048, 2048, 2048, 1638, 1365, 1170, 1024 };
+  EXPECT_EQ(six.tile, csm::MapSize(2048));
+  // More cascades share the row in the grid whose tiles have the longest short side: tall
+  // tiles of the row's full height.
+  const csm::MapSize expected[9] = { {}, { 2048, 2048 }, { 2048, 2048 }, { 2048, 2048 },
+    { 2048, 2048 }, { 1638, 2048 }, { 1365, 2048 }, { 1170, 2048 }, { 2048, 1024 } };
   for (int k = 1; k <= 8; ++k)
   {
     const csm::AtlasGrid g = csm::atlasGrid(k, six);
     EXPECT_EQ(g.tile, expected[k]) << k << " cascades";
     EXPECT_GE(g.columns * g.rows, k);
-    EXPECT_LE(g.columns * g.tile, 4 * 2048);
-    EXPECT_LE(g.rows * g.tile, 2048);
+    EXPECT_LE(g.columns * g.tile.width, 4 * 2048);
+    EXPECT_LE(g.rows * g.tile.height, 2048);
     EXPECT_EQ(csm::resolutionCeilingForCount(k, 6, 2048), expected[k]);
   }
-  EXPECT_EQ(csm::atlasGrid(8, six).columns, 4); // 4 x 2 and 8 x 1 tie at 1024: fewer columns
+  // 4 x 2 and 8 x 1 tie at 1024 texels on the short side and in area: fewer columns.
+  EXPECT_EQ(csm::atlasGrid(8, six).columns, 4);
   // A ceiling below the tile (while interacting) stays the ceiling; bad counts give nothing.
-  EXPECT_EQ(csm::resolutionCeilingForCount(2, 6, 1024), 1024);
-  EXPECT_EQ(csm::resolutionCeilingForCount(0, 6, 2048), 0);
-  EXPECT_EQ(csm::resolutionCeilingForCount(3, 6, 0), 0);
-  EXPECT_EQ(csm::atlasLayout(0, 2048).tile, 0);
+  EXPECT_EQ(csm::resolutionCeilingForCount(2, 6, 1024), csm::MapSize(1024));
+  EXPECT_EQ(csm::resolutionCeilingForCount(6, 6, 1024), csm::MapSize(682, 1024));
+  EXPECT_EQ(csm::resolutionCeilingForCount(0, 6, 2048), csm::MapSize(0));
+  EXPECT_EQ(csm::resolutionCeilingForCount(3, 6, 0), csm::MapSize(0));
+  EXPECT_EQ(csm::atlasLayout(0, 2048).tile, csm::MapSize(0));
   // More than the most planned: the atlas grows to hold them (a caller's safety, not a use).
-  EXPECT_EQ(csm::resolutionCeilingForCount(3, 1, 2048), 2048);
+  EXPECT_EQ(csm::resolutionCeilingForCount(3, 1, 2048), csm::MapSize(2048));
+}
+
+TEST(Steps, MapsTurnToTheirTilesWhereTheLongSideServesTheLargerError)
+{
+  // The light along a 4:3 view (gamma 0): no warp helps, and each map spans the frustum's
+  // cross-section, a third wider than high, so its error along the image's width is the larger.
+  const csm::Camera cam = camera(5.0, 6000.0, 50.0, 4.0 / 3.0);
+  const glm::dvec3 light = lightAt(cam, 0.0);
+  const csm::ShadowSetup plain =
+    csm::computeShadowSetup(cam, light, nullptr, settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 5));
+  ASSERT_EQ(plain.status, csm::Status::Ok);
+  ASSERT_EQ(plain.cascades.size(), 5u);
+  const csm::MapSize tile = csm::resolutionCeilingForCount(5, 8, 2048); // 1638 x 2048
+  csm::ShadowSetup turned = plain;
+  csm::orientToTile(turned, tile);
+  int turnedCount = 0;
+  for (size_t i = 0; i < plain.cascades.size(); ++i)
+  {
+    const csm::Cascade& before = plain.cascades[i];
+    const csm::Cascade& after = turned.cascades[i];
+    EXPECT_FALSE(before.mapTurned);
+    // Turned exactly where the larger M gets the longer side (height) that way.
+    EXPECT_EQ(after.mapTurned, before.Mx > before.Mz) << i;
+    turnedCount += after.mapTurned ? 1 : 0;
+    const glm::dvec2 m = csm::mapAxisAliasing(after);
+    EXPECT_GE(m.y, m.x) << "the larger error along the tile's 2048 texels";
+    // The predicted error is that of the turned map, never more than unturned.
+    const double unturned = 600.0 * std::max(before.Mx / tile.width, before.Mz / tile.height);
+    const double asTurned = 600.0 * std::max(m.x / tile.width, m.y / tile.height);
+    EXPECT_NEAR(csm::predictedError(after, 600.0, tile), asTurned, 1e-12 * asTurned);
+    EXPECT_NEAR(csm::predictedError(before, 600.0, tile), asTurned, 1e-12 * asTurned);
+    EXPECT_LE(asTurned, unturned);
+    // A rotation, not a mirror: the same body in the same [-1,1]^3, s' = t, t' = -s, same depth;
+    // and Lloyd's m along ls x and z is the same measured on either map.
+    for (const glm::dvec3& p : before.wsBody)
+    {
+      const glm::dvec3 a = toNdc(before.wsToClip, p);
+      const glm::dvec3 b = toNdc(after.wsToClip, p);
+      const glm::dvec3 expect = after.mapTurned ? glm::dvec3(a.y, -a.x, a.z) : a;
+      EXPECT_NEAR(glm::length(b - expect), 0.0, 1e-9);
+      const csm::Aliasing ma = csm::aliasingAt(before.wsToClip, cam, light, p);
+      const csm::Aliasing mb = csm::aliasingAt(after.wsToClip, cam, light, p);
+      EXPECT_NEAR(ma.mx, mb.mx, 1e-9 * ma.mx);
+      EXPECT_NEAR(ma.mz, mb.mz, 1e-9 * ma.mz);
+    }
+    // The texels the larger M needs along both axes, each within its side of the tile.
+    const csm::MapSize need = csm::resolutionForError(after, 600.0, 1.0, 64, tile);
+    EXPECT_EQ(need.width, csm::resolutionForError(m.y, 600.0, 1.0, 64, tile.width));
+    EXPECT_EQ(need.height, csm::resolutionForError(m.y, 600.0, 1.0, 64, tile.height));
+  }
+  EXPECT_GT(turnedCount, 0);
+  // Five tall tiles beat five square tiles of the same row (1638 a side) on this view.
+  const double square = csm::predictedError(plain, 600.0, csm::MapSize(1638));
+  const double tall = csm::predictedError(turned, 600.0, tile);
+  EXPECT_LT(tall, 0.9 * square);
+  std::printf("light along a 1:1200 view, 5 cascades: %.2f in 1638 x 2048 tiles, %.2f in 1638^2\n",
+    tall, square);
+  // A square tile turns nothing.
+  csm::ShadowSetup same = plain;
+  csm::orientToTile(same, csm::MapSize(2048));
+  for (const csm::Cascade& c : same.cascades)
+  {
+    EXPECT_FALSE(c.mapTurned);
+  }
 }
 
 TEST(Steps, OrthographicMapsKeepTheirTexelGridWhileTheCameraTranslates)
@@ -868,7 +938,7 @@ TEST(Steps, OrthographicMapsKeepTheirTexelGridWhileTheCameraTranslates)
       const csm::Cascade& cascade = setup.cascades[c];
       ASSERT_TRUE(std::isinf(cascade.nPrime));
       const int r = csm::resolutionForError(std::max(cascade.Mx, cascade.Mz), 600.0, 1.0, 64, 2048);
-      const glm::dmat4 snapped = csm::snapToTexels(cascade.wsToClip, r);
+      const glm::dmat4 snapped = csm::snapToTexels(cascade.wsToClip, csm::MapSize(r));
       for (const glm::dvec3& p : cascade.wsBody) // still covers its body
       {
         const glm::dvec3 q = toNdc(snapped, p);

@@ -31,14 +31,17 @@ void project(vtkMatrix4x4* m, const double p[3], double ndc[3])
 TEST(Planner, DefaultsArePapersRecommendation)
 {
   vtkNew<vtkCascadedShadowMapPlanner> planner;
-  // Up to 4 cascades (Barroso & Celes use 2-4), as many as the error target needs.
-  EXPECT_EQ(planner->GetNumberOfCascades(), 4);
+  // Up to 8 cascades, as many as the error target needs (Barroso & Celes use 2-4; more only
+  // where four cannot reach it).
+  EXPECT_EQ(planner->GetNumberOfCascades(), 8);
   EXPECT_TRUE(planner->GetAdaptiveCascades());
   EXPECT_EQ(planner->GetWarpMode(), vtkCascadedShadowMapPlanner::WARP_GENERALIZED);
   EXPECT_EQ(planner->GetSplitScheme(), vtkCascadedShadowMapPlanner::SPLIT_ADAPTIVE);
   EXPECT_DOUBLE_EQ(planner->GetAlpha(), 2.0);
   planner->SetNumberOfCascades(20);
   EXPECT_EQ(planner->GetNumberOfCascades(), 8);
+  planner->SetNumberOfCascades(0);
+  EXPECT_EQ(planner->GetNumberOfCascades(), 1);
   std::ostringstream os;
   planner->Print(os);
   EXPECT_NE(os.str().find("WarpMode: generalized"), std::string::npos);

@@ -53,7 +53,7 @@ std::string fragmentShader(int constantRadius)
     "  vec4 tile = vec4(0.0, 0.0, 1.0, 1.0);\n"
     "  float zRef = 0.5;\n"
     "  int r = CSM_PCF_RADIUS;\n"
-    "  float texel = 1.0 / " + std::to_string(kMap) + ".0;\n"
+    "  vec2 texel = vec2(1.0 / " + std::to_string(kMap) + ".0);\n"
     "  float fast = csmGridPCF(map, tile, texel, uv, zRef, vec2(0.0));\n"
     "  float reference = 0.0;\n"
     "  for (int i = -r; i <= r; ++i)\n"

@@ -121,14 +121,15 @@ TEST(Passes, ResolutionAndCascadesCanChangeBetweenFrames)
   baker->SetResolution(1024);
   baker->SetNumberOfCascades(6);
   auto six = scene.Render();
-  // Four full tiles a row at most: six cascades share that area, 6 x 1 tiles of 682 texels.
+  // Four full tiles a row at most: six cascades share that area, 6 x 1 tiles of 682 x 1024.
   const auto& maps = baker->GetLightMaps()[0];
   EXPECT_EQ(maps.Atlas->GetWidth(), 4096u);
   EXPECT_EQ(maps.Atlas->GetHeight(), 1024u);
   ASSERT_EQ(maps.NumberOfCascades, 6);
   for (int c = 0; c < 6; ++c)
   {
-    EXPECT_LE(maps.CascadeResolution[c], 682) << c;
+    EXPECT_LE(maps.CascadeResolution[c][0], 682) << c;
+    EXPECT_LE(maps.CascadeResolution[c][1], 1024) << c;
     EXPECT_NEAR(maps.Tile[c][0], c * 682.0 / 4096.0, 1e-12) << c;
     EXPECT_EQ(maps.Tile[c][1], 0.0) << c;
   }
@@ -571,7 +572,8 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
   const auto& dragged = baker->GetLightMaps(keep.Renderer).at(0);
   for (int c = 0; c < dragged.NumberOfCascades; ++c)
   {
-    EXPECT_LE(dragged.CascadeResolution[c], baker->GetInteractiveResolution());
+    EXPECT_LE(dragged.CascadeResolution[c][0], baker->GetInteractiveResolution());
+    EXPECT_LE(dragged.CascadeResolution[c][1], baker->GetInteractiveResolution());
   }
   // The still frame after dragging returns to tight maps (full quality): identical images.
   keep.Window->SetDesiredUpdateRate(0.0001);
@@ -581,7 +583,8 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
   const auto& reference = b->GetShadowMapBakerPass()->GetLightMaps(fresh.Renderer).at(0);
   for (int c = 0; c < still.NumberOfCascades; ++c)
   {
-    EXPECT_EQ(still.CascadeResolution[c], reference.CascadeResolution[c]);
+    EXPECT_EQ(still.CascadeResolution[c][0], reference.CascadeResolution[c][0]);
+    EXPECT_EQ(still.CascadeResolution[c][1], reference.CascadeResolution[c][1]);
   }
   EXPECT_EQ(baker->GetLastCascadeRenders(), still.NumberOfCascades);
 }
@@ -960,24 +963,34 @@ TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
   const long full = halfDark(scene.Render());
   for (int c = 0; c < baker->GetLightMaps().at(0).NumberOfCascades; ++c)
   {
-    EXPECT_EQ(baker->GetLightMaps().at(0).CascadeResolution[c], baker->GetResolution());
+    // (Its tile: NumberOfCascades of them share four full maps' texels.)
+    const auto& full = baker->GetLightMaps().at(0);
+    EXPECT_EQ(full.CascadeResolution[c][0], full.Resolution[0]);
+    EXPECT_EQ(full.CascadeResolution[c][1], full.Resolution[1]);
   }
   baker->SetErrorTarget(1.0);
   const long needed = halfDark(scene.Render());
   const auto& maps = baker->GetLightMaps().at(0);
   vtkCascadedShadowMapPlanner* planner = baker->GetPlanner();
   long texels = 0;
+  const int ceiling[2] = { baker->GetResolution(), baker->GetResolution() };
   for (int c = 0; c < maps.NumberOfCascades; ++c)
   {
-    const int r = maps.CascadeResolution[c];
+    const int* r = maps.CascadeResolution[c];
     // The planner's choice for this 240-pixel-high view, and fewer texels than the ceiling.
-    EXPECT_EQ(r, planner->GetCascadeResolution(
-                   c, 240, vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, baker->GetResolution()));
-    EXPECT_LT(r, baker->GetResolution());
-    EXPECT_EQ(r % vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, 0);
-    // Predicted worst error at this resolution: at most the target.
-    EXPECT_LE(planner->GetCascadeMaximumAliasing(c) * 240 / r, 1.0);
-    texels += static_cast<long>(r) * r;
+    int planned[2] = { 0, 0 };
+    planner->GetCascadeResolution(
+      c, 240, vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, ceiling, planned);
+    for (int axis = 0; axis < 2; ++axis)
+    {
+      EXPECT_EQ(r[axis], planned[axis]);
+      EXPECT_LT(r[axis], baker->GetResolution());
+      EXPECT_EQ(r[axis] % vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, 0);
+    }
+    // Predicted worst error at this resolution (the larger M along the longer side): at most
+    // the target.
+    EXPECT_LE(planner->GetCascadeMaximumAliasing(c) * 240 / std::max(r[0], r[1]), 1.0);
+    texels += static_cast<long>(r[0]) * r[1];
   }
   std::printf("shadowed pixels: full maps %ld, maps from need %ld (%.1f %% of the texels)\n",
     full, needed, 100.0 * texels / (2.0 * baker->GetResolution() * baker->GetResolution()));
@@ -988,9 +1001,11 @@ TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
   scene.Render();
   for (int c = 0; c < maps.NumberOfCascades; ++c)
   {
-    EXPECT_EQ(baker->GetLightMaps().at(0).CascadeResolution[c],
-      planner->GetCascadeResolution(
-        c, 720, vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, baker->GetResolution()));
+    int planned[2] = { 0, 0 };
+    planner->GetCascadeResolution(
+      c, 720, vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, ceiling, planned);
+    EXPECT_EQ(baker->GetLightMaps().at(0).CascadeResolution[c][0], planned[0]);
+    EXPECT_EQ(baker->GetLightMaps().at(0).CascadeResolution[c][1], planned[1]);
   }
 }
 
@@ -1208,6 +1223,7 @@ TEST(Passes, MapCoordinatesFromTheVerticesGiveTheSameShadows)
   auto plain = scene.Render();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->AdaptiveCascadesOff(); // the counts set here
   for (int cascades : { 2, 3, vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES })
   {
     baker->SetNumberOfCascades(cascades);
@@ -1223,6 +1239,12 @@ TEST(Passes, MapCoordinatesFromTheVerticesGiveTheSameShadows)
     EXPECT_LE(DifferingValues(interpolated, products, 8), 320 * 240 * 3 / 1000)
       << cascades << " cascades";
   }
+  // Up to eight cascades allowed, at most four used: four coordinates interpolated (the eight
+  // are compiled in only while a light uses more than four).
+  baker->AdaptiveCascadesOn();
+  scene.Render();
+  ASSERT_LE(baker->GetLightMaps().at(0).NumberOfCascades, 4);
+  EXPECT_EQ(pass->GetLastMapCoordinateVaryings(), 4);
 
   // More varyings than the limit (two lights of 8 cascades): the fragment multiplies.
   BoxOverPlane two;
@@ -1236,6 +1258,9 @@ TEST(Passes, MapCoordinatesFromTheVerticesGiveTheSameShadows)
   vtkCascadedShadowMapPass* twoPass = vtkCascadedShadowMapPass::UseShadowsOn(two.Renderer);
   twoPass->GetShadowMapBakerPass()->SetNumberOfCascades(
     vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES);
+  two.Render();
+  EXPECT_EQ(twoPass->GetLastMapCoordinateVaryings(), 4); // two lights of at most four used
+  twoPass->GetShadowMapBakerPass()->AdaptiveCascadesOff(); // eight each
   auto both = two.Render();
   ASSERT_EQ(twoPass->GetShadowMapBakerPass()->GetLightMaps().size(), 2u);
   EXPECT_EQ(twoPass->GetLastMapCoordinateVaryings(), 0);
