@@ -114,6 +114,8 @@ void usage()
     "                     face-zp (two z-partitions per face: FP+ZP+W) |\n"
     "                     cssm (camera space shadow maps: one map, or four in the\n"
     "                     dueling frustum case)\n"
+    "  --cssm-focus D     cssm's focus range: the view depth in front of which the view\n"
+    "                     gets half the map; 0: sqrt(near far) of the fitted range [%g]\n"
     "  --cascades K       1..%d [%d]      --lambda L  practical weight [%g]\n"
     "  --adaptive-cascades on|off  the fewest cascades, up to K, that meet --error-target [%s]\n"
     "  --cull-closed on|off  closed casters drawn into the maps from behind only [%s]\n"
@@ -144,7 +146,7 @@ void usage()
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
     "  t technique, l light angle +15 deg\n",
     o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
-    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
+    d.CameraSpaceFocus, vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
     d.CompactCasters ? "on" : "off", d.CullCastersWithoutReceivers ? "on" : "off",
     d.VisibleDepthFit ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
     d.SlopeBias, d.ClosedSurfaceBiasFactor, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
@@ -299,7 +301,7 @@ Options parse(int argc, char** argv)
       static const char* const numeric[] = { "--triangles", "--cascades", "--resolution",
         "--error-target", "--pcf",
         "--lambda", "--alpha", "--bias", "--slope-bias", "--closed-bias", "--blend", "--darkness", "--gamma",
-        "--frames", "--orbit" };
+        "--frames", "--orbit", "--cssm-focus" };
       if (std::none_of(std::begin(numeric), std::end(numeric),
             [&](const char* known) { return f == known; }))
         fail("unknown option '" + f + "'");
@@ -335,6 +337,8 @@ Options parse(int argc, char** argv)
         o.Shadow.Resolution = whole(64, 8192);
       else if (f == "--error-target")
         o.Shadow.ErrorTarget = range(0, 1.0e6);
+      else if (f == "--cssm-focus")
+        o.Shadow.CameraSpaceFocus = range(0, 1.0e300);
       else if (f == "--pcf")
       {
         o.Shadow.PCF = whole(1, 7);

@@ -1498,6 +1498,7 @@ csmForwardToPlanner(ErrorTarget, double)
 csmForwardToPlanner(AdaptiveCascades, bool)
 csmForwardToPlanner(FacePartitions, int)
 csmForwardToPlanner(CameraSpace, bool)
+csmForwardToPlanner(CameraSpaceFocus, double)
 #undef csmForwardToPlanner
 
 vtkMTimeType vtkCascadedShadowMapBakerPass::GetMTime()

@@ -138,6 +138,9 @@ public:
   void SetCameraSpace(bool cameraSpace);
   bool GetCameraSpace();
   vtkBooleanMacro(CameraSpace, bool);
+  /// Its focus range (forwarded to GetPlanner(), which documents it; 0, the default: automatic).
+  void SetCameraSpaceFocus(double viewDepth);
+  double GetCameraSpaceFocus();
   ///@}
   /// Resolutions chosen from ErrorTarget are multiples of this.
   static constexpr int RESOLUTION_STEP = 64;

@@ -67,8 +67,10 @@ struct vtkCascadedShadowMapPlanner::Internals
 
   /// Setup (and DepthW, and Planes for the dueling case) for CameraSpace: the camera space
   /// maps of the fitted frustum; false (Setup untouched) where neither case applies.
+  /// focus: CameraSpaceFocus (0: the fitted range's geometric mean).
   bool PlanCameraSpace(const csm::Camera& camera, const glm::dvec3& direction,
-    const csm::Bounds* scene, const csm::Settings& settings, const std::vector<csm::Bounds>* parts);
+    const csm::Bounds* scene, const csm::Settings& settings, const std::vector<csm::Bounds>* parts,
+    double focus);
 
   /// Setup and Planes for FacePartitions k: the face partitions of the fitted frustum.
   void PlanFaces(const csm::Camera& camera, const glm::dvec3& direction, const csm::Bounds* scene,
@@ -199,7 +201,8 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   }
   else if (this->CameraSpace && !cam.parallel)
   {
-    planned = this->Internal->PlanCameraSpace(cam, direction, sceneOrNull, settings, parts);
+    planned = this->Internal->PlanCameraSpace(
+      cam, direction, sceneOrNull, settings, parts, this->CameraSpaceFocus);
   }
   if (!planned && this->AdaptiveCascades && this->ErrorTarget > 0.0 && imageHeight > 0 &&
     maximumResolution > 0)
@@ -286,7 +289,7 @@ void vtkCascadedShadowMapPlanner::Internals::PlanFaces(const csm::Camera& camera
 
 bool vtkCascadedShadowMapPlanner::Internals::PlanCameraSpace(const csm::Camera& camera,
   const glm::dvec3& direction, const csm::Bounds* scene, const csm::Settings& settings,
-  const std::vector<csm::Bounds>* parts)
+  const std::vector<csm::Bounds>* parts, double focus)
 {
   csm::Camera fitted;
   csm::ShadowSetup setup = fitDepthRange(camera, direction, scene, settings, parts, fitted);
@@ -297,7 +300,8 @@ bool vtkCascadedShadowMapPlanner::Internals::PlanCameraSpace(const csm::Camera& 
   }
   // The general case (one plane), else the dueling frustum case (four planes through t).
   std::vector<csm::CameraSpaceFace> maps;
-  const csm::CameraSpaceMap general = csm::computeCameraSpaceMap(fitted, direction);
+  const csm::CameraSpaceMap general = csm::computeCameraSpaceMap(
+    fitted, direction, focus > 0.0 ? focus : std::sqrt(fitted.vsNear * fitted.vsFar));
   if (general.status == csm::Status::Ok)
   {
     maps.push_back({ general.wsToClip, {}, general.wMin });
@@ -649,6 +653,7 @@ void vtkCascadedShadowMapPlanner::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AdaptiveCascades: " << (this->AdaptiveCascades ? "on" : "off") << "\n";
   os << indent << "FacePartitions: " << this->FacePartitions << "\n";
   os << indent << "CameraSpace: " << (this->CameraSpace ? "on" : "off") << "\n";
+  os << indent << "CameraSpaceFocus: " << this->CameraSpaceFocus << "\n";
   os << indent << "PlannedCascades: " << this->GetNumberOfPlannedCascades() << "\n";
   os << indent << "VisibleDepthsUsed: " << (this->Internal->VisibleUsed ? "yes" : "no") << "\n";
 }

@@ -154,6 +154,21 @@ public:
   vtkBooleanMacro(CameraSpace, bool);
   ///@}
 
+  ///@{
+  /**
+   * CameraSpace, general case: the focus range (Kolić & Mihajlović §3.1, Fig. 3), a view depth
+   * in world units: the camera capturing the map is pushed back along the view until the part
+   * of the view in front of this depth takes half of the map's length. 0 (default): the
+   * geometric mean of the depth range fitted to the scene, sqrt(n f), which gives the near and
+   * far decades equal shares as the log distribution does (Lloyd et al. 2006, §4.2); the paper
+   * leaves it to the application and names "sampling minimal, maximal and average scene depth"
+   * as future work. A focus below about twice the fitted near depth keeps the capture at the
+   * eye, which gives half the map to the first near distances.
+   */
+  vtkSetFiniteClampMacro(CameraSpaceFocus, double, 0.0, 1.0e300);
+  vtkGetMacro(CameraSpaceFocus, double);
+  ///@}
+
   /// For a camera space map (CameraSpace): its smallest w over the view (the constant depth
   /// bias scales by it over the point's w); 0 for cascades and face partitions.
   double GetCascadeDepthW(int i) const;
@@ -326,6 +341,7 @@ protected:
   bool AdaptiveCascades = true;
   int FacePartitions = 0;
   bool CameraSpace = false;
+  double CameraSpaceFocus = 0.0;
 
 private:
   vtkCascadedShadowMapPlanner(const vtkCascadedShadowMapPlanner&) = delete;

@@ -28,7 +28,7 @@ constexpr double kDepthRoom = 0.99;
 /// Camera-centred point -> its projection along L onto the plane dot(normal, q) + offset = 0,
 /// captured by a camera looking along view with the given right and up axes: rows x, y, (0), w.
 glm::dmat4 projectAndCapture(const glm::dvec3& normal, double offset, const glm::dvec3& L,
-  const glm::dvec3& right, const glm::dvec3& up, const glm::dvec3& view)
+  const glm::dvec3& right, const glm::dvec3& up, const glm::dvec3& view, double pushBack = 0.0)
 {
   const double across = glm::dot(normal, L);
   glm::dmat4 toPlane(1.0);
@@ -45,6 +45,7 @@ glm::dmat4 projectAndCapture(const glm::dvec3& normal, double offset, const glm:
   {
     capture[column] = glm::dvec4(right[column], up[column], 0.0, view[column]);
   }
+  capture[3] = glm::dvec4(0.0, 0.0, 0.0, pushBack); // the capturing camera pushBack behind the eye
   return capture * toPlane;
 }
 
@@ -74,7 +75,8 @@ glm::dmat4 fitClip(const glm::dmat4& projected, const glm::dvec3& L, const glm::
 }
 }
 
-CameraSpaceMap computeCameraSpaceMap(const Camera& camera, const glm::dvec3& wsLightDirection)
+CameraSpaceMap computeCameraSpaceMap(
+  const Camera& camera, const glm::dvec3& wsLightDirection, double vsFocus)
 {
   CameraSpaceMap map;
   map.message = cameraError(camera);
@@ -141,33 +143,78 @@ CameraSpaceMap computeCameraSpaceMap(const Camera& camera, const glm::dvec3& wsL
     map.message = "light parallel to the projection plane";
     return map;
   }
-  const glm::dmat4 projected = projectAndCapture(normal, offset, L, right, up, view);
   // Fit s, t to the frustum's corners (convex: the corners bound it) and the depth row to
-  // their light depths and w.
-  double sMin = kInf, sMax = -kInf, tMin = kInf, tMax = -kInf;
-  double depthMin = kInf, depthMax = -kInf, wMin = kInf;
-  for (const glm::dvec3& q : corners)
+  // their light depths and w, for the capturing camera pushed back by pushBack.
+  struct Fit
   {
-    const glm::dvec4 h = projected * glm::dvec4(q, 1.0);
-    if (!(h.w > 1e-9 * camera.vsNear) || !std::isfinite(h.w))
+    glm::dmat4 projected{ 1.0 };
+    glm::dvec2 s{ kInf, -kInf }, t{ kInf, -kInf }, depth{ kInf, -kInf };
+    double wMin = kInf;
+    bool ok = true;
+  };
+  auto fit = [&](double pushBack) {
+    Fit f;
+    f.projected = projectAndCapture(normal, offset, L, right, up, view, pushBack);
+    for (const glm::dvec3& q : corners)
     {
-      map.message = "the light's rays leave the projection plane behind the camera (the dueling "
-                    "frustum case needs four planes)";
-      return map;
+      const glm::dvec4 h = f.projected * glm::dvec4(q, 1.0);
+      if (!(h.w > 1e-9 * camera.vsNear) || !std::isfinite(h.w))
+      {
+        f.ok = false;
+        return f;
+      }
+      f.s = { std::min(f.s.x, h.x / h.w), std::max(f.s.y, h.x / h.w) };
+      f.t = { std::min(f.t.x, h.y / h.w), std::max(f.t.y, h.y / h.w) };
+      const double depth = glm::dot(q, L);
+      f.depth = { std::min(f.depth.x, depth), std::max(f.depth.y, depth) };
+      f.wMin = std::min(f.wMin, h.w);
     }
-    sMin = std::min(sMin, h.x / h.w);
-    sMax = std::max(sMax, h.x / h.w);
-    tMin = std::min(tMin, h.y / h.w);
-    tMax = std::max(tMax, h.y / h.w);
-    const double depth = glm::dot(q, L);
-    depthMin = std::min(depthMin, depth);
-    depthMax = std::max(depthMax, depth);
-    wMin = std::min(wMin, h.w);
+    return f;
+  };
+  Fit chosen = fit(0.0);
+  if (!chosen.ok)
+  {
+    map.message = "the light's rays leave the projection plane behind the camera (the dueling "
+                  "frustum case needs four planes)";
+    return map;
   }
-  map.wsToClip = fitClip(projected, L, { sMin, sMax }, { tMin, tMax }, { depthMin, depthMax },
-    wMin, camera.vsFar, camera.wsPosition);
+  // The focus range (Kolić & Mihajlović §3.1, Fig. 3): the capturing camera pushed back along
+  // the view until P's point at the focus depth (on the view axis's plane) lands on the map's
+  // middle row. Pushing back moves the middle away from the eye, monotonically: from about
+  // 2 n (captured from the eye, most of the map for the first near distances) toward the middle
+  // of P's depth range (captured from afar, t linear in depth).
+  const double focus = std::clamp(vsFocus, camera.vsNear, camera.vsFar);
+  const glm::dvec3 focusOnPlane = view * focus +
+    up * ((-offset - glm::dot(normal, view) * focus) / glm::dot(normal, up));
+  auto focusShare = [&](const Fit& f) { // the share of t from P's near edge to the focus
+    const glm::dvec4 h = f.projected * glm::dvec4(focusOnPlane, 1.0);
+    const double fromBottom = (h.y / h.w - f.t.x) / std::max(f.t.y - f.t.x, 1e-300);
+    return map.lightFromFront ? 1.0 - fromBottom : fromBottom; // (then the near edge is on top)
+  };
+  if (vsFocus > 0.0 && std::abs(glm::dot(normal, up)) > kParallelToPlane &&
+    focusShare(chosen) > 0.5)
+  {
+    double lo = 0.0, hi = camera.vsFar;
+    for (int i = 0; i < 40 && focusShare(fit(hi)) > 0.5; ++i)
+    {
+      hi *= 4.0; // a focus beyond what any push reaches: as far as the loop goes
+    }
+    for (int i = 0; i < 60; ++i)
+    {
+      const double mid = 0.5 * (lo + hi);
+      (focusShare(fit(mid)) > 0.5 ? lo : hi) = mid;
+    }
+    const Fit pushed = fit(hi);
+    if (pushed.ok)
+    {
+      chosen = pushed;
+      map.pushBack = hi;
+    }
+  }
+  map.wsToClip = fitClip(chosen.projected, L, chosen.s, chosen.t, chosen.depth, chosen.wMin,
+    camera.vsFar, camera.wsPosition);
   map.wsPlane = glm::dvec4(normal, offset - glm::dot(normal, camera.wsPosition));
-  map.wMin = wMin;
+  map.wMin = chosen.wMin;
   map.status = Status::Ok;
   return map;
 }

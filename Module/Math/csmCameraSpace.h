@@ -39,6 +39,9 @@ struct CameraSpaceMap
   /// The smallest w over the frustum: on a ray of w the map's depth (after the division) spans
   /// wMin / w of what it spans on the nearest ray, so a constant depth bias must scale by it.
   double wMin = 0.0;
+  /// How far behind the eye, along the view, the capturing camera stands (the focus range; 0:
+  /// at the eye).
+  double pushBack = 0.0;
 };
 
 /// The general-case CSSM map of the camera's view frustum [vsNear, vsFar] for a directional
@@ -46,7 +49,14 @@ struct CameraSpaceMap
 /// parallel camera, a zero or non-finite light, a light (nearly) along the view or inside the
 /// view's cone (the dueling frustum case, Kolić & Mihajlović Fig. 2, which needs four planes:
 /// computeCameraSpaceDueling()), or a light (nearly) parallel to the plane P.
-CameraSpaceMap computeCameraSpaceMap(const Camera& camera, const glm::dvec3& wsLightDirection);
+///
+/// The focus range (Kolić & Mihajlović §3.1, Fig. 3): with vsFocus > 0 the capturing camera is
+/// pushed back along the view (and the map fitted anew) so that the part of P in front of the
+/// view depth vsFocus takes half of the map's t axis, where the capture from the eye gives
+/// half of it to about the first 2 vsNear. A focus nearer than that keeps the eye; one farther
+/// than any push reaches takes the farthest push tried. 0: captured from the eye.
+CameraSpaceMap computeCameraSpaceMap(
+  const Camera& camera, const glm::dvec3& wsLightDirection, double vsFocus = 0.0);
 
 /// One map of the dueling frustum case: its matrix, the half-spaces that select it (world,
 /// as FacePartition::wsPlanes) and its smallest w.

@@ -37,6 +37,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->VisibleDepthFit = baker->GetVisibleDepthFit();
   this->FacePartitions = baker->GetFacePartitions();
   this->CameraSpace = baker->GetCameraSpace();
+  this->CameraSpaceFocus = baker->GetCameraSpaceFocus();
   this->DepthClamp = baker->GetDepthClamp();
   this->PCF = pass->GetPCFSize();
   this->Kernel = pass->GetPCFKernel();
@@ -65,6 +66,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetVisibleDepthFit(o.VisibleDepthFit);
   baker->SetFacePartitions(o.FacePartitions);
   baker->SetCameraSpace(o.CameraSpace);
+  baker->SetCameraSpaceFocus(o.CameraSpaceFocus);
   baker->SetDepthClamp(o.DepthClamp);
   pass->SetPCFSize(o.PCF);
   pass->SetPCFKernel(o.Kernel);

@@ -41,6 +41,7 @@ struct ShadowOptions
   bool VisibleDepthFit;           ///< cascades fitted to the depths the view has samples at
   int FacePartitions;            ///< 0 cascades; 1 FP+W, 2 FP+ZP+W (z-partitions per face)
   bool CameraSpace;              ///< camera space shadow maps (general case)
+  double CameraSpaceFocus;       ///< their focus range, a view depth (0: automatic)
   int PCF;
   int Kernel;                    ///< vtkCascadedShadowMapPass::Kernels
   double ConstantBias;

@@ -85,6 +85,56 @@ TEST(CameraSpace, TheFrustumLandsInTheMapAndRaysKeepTheirOrder)
   }
 }
 
+// The focus range (Kolić & Mihajlović §3.1, Fig. 3): the capturing camera pushed back so that
+// P's points at the focus depth land on the map's middle row, where the capture from the eye
+// gives the middle to about 2 n; the map stays a valid shadow map (every frustum point inside,
+// rays keep their texel and order); a focus nearer than 2 n keeps the eye.
+TEST(CameraSpace, TheFocusRangeTakesHalfTheMap)
+{
+  csm::Camera moved = camera(0.5, 300.0, 50.0, 1.5);
+  moved.wsPosition = { 40.0, -7.0, 1200.0 };
+  for (const csm::Camera& cam : { camera(1.0, 1000.0, 60.0), moved })
+  {
+    const glm::dvec3 view = glm::normalize(cam.wsDirection);
+    for (double gamma : { 60.0, 90.0, 125.0 })
+    {
+      for (double sideways : { 0.0, 0.5 })
+      {
+        const glm::dvec3 L = lightAt(gamma, sideways);
+        // NDC t of P's points at view depth d (P holds the rolled right axis: one t per depth).
+        auto tAt = [&](const csm::CameraSpaceMap& map, double d) {
+          const glm::dvec3 n(map.wsPlane);
+          const glm::dvec3 across = glm::normalize(n - glm::dot(n, view) * view);
+          const glm::dvec3 onAxis = cam.wsPosition + view * d;
+          const glm::dvec3 q =
+            onAxis - across * ((glm::dot(n, onAxis) + map.wsPlane.w) / glm::dot(n, across));
+          const glm::dvec4 h = map.wsToClip * glm::dvec4(q, 1.0);
+          return h.y / h.w;
+        };
+        const double focus = std::sqrt(cam.vsNear * cam.vsFar);
+        const csm::CameraSpaceMap eye = csm::computeCameraSpaceMap(cam, L);
+        const csm::CameraSpaceMap focused = csm::computeCameraSpaceMap(cam, L, focus);
+        ASSERT_EQ(focused.status, csm::Status::Ok) << focused.message;
+        EXPECT_EQ(eye.pushBack, 0.0);
+        EXPECT_GT(focused.pushBack, 0.0);
+        const double nearSide = tAt(focused, cam.vsNear) < 0.0 ? -1.0 : 1.0;
+        EXPECT_NEAR(tAt(focused, focus), 0.0, 1e-6) << "gamma " << gamma;
+        // From the eye, the focus depth is far past the middle (toward P's far edge).
+        EXPECT_LT(nearSide * tAt(eye, focus), -0.8) << "gamma " << gamma;
+        EXPECT_NEAR(nearSide * tAt(eye, 2.0 * cam.vsNear), 0.0, 0.05);
+        const RayCheck check = checkRays(
+          cam, L, 1e-9, [&](const glm::dvec3&) -> const glm::dmat4& { return focused.wsToClip; });
+        EXPECT_EQ(check.outside, 0) << "gamma " << gamma << " sideways " << sideways;
+        EXPECT_EQ(check.moving, 0) << "gamma " << gamma << " sideways " << sideways;
+        EXPECT_EQ(check.unordered, 0) << "gamma " << gamma << " sideways " << sideways;
+        // A farther focus pushes farther; one nearer than the eye's middle keeps the eye.
+        EXPECT_GT(csm::computeCameraSpaceMap(cam, L, 4.0 * focus).pushBack, focused.pushBack);
+        EXPECT_EQ(csm::computeCameraSpaceMap(cam, L, 1.5 * cam.vsNear).pushBack, 0.0);
+      }
+    }
+  }
+}
+
 // The light along the view or inside the view's cone (the dueling frustum case and its mirror)
 // and bad input give one message and no matrix.
 TEST(CameraSpace, DuelingFrustaAndBadInputAreRefused)
