@@ -26,7 +26,9 @@
 
 namespace
 {
-constexpr int kMap = 64;     // synthetic map, texels per side
+// Synthetic map, texels along s and t (not square: the maps of five to seven cascades are not).
+constexpr int kMapWidth = 64;
+constexpr int kMapHeight = 40;
 constexpr int kSamples = 96; // sample positions per side (the quad's pixels)
 
 // constantRadius >= 0: the kernel radius compiled in, as the pass does for few lights;
@@ -53,7 +55,8 @@ std::string fragmentShader(int constantRadius)
     "  vec4 tile = vec4(0.0, 0.0, 1.0, 1.0);\n"
     "  float zRef = 0.5;\n"
     "  int r = CSM_PCF_RADIUS;\n"
-    "  vec2 texel = vec2(1.0 / " + std::to_string(kMap) + ".0);\n"
+    "  vec2 texel = vec2(1.0 / " + std::to_string(kMapWidth) + ".0, 1.0 / " +
+    std::to_string(kMapHeight) + ".0);\n"
     "  float fast = csmGridPCF(map, tile, texel, uv, zRef, vec2(0.0));\n"
     "  float reference = 0.0;\n"
     "  for (int i = -r; i <= r; ++i)\n"
@@ -78,7 +81,7 @@ TEST(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
 
   // A random depth map: each texel in front of (0.25) or behind (0.75) the reference depth.
   std::mt19937 random(7);
-  std::vector<float> depth(kMap * kMap);
+  std::vector<float> depth(kMapWidth * kMapHeight);
   for (float& d : depth)
     d = random() % 3 == 0 ? 0.25f : 0.75f;
   vtkNew<vtkTextureObject> map;
@@ -89,7 +92,8 @@ TEST(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
   map->SetMagnificationFilter(vtkTextureObject::Linear);
   map->SetDepthTextureCompare(true);
   map->SetDepthTextureCompareFunction(vtkTextureObject::Lequal);
-  ASSERT_TRUE(map->CreateDepthFromRaw(kMap, kMap, vtkTextureObject::Float32, VTK_FLOAT, depth.data()));
+  ASSERT_TRUE(map->CreateDepthFromRaw(
+    kMapWidth, kMapHeight, vtkTextureObject::Float32, VTK_FLOAT, depth.data()));
 
   // Results as floats: a colour texture of the quad's size.
   vtkNew<vtkTextureObject> results;
