@@ -398,6 +398,24 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
       glm::dvec3(position[0], position[1], position[2]),
       glm::dvec3(direction[0], direction[1], direction[2]), light->GetConeAngle(),
       bounds ? &scene : nullptr, this->DepthClamp);
+    csm::ShadowSetup& setup = this->Internal->Setup;
+    if (this->CameraSpace && this->DepthClamp && !cam.parallel && setup.status == csm::Status::Ok &&
+      setup.cascades.size() == 1)
+    {
+      // Camera space (Kolić & Mihajlović §6.2) over the depth range the standard map was fitted
+      // to; where the paper takes a standard map (the light in or near the view), that map.
+      csm::Camera fitted = cam;
+      fitted.vsNear = setup.cascades[0].vsNear;
+      fitted.vsFar = setup.cascades[0].vsFar;
+      const csm::CameraSpaceMap map = csm::computeCameraSpaceSpot(fitted,
+        glm::dvec3(position[0], position[1], position[2]),
+        this->CameraSpaceFocus > 0.0 ? this->CameraSpaceFocus
+                                     : std::sqrt(fitted.vsNear * fitted.vsFar));
+      if (map.status == csm::Status::Ok)
+      {
+        setup.cascades[0].wsToClip = map.wsToClip;
+      }
+    }
   }
   return this->Report(light, light->GetMTime());
 }

@@ -146,8 +146,11 @@ public:
    * the light lies inside the view's cone, the dueling frustum case: four maps, the casters
    * projected onto the planes through t (where the line through the eye along the light meets
    * the near plane) and the far plane's edges (csm::computeCameraSpaceDueling), selected by
-   * their planes. Parallel views, spot lights and a light perpendicular to the view with no
-   * general case get the cascades. FacePartitions takes precedence. Default off.
+   * their planes. A spot light gets one map of its casters projected from the light onto the
+   * same plane (csm::computeCameraSpaceSpot, over the depth range its standard map is fitted to;
+   * with DepthClamp), or its standard map where the paper takes one (the light in or near the
+   * view). Parallel views and a light perpendicular to the view with no general case get the
+   * cascades. FacePartitions takes precedence. Default off.
    */
   vtkSetMacro(CameraSpace, bool);
   vtkGetMacro(CameraSpace, bool);

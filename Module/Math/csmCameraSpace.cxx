@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -25,10 +27,9 @@ constexpr double kParallelToPlane = 1e-6;
 /// Share of each ray's w that the depth may use (room for rounding at the ends).
 constexpr double kDepthRoom = 0.99;
 
-/// Camera-centred point -> its projection along L onto the plane dot(normal, q) + offset = 0,
-/// captured by a camera looking along view with the given right and up axes: rows x, y, (0), w.
-glm::dmat4 projectAndCapture(const glm::dvec3& normal, double offset, const glm::dvec3& L,
-  const glm::dvec3& right, const glm::dvec3& up, const glm::dvec3& view, double pushBack = 0.0)
+/// Camera-centred homogeneous point -> its projection onto the plane dot(normal, q) + offset = 0
+/// along the direction L (affine: w = 1).
+glm::dmat4 projectAlong(const glm::dvec3& normal, double offset, const glm::dvec3& L)
 {
   const double across = glm::dot(normal, L);
   glm::dmat4 toPlane(1.0);
@@ -40,38 +41,219 @@ glm::dmat4 projectAndCapture(const glm::dvec3& normal, double offset, const glm:
     }
   }
   toPlane[3] = glm::dvec4(-L * (offset / across), 1.0);
-  glm::dmat4 capture(0.0);
+  return toPlane;
+}
+
+/// The same from the point l (camera-centred): the central projection, homogeneous. For q the
+/// plane point is l + (q - l) t with t = -(dot(normal, l) + offset) / dot(normal, q - l); times
+/// W = dot(normal, q - l) that is X = l dot(normal, q) - (dot(normal, l) + offset) q + offset l.
+/// Along a ray from l, X and W grow with the distance from l (they are 0 at l).
+glm::dmat4 projectFrom(const glm::dvec3& normal, double offset, const glm::dvec3& l)
+{
+  const double nl = glm::dot(normal, l);
+  glm::dmat4 toPlane(0.0);
   for (int column = 0; column < 3; ++column)
   {
-    capture[column] = glm::dvec4(right[column], up[column], 0.0, view[column]);
+    for (int row = 0; row < 3; ++row)
+    {
+      toPlane[column][row] = l[row] * normal[column] - (row == column ? nl + offset : 0.0);
+    }
+    toPlane[column][3] = normal[column];
   }
-  capture[3] = glm::dvec4(0.0, 0.0, 0.0, pushBack); // the capturing camera pushBack behind the eye
-  return capture * toPlane;
+  toPlane[3] = glm::dvec4(offset * l, -nl);
+  return toPlane;
+}
+
+/// A plane point (homogeneous) captured by a camera at the eye pushed back by pushBack along the
+/// view, looking along view with the given right and up axes: rows x, y, (0), w.
+glm::dmat4 capture(const glm::dvec3& right, const glm::dvec3& up, const glm::dvec3& view,
+  double pushBack)
+{
+  glm::dmat4 c(0.0);
+  for (int column = 0; column < 3; ++column)
+  {
+    c[column] = glm::dvec4(right[column], up[column], 0.0, view[column]);
+  }
+  c[3] = glm::dvec4(0.0, 0.0, 0.0, pushBack);
+  return c;
+}
+
+/// Camera-centred point -> its projection along L onto the plane, captured from the eye.
+glm::dmat4 projectAndCapture(const glm::dvec3& normal, double offset, const glm::dvec3& L,
+  const glm::dvec3& right, const glm::dvec3& up, const glm::dvec3& view)
+{
+  return capture(right, up, view, 0.0) * projectAlong(normal, offset, L);
+}
+
+/// The depth row of a directional light's map: the light depth dot(q, L) over [depth.x,
+/// depth.y] in kDepthRoom of wMin (w is constant along a ray: depth / w keeps the light's order).
+glm::dvec4 lightDepthRow(const glm::dvec3& L, const glm::dvec2& depth, double wMin, double far)
+{
+  const double a = 2.0 * kDepthRoom * wMin / std::max(depth.y - depth.x, 1e-12 * far);
+  return glm::dvec4(a * L, -0.5 * a * (depth.x + depth.y));
 }
 
 /// The world -> clip matrix: s, t of `projected` fitted to [sMin, sMax] x [tMin, tMax] (after
-/// the division by w), the light depth dot(q, L) over [depthMin, depthMax] in kDepthRoom of
-/// wMin, for a camera at wsEye.
-glm::dmat4 fitClip(const glm::dmat4& projected, const glm::dvec3& L, const glm::dvec2& s,
-  const glm::dvec2& t, const glm::dvec2& depth, double wMin, double far, const glm::dvec3& wsEye)
+/// the division by w), the depth row given (camera-centred), for a camera at wsEye.
+glm::dmat4 fitClip(const glm::dmat4& projected, const glm::dvec4& depthRow, const glm::dvec2& s,
+  const glm::dvec2& t, const glm::dvec3& wsEye)
 {
   const double sScale = 2.0 / std::max(s.y - s.x, 1e-12);
   const double tScale = 2.0 / std::max(t.y - t.x, 1e-12);
-  const double a = 2.0 * kDepthRoom * wMin / std::max(depth.y - depth.x, 1e-12 * far);
-  const double b = -0.5 * a * (depth.x + depth.y);
-  // Rows: s = sScale (x - sMin w) - w, t likewise, depth = a dot(q, L) + b, w.
+  // Rows: s = sScale (x - sMin w) - w, t likewise, depth, w.
   glm::dmat4 clip(0.0);
   for (int column = 0; column < 4; ++column)
   {
     const glm::dvec4 c = projected[column];
     clip[column].x = sScale * (c.x - s.x * c.w) - c.w;
     clip[column].y = tScale * (c.y - t.x * c.w) - c.w;
-    clip[column].z = column < 3 ? a * L[column] : b;
+    clip[column].z = depthRow[column];
     clip[column].w = c.w;
   }
   glm::dmat4 fromWorld(1.0); // q = p - eye
   fromWorld[3] = glm::dvec4(-wsEye, 1.0);
   return clip * fromWorld;
+}
+
+/// The general case's frame for light travelling along L (for a spot light: from the light
+/// toward the view): the camera rolled so that the light comes from above, the original
+/// frustum's corners (camera-centred), and the plane P through the rolled frustum's lower near
+/// and upper far edges (upper near and lower far for a light from in front).
+struct GeneralFrame
+{
+  std::string message; ///< empty when the frame exists
+  glm::dvec3 view{ 0.0 }, up{ 0.0 }, right{ 0.0 };
+  glm::dvec3 normal{ 0.0 }; ///< P: dot(normal, q) + offset = 0, camera-centred
+  double offset = 0.0;
+  bool lightFromFront = false;
+  std::vector<glm::dvec3> corners;
+};
+
+GeneralFrame generalFrame(const Camera& camera, const glm::dvec3& L)
+{
+  GeneralFrame g;
+  g.view = glm::normalize(camera.wsDirection);
+  // The roll: the light travels down the rolled image (it comes from above).
+  const glm::dvec3 inImage = L - glm::dot(L, g.view) * g.view;
+  if (glm::length(inImage) < kAlongView)
+  {
+    g.message = "light along the view: the dueling frustum case needs four planes";
+    return g;
+  }
+  g.up = -glm::normalize(inImage);
+  g.right = glm::cross(g.view, g.up);
+  g.lightFromFront = glm::dot(L, g.view) < 0.0;
+  // The original frustum's corners, and the rolled camera's field of view that holds them.
+  glm::dvec3 oldUp = camera.wsViewUp - glm::dot(camera.wsViewUp, g.view) * g.view;
+  if (!(glm::length(oldUp) > 1e-9))
+  {
+    oldUp = g.up;
+  }
+  oldUp = glm::normalize(oldUp);
+  const glm::dvec3 oldRight = glm::cross(g.view, oldUp);
+  const double tanY = std::tan(glm::radians(0.5 * camera.fovyDeg));
+  const double tanX = tanY * camera.aspect;
+  double rolledTanY = 0.0;
+  for (double d : { camera.vsNear, camera.vsFar })
+  {
+    for (double sx : { -1.0, 1.0 })
+    {
+      for (double sy : { -1.0, 1.0 })
+      {
+        const glm::dvec3 unit = g.view + oldRight * (sx * tanX) + oldUp * (sy * tanY);
+        rolledTanY = std::max(rolledTanY, std::abs(glm::dot(unit, g.up)));
+        g.corners.push_back(unit * d);
+      }
+    }
+  }
+  const double sign = g.lightFromFront ? -1.0 : 1.0;
+  const glm::dvec3 nearEdge = g.view * camera.vsNear - g.up * (sign * camera.vsNear * rolledTanY);
+  const glm::dvec3 farEdge = g.view * camera.vsFar + g.up * (sign * camera.vsFar * rolledTanY);
+  g.normal = glm::normalize(glm::cross(g.right, farEdge - nearEdge));
+  g.offset = -glm::dot(g.normal, nearEdge);
+  return g;
+}
+
+/// s, t, w (and a directional light's depth) ranges of the frustum's corners in a projection
+/// (convex: the corners bound the frustum's image).
+struct CornerFit
+{
+  glm::dmat4 projected{ 1.0 };
+  glm::dvec2 s{ kInf, -kInf }, t{ kInf, -kInf }, w{ kInf, -kInf }, depth{ kInf, -kInf };
+  bool ok = true; ///< every corner in front of the capturing camera
+};
+
+CornerFit fitCorners(const glm::dmat4& projected, const GeneralFrame& g, const glm::dvec3& L,
+  double wFloor)
+{
+  CornerFit f;
+  f.projected = projected;
+  for (const glm::dvec3& q : g.corners)
+  {
+    const glm::dvec4 h = projected * glm::dvec4(q, 1.0);
+    if (!(h.w > wFloor) || !std::isfinite(h.w))
+    {
+      f.ok = false;
+      return f;
+    }
+    f.s = { std::min(f.s.x, h.x / h.w), std::max(f.s.y, h.x / h.w) };
+    f.t = { std::min(f.t.x, h.y / h.w), std::max(f.t.y, h.y / h.w) };
+    f.w = { std::min(f.w.x, h.w), std::max(f.w.y, h.w) };
+    const double depth = glm::dot(q, L);
+    f.depth = { std::min(f.depth.x, depth), std::max(f.depth.y, depth) };
+  }
+  return f;
+}
+
+/// The focus range (Kolić & Mihajlović §3.1, Fig. 3): the push back of the capturing camera at
+/// which P's points at view depth vsFocus (one t per depth: P holds the right axis) land on the
+/// map's middle row, by bisection; fit(pushBack) fits the corners. Pushing back moves the middle
+/// away from the eye, monotonically: from about 2 n (captured from the eye, most of the map for
+/// the first near distances) toward the middle of P's depth range (captured from afar, t linear
+/// in depth). 0 where vsFocus is not positive or the eye's middle is already beyond it.
+double focusPushBack(const Camera& camera, const GeneralFrame& g, double vsFocus,
+  const std::function<CornerFit(double)>& fit)
+{
+  if (!(vsFocus > 0.0) || !(std::abs(glm::dot(g.normal, g.up)) > kParallelToPlane))
+  {
+    return 0.0;
+  }
+  const double focus = std::clamp(vsFocus, camera.vsNear, camera.vsFar);
+  const glm::dvec3 focusOnPlane =
+    g.view * focus + g.up * ((-g.offset - glm::dot(g.normal, g.view) * focus) / glm::dot(g.normal, g.up));
+  // The share of t from P's near edge to the focus (the near edge is on top for a light from in
+  // front). The plane's own points project onto themselves, from a point or along L.
+  auto share = [&](const CornerFit& f) {
+    const glm::dvec4 h = f.projected * glm::dvec4(focusOnPlane, 1.0);
+    const double fromBottom = (h.y / h.w - f.t.x) / std::max(f.t.y - f.t.x, 1e-300);
+    return g.lightFromFront ? 1.0 - fromBottom : fromBottom;
+  };
+  const CornerFit eye = fit(0.0);
+  if (!eye.ok || !(share(eye) > 0.5))
+  {
+    return 0.0;
+  }
+  double lo = 0.0, hi = camera.vsFar;
+  for (int i = 0; i < 40 && share(fit(hi)) > 0.5; ++i)
+  {
+    hi *= 4.0; // a focus beyond what any push reaches: as far as the loop goes
+  }
+  for (int i = 0; i < 60; ++i)
+  {
+    const double mid = 0.5 * (lo + hi);
+    (share(fit(mid)) > 0.5 ? lo : hi) = mid;
+  }
+  return fit(hi).ok ? hi : 0.0;
+}
+
+std::string generalCaseError(const Camera& camera)
+{
+  std::string message = cameraError(camera);
+  if (message.empty() && camera.parallel)
+  {
+    message = "camera space shadow maps need a perspective camera";
+  }
+  return message;
 }
 }
 
@@ -79,142 +261,120 @@ CameraSpaceMap computeCameraSpaceMap(
   const Camera& camera, const glm::dvec3& wsLightDirection, double vsFocus)
 {
   CameraSpaceMap map;
-  map.message = cameraError(camera);
+  map.message = generalCaseError(camera);
   if (map.message.empty())
   {
     map.message = lightDirectionError(wsLightDirection);
-  }
-  if (map.message.empty() && camera.parallel)
-  {
-    map.message = "camera space shadow maps need a perspective camera";
   }
   if (!map.message.empty())
   {
     return map;
   }
   const glm::dvec3 L = glm::normalize(wsLightDirection);
-  const glm::dvec3 view = glm::normalize(camera.wsDirection);
-  // The roll: the light travels down the rolled image (it comes from above).
-  const glm::dvec3 inImage = L - glm::dot(L, view) * view;
-  if (glm::length(inImage) < kAlongView)
+  const GeneralFrame g = generalFrame(camera, L);
+  map.message = g.message;
+  map.lightFromFront = g.lightFromFront;
+  if (!map.message.empty())
   {
-    map.message = "light along the view: the dueling frustum case needs four planes";
     return map;
   }
-  const glm::dvec3 up = -glm::normalize(inImage);
-  const glm::dvec3 right = glm::cross(view, up);
-  map.lightFromFront = glm::dot(L, view) < 0.0;
-
-  // The original frustum's corners (camera-centred), and the rolled camera's field of view
-  // that holds them.
-  glm::dvec3 oldUp = camera.wsViewUp - glm::dot(camera.wsViewUp, view) * view;
-  if (!(glm::length(oldUp) > 1e-9))
-  {
-    oldUp = up;
-  }
-  oldUp = glm::normalize(oldUp);
-  const glm::dvec3 oldRight = glm::cross(view, oldUp);
-  const double tanY = std::tan(glm::radians(0.5 * camera.fovyDeg));
-  const double tanX = tanY * camera.aspect;
-  double rolledTanY = 0.0;
-  std::vector<glm::dvec3> corners;
-  for (double d : { camera.vsNear, camera.vsFar })
-  {
-    for (double sx : { -1.0, 1.0 })
-    {
-      for (double sy : { -1.0, 1.0 })
-      {
-        const glm::dvec3 unit = view + oldRight * (sx * tanX) + oldUp * (sy * tanY);
-        rolledTanY = std::max(rolledTanY, std::abs(glm::dot(unit, up)));
-        corners.push_back(unit * d);
-      }
-    }
-  }
-  // P holds the rolled frustum's lower near edge and upper far edge (upper near and lower far
-  // for a light from in front), and the rolled right axis.
-  const double sign = map.lightFromFront ? -1.0 : 1.0;
-  const glm::dvec3 nearEdge = view * camera.vsNear - up * (sign * camera.vsNear * rolledTanY);
-  const glm::dvec3 farEdge = view * camera.vsFar + up * (sign * camera.vsFar * rolledTanY);
-  const glm::dvec3 normal = glm::normalize(glm::cross(right, farEdge - nearEdge));
-  const double offset = -glm::dot(normal, nearEdge); // camera-centred: dot(normal, q) + offset = 0
-  const double across = glm::dot(normal, L);
-  if (std::abs(across) < kParallelToPlane)
+  if (std::abs(glm::dot(g.normal, L)) < kParallelToPlane)
   {
     map.message = "light parallel to the projection plane";
     return map;
   }
-  // Fit s, t to the frustum's corners (convex: the corners bound it) and the depth row to
-  // their light depths and w, for the capturing camera pushed back by pushBack.
-  struct Fit
-  {
-    glm::dmat4 projected{ 1.0 };
-    glm::dvec2 s{ kInf, -kInf }, t{ kInf, -kInf }, depth{ kInf, -kInf };
-    double wMin = kInf;
-    bool ok = true;
-  };
+  // The projection onto P along the light, captured by the camera pushed back by pushBack.
+  const glm::dmat4 toPlane = projectAlong(g.normal, g.offset, L);
   auto fit = [&](double pushBack) {
-    Fit f;
-    f.projected = projectAndCapture(normal, offset, L, right, up, view, pushBack);
-    for (const glm::dvec3& q : corners)
-    {
-      const glm::dvec4 h = f.projected * glm::dvec4(q, 1.0);
-      if (!(h.w > 1e-9 * camera.vsNear) || !std::isfinite(h.w))
-      {
-        f.ok = false;
-        return f;
-      }
-      f.s = { std::min(f.s.x, h.x / h.w), std::max(f.s.y, h.x / h.w) };
-      f.t = { std::min(f.t.x, h.y / h.w), std::max(f.t.y, h.y / h.w) };
-      const double depth = glm::dot(q, L);
-      f.depth = { std::min(f.depth.x, depth), std::max(f.depth.y, depth) };
-      f.wMin = std::min(f.wMin, h.w);
-    }
-    return f;
+    return fitCorners(capture(g.right, g.up, g.view, pushBack) * toPlane, g, L, 1e-9 * camera.vsNear);
   };
-  Fit chosen = fit(0.0);
-  if (!chosen.ok)
+  map.pushBack = focusPushBack(camera, g, vsFocus, fit);
+  const CornerFit f = fit(map.pushBack);
+  if (!f.ok)
   {
     map.message = "the light's rays leave the projection plane behind the camera (the dueling "
                   "frustum case needs four planes)";
     return map;
   }
-  // The focus range (Kolić & Mihajlović §3.1, Fig. 3): the capturing camera pushed back along
-  // the view until P's point at the focus depth (on the view axis's plane) lands on the map's
-  // middle row. Pushing back moves the middle away from the eye, monotonically: from about
-  // 2 n (captured from the eye, most of the map for the first near distances) toward the middle
-  // of P's depth range (captured from afar, t linear in depth).
-  const double focus = std::clamp(vsFocus, camera.vsNear, camera.vsFar);
-  const glm::dvec3 focusOnPlane = view * focus +
-    up * ((-offset - glm::dot(normal, view) * focus) / glm::dot(normal, up));
-  auto focusShare = [&](const Fit& f) { // the share of t from P's near edge to the focus
-    const glm::dvec4 h = f.projected * glm::dvec4(focusOnPlane, 1.0);
-    const double fromBottom = (h.y / h.w - f.t.x) / std::max(f.t.y - f.t.x, 1e-300);
-    return map.lightFromFront ? 1.0 - fromBottom : fromBottom; // (then the near edge is on top)
-  };
-  if (vsFocus > 0.0 && std::abs(glm::dot(normal, up)) > kParallelToPlane &&
-    focusShare(chosen) > 0.5)
+  map.wsToClip = fitClip(f.projected, lightDepthRow(L, f.depth, f.w.x, camera.vsFar), f.s, f.t,
+    camera.wsPosition);
+  map.wsPlane = glm::dvec4(g.normal, g.offset - glm::dot(g.normal, camera.wsPosition));
+  map.wMin = f.w.x;
+  map.status = Status::Ok;
+  return map;
+}
+
+CameraSpaceMap computeCameraSpaceSpot(
+  const Camera& camera, const glm::dvec3& wsLightPosition, double vsFocus)
+{
+  CameraSpaceMap map;
+  map.message = generalCaseError(camera);
+  if (map.message.empty() && !(std::isfinite(wsLightPosition.x) &&
+                               std::isfinite(wsLightPosition.y) && std::isfinite(wsLightPosition.z)))
   {
-    double lo = 0.0, hi = camera.vsFar;
-    for (int i = 0; i < 40 && focusShare(fit(hi)) > 0.5; ++i)
-    {
-      hi *= 4.0; // a focus beyond what any push reaches: as far as the loop goes
-    }
-    for (int i = 0; i < 60; ++i)
-    {
-      const double mid = 0.5 * (lo + hi);
-      (focusShare(fit(mid)) > 0.5 ? lo : hi) = mid;
-    }
-    const Fit pushed = fit(hi);
-    if (pushed.ok)
-    {
-      chosen = pushed;
-      map.pushBack = hi;
-    }
+    map.message = "the light's position must be finite";
   }
-  map.wsToClip = fitClip(chosen.projected, L, chosen.s, chosen.t, chosen.depth, chosen.wMin,
-    camera.vsFar, camera.wsPosition);
-  map.wsPlane = glm::dvec4(normal, offset - glm::dot(normal, camera.wsPosition));
-  map.wMin = chosen.wMin;
+  if (!map.message.empty())
+  {
+    return map;
+  }
+  const glm::dvec3 l = wsLightPosition - camera.wsPosition; // camera-centred
+  const glm::dvec3 view = glm::normalize(camera.wsDirection);
+  // The rays from the light toward the middle of the view set the roll and the plane.
+  const glm::dvec3 middle = view * (0.5 * (camera.vsNear + camera.vsFar));
+  if (!(glm::length(middle - l) > 1e-9 * camera.vsFar))
+  {
+    map.message = "the light is in the view: a standard map";
+    return map;
+  }
+  const GeneralFrame g = generalFrame(camera, glm::normalize(middle - l));
+  map.lightFromFront = g.lightFromFront;
+  if (!g.message.empty())
+  {
+    map.message = "the light lies along the view: a standard map";
+    return map;
+  }
+  // Every point of the view on the side of the light's plane parallel to P that its rays
+  // reach P from: W = dot(normal, q - l) of one sign (then orient it positive).
+  double sideMin = kInf, sideMax = -kInf;
+  for (const glm::dvec3& q : g.corners)
+  {
+    const double side = glm::dot(g.normal, q - l);
+    sideMin = std::min(sideMin, side);
+    sideMax = std::max(sideMax, side);
+  }
+  const double scale = 1e-9 * camera.vsFar;
+  if (!(sideMin > scale) && !(sideMax < -scale))
+  {
+    map.message = "the light's plane parallel to P cuts the view (the light is in or near the "
+                  "view): a standard map";
+    return map;
+  }
+  const glm::dmat4 toPlane = projectFrom(g.normal, g.offset, l) * (sideMin > 0.0 ? 1.0 : -1.0);
+  const glm::dvec3 none(0.0);
+  auto fit = [&](double pushBack) {
+    return fitCorners(capture(g.right, g.up, g.view, pushBack) * toPlane, g, none, 0.0);
+  };
+  map.pushBack = focusPushBack(camera, g, vsFocus, fit);
+  const CornerFit f = fit(map.pushBack);
+  if (!f.ok || !(f.w.y > f.w.x))
+  {
+    map.message = "the light's rays meet the projection plane behind the camera: a standard map";
+    return map;
+  }
+  // Depth: a + b / w over [wMin, wMax] in [-kDepthRoom, kDepthRoom]; along a ray from the light
+  // w grows with the distance from it, so depth / w keeps the light's order (a perspective
+  // map's depth). Casters between the light and the view lie below -kDepthRoom: depth clamping.
+  const double b = -2.0 * kDepthRoom / (1.0 / f.w.x - 1.0 / f.w.y);
+  const double a = kDepthRoom - b / f.w.y;
+  glm::dvec4 depthRow(0.0);
+  for (int column = 0; column < 4; ++column)
+  {
+    depthRow[column] = a * f.projected[column].w + (column == 3 ? b : 0.0);
+  }
+  map.wsToClip = fitClip(f.projected, depthRow, f.s, f.t, camera.wsPosition);
+  map.wsPlane = glm::dvec4(g.normal, g.offset - glm::dot(g.normal, camera.wsPosition));
+  map.wMin = f.w.x;
   map.status = Status::Ok;
   return map;
 }
@@ -291,8 +451,8 @@ std::vector<CameraSpaceFace> computeCameraSpaceDueling(const Camera& camera,
       wMin = std::min(wMin, h.w);
     }
     CameraSpaceFace face;
-    face.wsToClip = fitClip(projected, L, { sMin, sMax }, { tMin, tMax }, { depthMin, depthMax },
-      wMin, camera.vsFar, camera.wsPosition);
+    face.wsToClip = fitClip(projected, lightDepthRow(L, { depthMin, depthMax }, wMin, camera.vsFar),
+      { sMin, sMax }, { tMin, tMax }, camera.wsPosition);
     face.wMin = wMin;
     // The planes through t, a far corner and the light, each facing the face's other corner.
     for (const auto& edge : { std::make_pair(a, b), std::make_pair(b, a) })

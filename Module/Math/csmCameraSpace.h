@@ -58,6 +58,19 @@ struct CameraSpaceMap
 CameraSpaceMap computeCameraSpaceMap(
   const Camera& camera, const glm::dvec3& wsLightDirection, double vsFocus = 0.0);
 
+/// The general case for a spot light at wsLightPosition (Kolić & Mihajlović §6.2): the same
+/// plane P (the roll and the plane set by the rays from the light toward the middle of the
+/// view), the casters projected onto it from the light (a central projection: one projective
+/// map, every point of a ray from the light on one texel), captured by the camera, the focus
+/// range as above. Depth is a perspective map's: a + b / w over the view's w range (w grows
+/// with the distance from the light along each ray), so casters between the light and the view
+/// need depth clamping. InvalidInput, with a message, where the paper takes a standard map:
+/// the light in or near the view (the light's plane parallel to P cuts the view), along the
+/// view, or its rays meeting P behind the camera; and for an invalid or parallel camera or a
+/// position that is not finite.
+CameraSpaceMap computeCameraSpaceSpot(
+  const Camera& camera, const glm::dvec3& wsLightPosition, double vsFocus = 0.0);
+
 /// One map of the dueling frustum case: its matrix, the half-spaces that select it (world,
 /// as FacePartition::wsPlanes) and its smallest w.
 struct CameraSpaceFace

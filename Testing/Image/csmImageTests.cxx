@@ -371,6 +371,22 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     t.Options.CameraSpace = true;
     t.MinShadowPixels = 3000;
   };
+  cases["TestPlatformCameraSpaceSpot"] = [](Test& t) {
+    // Camera space shadow maps for a spot light (Kolić & Mihajlović §6.2): above and behind the
+    // camera (95, 75, 120), the casters projected from it onto the plane in the view.
+    Platform(t);
+    vtkNew<vtkLight> spot;
+    spot->SetLightTypeToSceneLight();
+    spot->SetPositional(true);
+    spot->SetPosition(130, 170, 170);
+    spot->SetFocalPoint(0, 10, 0);
+    spot->SetConeAngle(35);
+    t.Renderer->AddLight(spot);
+    AddFill(t.Renderer, kPlatformFill);
+    t.Options.Cascades = 1;
+    t.Options.CameraSpace = true;
+    t.MinShadowPixels = 5000;
+  };
   // Low camera looking up at the derrick; the light comes from behind it toward the camera
   // and down: light and view directions nearly opposite (dueling frusta).
   auto duelingFrusta = [](Test& t) {

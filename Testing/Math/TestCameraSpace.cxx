@@ -30,9 +30,11 @@ struct RayCheck
 };
 
 /// 2000 points of the camera's frustum (depth log-uniform), each with the matrix mapFor(p) gives
-/// it, and a caster 0.1 .. 10 units toward the light on its ray.
+/// it, and a caster 0.1 .. 10 units toward the light on its ray: the light travels along L, or
+/// with a light position, from there (the caster then at most 0.9 of the way to the light).
 template <typename MapFor>
-RayCheck checkRays(const csm::Camera& cam, const glm::dvec3& L, double slack, MapFor mapFor)
+RayCheck checkRays(const csm::Camera& cam, const glm::dvec3& L, double slack, MapFor mapFor,
+  const glm::dvec3* lightPosition = nullptr)
 {
   RayCheck check;
   std::mt19937 random(3);
@@ -47,7 +49,9 @@ RayCheck checkRays(const csm::Camera& cam, const glm::dvec3& L, double slack, Ma
     const glm::dvec4 h = m * glm::dvec4(p, 1.0);
     check.outside += !(h.w > 0.0) || std::abs(h.x / h.w) > 1.0 + slack ||
       std::abs(h.y / h.w) > 1.0 + slack || std::abs(h.z / h.w) > 1.0 + 1e-9;
-    const glm::dvec3 caster = p - L * (0.1 + 10.0 * share(random));
+    const double toLight = lightPosition ? glm::length(p - *lightPosition) : 1e300;
+    const glm::dvec3 along = lightPosition ? (p - *lightPosition) / toLight : L;
+    const glm::dvec3 caster = p - along * std::min(0.1 + 10.0 * share(random), 0.9 * toLight);
     const glm::dvec4 c = m * glm::dvec4(caster, 1.0);
     const double scale = 1e-9 * (1.0 + std::abs(h.x / h.w) + std::abs(h.y / h.w));
     check.moving +=
@@ -132,6 +136,50 @@ TEST(CameraSpace, TheFocusRangeTakesHalfTheMap)
         EXPECT_EQ(csm::computeCameraSpaceMap(cam, L, 1.5 * cam.vsNear).pushBack, 0.0);
       }
     }
+  }
+}
+
+// A spot light's general case (Kolić & Mihajlović §6.2): the casters projected onto P from the
+// light. Every frustum point lands in the map, its ray's casters on its texel with a smaller
+// depth; the focus range as for a directional light; a light in the view, or whose plane
+// parallel to P cuts it, and bad input are refused (the paper takes a standard map there).
+TEST(CameraSpace, ASpotLightsRaysKeepTheirTexelAndOrder)
+{
+  csm::Camera moved = camera(0.5, 300.0, 50.0, 1.5);
+  moved.wsPosition = { 40.0, -7.0, 1200.0 };
+  for (const csm::Camera& cam : { camera(1.0, 100.0, 60.0), moved })
+  {
+    const glm::dvec3 view = glm::normalize(cam.wsDirection);
+    // Above and behind, above the eye, high above and a little behind, to the side and behind.
+    const glm::dvec3 offsets[] = { { 0.0, 40.0, 30.0 }, { 5.0, 60.0, 0.0 },
+      { -10.0, 150.0, 20.0 }, { 120.0, 20.0, 10.0 } };
+    for (const glm::dvec3& offset : offsets)
+    {
+      const glm::dvec3 light = cam.wsPosition + offset;
+      for (double focus : { 0.0, std::sqrt(cam.vsNear * cam.vsFar) })
+      {
+        const csm::CameraSpaceMap map = csm::computeCameraSpaceSpot(cam, light, focus);
+        ASSERT_EQ(map.status, csm::Status::Ok) << offset.x << "," << offset.y << "," << offset.z
+                                               << ": " << map.message;
+        EXPECT_EQ(map.pushBack > 0.0, focus > 0.0);
+        EXPECT_GT(map.wMin, 0.0);
+        const RayCheck check = checkRays(
+          cam, view, 1e-9, [&](const glm::dvec3&) -> const glm::dmat4& { return map.wsToClip; },
+          &light);
+        EXPECT_EQ(check.outside, 0) << offset.y << " focus " << focus;
+        EXPECT_EQ(check.moving, 0) << offset.y << " focus " << focus;
+        EXPECT_EQ(check.unordered, 0) << offset.y << " focus " << focus;
+      }
+    }
+    // Refused: in the view, on the view axis behind the eye, a position that is not finite.
+    EXPECT_EQ(csm::computeCameraSpaceSpot(cam, cam.wsPosition + view * 20.0).status,
+      csm::Status::InvalidInput);
+    EXPECT_EQ(csm::computeCameraSpaceSpot(cam, cam.wsPosition - view * 20.0).status,
+      csm::Status::InvalidInput);
+    const csm::CameraSpaceMap bad =
+      csm::computeCameraSpaceSpot(cam, { std::nan(""), 0.0, 0.0 });
+    EXPECT_EQ(bad.status, csm::Status::InvalidInput);
+    EXPECT_FALSE(bad.message.empty());
   }
 }
 

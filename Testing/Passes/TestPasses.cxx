@@ -1542,3 +1542,46 @@ TEST(Passes, CameraSpaceMapShadesLikeCascades)
   EXPECT_GT(behindCascaded, 100);
   EXPECT_NEAR(behind, behindCascaded, 0.05 * behindCascaded + 10);
 }
+
+// A spot light's camera space map (Kolić & Mihajlović §6.2: the casters projected from the
+// light onto the plane in the view): the box's shadow as the standard spot map gives it (within
+// 5 %), from another matrix; with the light in the view, the standard map.
+TEST(Passes, CameraSpaceSpotLightShadesLikeItsStandardMap)
+{
+  BoxOverPlane scene;
+  scene.Light->SetPositional(true);
+  scene.Light->SetPosition(-3, 18, 12); // above and a little behind the camera (0, 14, 16)
+  scene.Light->SetFocalPoint(0, 0, 0);
+  scene.Light->SetConeAngle(40);
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  auto standardImage = scene.Render();
+  const long standard = DarkenedPixels(standardImage, plain);
+  ASSERT_EQ(baker->GetLightMaps().size(), 1u);
+  std::vector<double> standardMatrix(
+    baker->GetLightMaps()[0].WorldToMap[0], baker->GetLightMaps()[0].WorldToMap[0] + 16);
+  baker->CameraSpaceOn();
+  auto cssmImage = scene.Render();
+  const long cssm = DarkenedPixels(cssmImage, plain);
+  ASSERT_EQ(baker->GetLightMaps().size(), 1u);
+  const auto& maps = baker->GetLightMaps()[0];
+  EXPECT_EQ(maps.NumberOfCascades, 1);
+  // Another map: its shadow edges fall on other pixels.
+  EXPECT_GT(DifferingValues(standardImage, cssmImage, 8), 0);
+  EXPECT_FALSE(std::equal(standardMatrix.begin(), standardMatrix.end(), maps.WorldToMap[0]));
+  EXPECT_GT(standard, 500);
+  EXPECT_NEAR(cssm, standard, 0.05 * standard);
+  std::printf("spot light: standard map %ld darkened pixels, camera space map %ld; %ld values "
+              "differ\n", standard, cssm, static_cast<long>(DifferingValues(standardImage, cssmImage, 8)));
+  // The light in the view (in front of the camera, facing the ground): the standard map.
+  scene.Light->SetPosition(0, 4, 4);
+  baker->CameraSpaceOff();
+  scene.Render();
+  standardMatrix.assign(
+    baker->GetLightMaps()[0].WorldToMap[0], baker->GetLightMaps()[0].WorldToMap[0] + 16);
+  baker->CameraSpaceOn();
+  scene.Render();
+  EXPECT_TRUE(std::equal(
+    standardMatrix.begin(), standardMatrix.end(), baker->GetLightMaps()[0].WorldToMap[0]));
+}
