@@ -1061,6 +1061,9 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
   // Resolution from need (ErrorTarget), up to the ceiling of this kind of frame.
   const int ceiling = interacting ? std::min(this->InteractiveResolution, this->Resolution)
                                   : this->Resolution;
+  // And the cascades: more than fill the atlas with full maps only in a still frame (each is a
+  // caster pass; they refine the error where four full maps cannot reach ErrorTarget).
+  const int mostCascades = interacting ? csm::kAtlasFullMaps : 0;
   const int imageHeight = renderer->GetSize()[1];
   // The visible depths of the last frame (VisibleDepthFit; each process sees only its own).
   if (this->VisibleDepthFit && !this->Distributed() && state.VisibleCamera)
@@ -1098,7 +1101,7 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
     maps.Light = light;
     maps.LightIndex = index;
     const int count =
-      this->Planner->Plan(camera, aspect, light, sceneBounds, imageHeight, ceiling);
+      this->Planner->Plan(camera, aspect, light, sceneBounds, imageHeight, ceiling, mostCascades);
     state.VisibleDepthsUsed = state.VisibleDepthsUsed || this->Planner->GetVisibleDepthsUsed();
     maps.NumberOfCascades = std::min(count, kMaxCascades);
     maps.Faces = count > 0 && !light->GetPositional() &&

@@ -151,7 +151,7 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect,
 
 void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect,
   const double lightDirection[3], const double bounds[6], const void* light, int imageHeight,
-  int maximumResolution)
+  int maximumResolution, int mostCascades)
 {
   csm::Camera cam;
   if (!toCamera(camera, aspect, cam) || !lightDirection)
@@ -164,7 +164,8 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   csm::Settings settings;
   settings.warp = static_cast<csm::WarpMode>(this->WarpMode);
   settings.split.scheme = static_cast<csm::SplitScheme>(this->SplitScheme);
-  settings.split.k = this->NumberOfCascades;
+  settings.split.k =
+    mostCascades > 0 ? std::min(mostCascades, this->NumberOfCascades) : this->NumberOfCascades;
   settings.split.lambda = this->Lambda;
   settings.split.alpha = this->Alpha;
   settings.depthClamp = this->DepthClamp;
@@ -361,7 +362,7 @@ void vtkCascadedShadowMapPlanner::GetCascadePlanes(int i, double planes[16]) con
 }
 
 int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight* light,
-  const double bounds[6], int imageHeight, int maximumResolution)
+  const double bounds[6], int imageHeight, int maximumResolution, int mostCascades)
 {
   if (!light)
   {
@@ -374,7 +375,8 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
     focal[2] - position[2] };
   if (!light->GetPositional())
   {
-    this->PlanDirection(camera, aspect, direction, bounds, light, imageHeight, maximumResolution);
+    this->PlanDirection(
+      camera, aspect, direction, bounds, light, imageHeight, maximumResolution, mostCascades);
     return this->Report(light, light->GetMTime());
   }
   // A spot light: one perspective map fitted to the lit part of the visible scene.

@@ -202,9 +202,11 @@ public:
   /// AdaptiveCascades weighs the error with; without them it plans NumberOfCascades.
   /// The same for a vtkLight: a directional light travels from its transformed position to its
   /// transformed focal point; a positional (spot) light gets one perspective map fitted to the
-  /// part of the visible scene inside its cone (cone angle < 90 degrees).
+  /// part of the visible scene inside its cone (cone angle < 90 degrees). mostCascades > 0
+  /// plans at most that many cascades this frame (the baker's interactive frames: at most
+  /// csm::kAtlasFullMaps), below NumberOfCascades; the atlas stays the one NumberOfCascades gives.
   int Plan(vtkCamera* camera, double aspect, vtkLight* light, const double bounds[6],
-    int imageHeight = 0, int maximumResolution = 0);
+    int imageHeight = 0, int maximumResolution = 0, int mostCascades = 0);
 
   ///@{
   /**
@@ -351,7 +353,8 @@ private:
   void operator=(const vtkCascadedShadowMapPlanner&) = delete;
 
   void PlanDirection(vtkCamera* camera, double aspect, const double lightDirection[3],
-    const double bounds[6], const void* light, int imageHeight, int maximumResolution);
+    const double bounds[6], const void* light, int imageHeight, int maximumResolution,
+    int mostCascades = 0);
   /// Reports an invalid plan once per light (null: a direction) until the light or message changes.
   int Report(const void* light, vtkMTimeType lightTime);
 

@@ -967,11 +967,11 @@ Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera, const glm:
     return (glm::dvec3(t[row]) * h.w - glm::dvec3(t[3]) * h[row]) / (h.w * h.w);
   };
   // Lloyd et al. 2006, Eq. 3-4 with res = 1: s, t in [0, 1] are half the NDC. The map axis
-  // along ls x is s, or t for a map turned a quarter (orientToTile: its s row has nothing
-  // along ls x; a map whose axes are not ls x and z, VTK's say, is read as it is).
-  const double sAlongX = std::abs(glm::dot(glm::dvec3(t[0]), wsMapX));
-  const double tAlongX = std::abs(glm::dot(glm::dvec3(t[1]), wsMapX));
-  const bool turned = sAlongX <= 1e-9 * tAlongX;
+  // along ls x is the row that follows it: s, or t for a map turned a quarter (orientToTile),
+  // also when the map was planned for an earlier camera (whose ls x differs a little) or its
+  // axes are not ls x and z at all (VTK's map: the better aligned row).
+  const bool turned = std::abs(glm::dot(glm::dvec3(t[1]), wsMapX)) >
+    std::abs(glm::dot(glm::dvec3(t[0]), wsMapX));
   const double dsdx = 0.5 * std::abs(glm::dot(gradient(turned ? 1 : 0), wsMapX));
   const double dtdz = 0.5 * std::abs(glm::dot(gradient(turned ? 0 : 1), wsMapZ));
   Aliasing m;

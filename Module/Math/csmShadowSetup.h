@@ -229,8 +229,9 @@ ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosi
 
 /// Lloyd et al. 2006, Eq. 2-4 at a world point for a light clip matrix: beam widths of one shadow-map texel
 /// (map resolution 1) along ls x and ls z over the width of one image pixel (image height 1).
-/// Each is measured along the map axis that follows it: s for ls x and t for ls z, the other
-/// way round for a map turned by orientToTile (whose s row has nothing along ls x).
+/// Each is measured along the map row that follows it: s for ls x and t for ls z, the other
+/// way round for a map turned by orientToTile (whose t row is the one along ls x); for a map
+/// whose axes are not ls x and z (kept from an earlier camera, or VTK's), the better aligned.
 Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
   const glm::dvec3& wsLightDirection, const glm::dvec3& wsPoint);
 

@@ -1027,4 +1027,28 @@ TEST(Reuse, ABorderedMapCoversTheBodyOfACameraThatTurnedALittle)
   }
   EXPECT_EQ(covered, 4);
   EXPECT_EQ(coveredWithout, 0);
+  // The same with the maps turned to a non-square tile (orientToTile): the kept map's rows no
+  // longer follow the turned camera's ls x and z exactly, and the error is still read along the
+  // row that follows each (the ratio near 1, not the error across the map's other axis).
+  const csm::MapSize tile = kept.cascades[0].Mx > kept.cascades[0].Mz ? csm::MapSize(1024, 2048)
+                                                                      : csm::MapSize(2048, 1024);
+  auto keptTurned = kept;
+  csm::orientToTile(keptTurned, tile);
+  ASSERT_TRUE(keptTurned.cascades[0].mapTurned);
+  const glm::dmat4 borderedTurned = csm::withBorder(keptTurned.cascades[0].wsToClip, 0.2);
+  for (int frame = 1; frame <= 4; ++frame)
+  {
+    const double a = glm::radians(1.5 * frame);
+    csm::Camera turned = cam;
+    turned.wsPosition = { 24.0 * std::sin(a), 12.0, 24.0 * std::cos(a) };
+    turned.wsDirection = -turned.wsPosition;
+    auto fresh = csm::computeShadowSetup(turned, light, &scene, s);
+    csm::orientToTile(fresh, tile);
+    ASSERT_TRUE(fresh.cascades[0].mapTurned);
+    const auto reuse = csm::compareKeptMap(borderedTurned, fresh.cascades[0], turned,
+      glm::normalize(light), true, 2.0 * 2.0 / 1024.0);
+    EXPECT_TRUE(reuse.covers) << "frame " << frame;
+    EXPECT_LT(reuse.errorRatio, 1.6) << "frame " << frame;
+    EXPECT_GT(reuse.errorRatio, 0.6) << "frame " << frame;
+  }
 }

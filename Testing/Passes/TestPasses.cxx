@@ -589,6 +589,43 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
   EXPECT_EQ(baker->GetLastCascadeRenders(), still.NumberOfCascades);
 }
 
+// More than four cascades (tall tiles, maps turned to them) where the still frame's error
+// needs them, at most four while the user drags (VTK's interactive convention), and the shadow
+// there either way: a long ground seen low along it, the light from behind the viewer.
+TEST(Passes, MoreThanFourCascadesOnlyInStillFrames)
+{
+  BoxOverPlaneSettings settings;
+  settings.GroundHalfWidth = 2000.0;
+  settings.CameraPosition[0] = 0;
+  settings.CameraPosition[1] = 3;
+  settings.CameraPosition[2] = 12;
+  settings.LightPosition[0] = 0; // travels along the view, a little down
+  settings.LightPosition[1] = 3.5;
+  settings.LightPosition[2] = 12;
+  BoxOverPlane scene(settings);
+  scene.Renderer->GetActiveCamera()->SetClippingRange(0.5, 4000.0);
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->SetErrorTarget(0.05); // out of reach: as many as pay
+  const long still = DarkenedPixels(scene.Render(), plain);
+  const auto& maps = baker->GetLightMaps().at(0);
+  EXPECT_GT(maps.NumberOfCascades, 4);
+  int turned = 0;
+  for (int c = 0; c < maps.NumberOfCascades; ++c)
+  {
+    EXPECT_NE(maps.Resolution[0], maps.Resolution[1]) << "tall tiles";
+    turned += maps.MapTurned[c];
+  }
+  std::printf("still: %d cascades (%d turned), tiles %d x %d\n", maps.NumberOfCascades, turned,
+    maps.Resolution[0], maps.Resolution[1]);
+  scene.Window->SetDesiredUpdateRate(15.0); // as vtkRenderWindowInteractor while dragging
+  const long dragged = DarkenedPixels(scene.Render(), plain);
+  EXPECT_LE(baker->GetLightMaps().at(0).NumberOfCascades, 4);
+  EXPECT_GT(still, 200);
+  EXPECT_NEAR(dragged, still, 0.1 * still);
+}
+
 TEST(Passes, PropLightOrOptionChangesReRenderEveryMap)
 {
   BoxOverPlane scene;
