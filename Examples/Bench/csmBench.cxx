@@ -134,7 +134,7 @@ std::vector<Technique> Techniques(const Options& o)
     list.push_back(t);
   };
   add("vtk", "vtk", 0, 0, 1, 1);
-  // The pass as a user gets it (every option at the pass's default: up to 4 cascades, as many
+  // The pass as a user gets it (every option at the pass's default: up to 8 cascades, as many
   // as meet the error target), and the same with two fixed cascades (the default before the
   // sixth session).
   auto addDefaults = [&](const std::string& label, int fixedCascades, bool cullClosed = true,
@@ -160,6 +160,15 @@ std::vector<Technique> Techniques(const Options& o)
     addDefaults("default both sides", 0, false);
     // The defaults with the cascades fitted to the scene's boxes, as before VisibleDepthFit.
     addDefaults("default boxes fit", 0, true, false);
+    // The defaults with maps sized for a smaller error (more texels where the view needs them):
+    // the error target's trade of speed against error.
+    for (double target : { 0.7, 0.5 })
+    {
+      std::ostringstream label;
+      label << "default target " << target;
+      addDefaults(label.str(), 0);
+      list.back().Shadow.ErrorTarget = target;
+    }
     using P = vtkCascadedShadowMapPlanner;
     add("uniform", "csm", P::WARP_NONE, P::SPLIT_SINGLE, 1, 1);
     add("lispsm k1", "csm", P::WARP_LISPSM, P::SPLIT_SINGLE, 1, 1);
