@@ -148,13 +148,15 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
 /// depth range Eq. 19 (which only moves splits beyond the log splits) leaves the first
 /// partition most of the range (f/n 1200, k 4, gamma 0: storage 22,512 against 139).
 ///
-/// Each count k is judged at the resolution its maps can have: one light's maps share an atlas
+/// Each count k is judged at the maps it can have: one light's maps share an atlas
 /// (atlasLayout), so up to kAtlasFullMaps cascades get maximumResolution texels a side and more
-/// get less (resolutionCeilingForCount(k, settings.split.k, maximumResolution)). Where no count
-/// meets the target, more cascades are taken only while each step cuts the predicted worst error
-/// to kCountHysteresis of the best fewer cascades reach (the light along a 1:24,000 view: five
-/// cascades of 1638 texels, 1.7 texels a pixel, where four of 2048 give 2.3); a previous count
-/// within 1 / kCountHysteresis of that error stays.
+/// get less, in tiles that need not be square (resolutionCeilingForCount(k, settings.split.k,
+/// maximumResolution)), each map turned to its tile (predictedError). The plan returned is not
+/// turned: the caller turns it for its tile (orientToTile). Where no count meets the target,
+/// more cascades are taken only while each step cuts the predicted worst error to
+/// kCountHysteresis of the best fewer cascades reach (the light along a 1:1,100 view, 4:3:
+/// five cascades in tiles of 1638 x 2048, 1.6 texels a pixel, where four of 2048 give 2.3); a
+/// previous count within 1 / kCountHysteresis of that error stays.
 ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
   double imageHeight, int maximumResolution, double targetError, int kPrevious);
