@@ -268,8 +268,9 @@ void printText(const Options& o, const csm::ShadowSetup& s)
     std::printf("%-3s %12s %16s\n", "k", "texels", "predicted m");
     for (int k = 1; k <= o.settings.split.k; ++k)
     {
-      const csm::ShadowSetup plan = csm::computeShadowSetupForCount(
-        makeCamera(o), lightDirection(o.gamma), nullptr, o.settings, nullptr, k);
+      const csm::ShadowSetup plan = csm::computeShadowSetupForCount(makeCamera(o),
+        lightDirection(o.gamma), nullptr, o.settings, nullptr, k,
+        csm::resolutionCeilingForCount(k, o.settings.split.k, o.resolution));
       const csm::MapSize r = csm::resolutionCeilingForCount(
         static_cast<int>(plan.cascades.size()), o.settings.split.k, o.resolution);
       const std::string texels = std::to_string(r.width) + "x" + std::to_string(r.height);

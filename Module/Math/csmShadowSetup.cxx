@@ -795,7 +795,7 @@ void orientToTile(ShadowSetup& setup, const MapSize& tile)
 
 ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
-  int k)
+  int k, const MapSize& tile)
 {
   Settings s = settings;
   s.split.k = k;
@@ -807,9 +807,9 @@ ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& w
   s.split.scheme = SplitScheme::Log;
   ShadowSetup logPlan =
     computeShadowSetup(camera, wsLightDirection, sceneBounds, s, receiverParts);
-  // The common factor imageHeight / resolution does not change the order.
+  // The common factor imageHeight does not change the order.
   return logPlan.status == Status::Ok &&
-      predictedError(logPlan, 1.0, MapSize(1)) < predictedError(plan, 1.0, MapSize(1))
+      predictedError(logPlan, 1.0, tile) < predictedError(plan, 1.0, tile)
     ? logPlan
     : plan;
 }
@@ -830,7 +830,8 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
   for (int k = 1; k <= kMax; ++k)
   {
     plans.push_back(
-      computeShadowSetupForCount(camera, wsLightDirection, sceneBounds, settings, receiverParts, k));
+      computeShadowSetupForCount(camera, wsLightDirection, sceneBounds, settings, receiverParts, k,
+        resolutionCeilingForCount(k, kMax, maximumResolution)));
     if (plans.back().status != Status::Ok)
     {
       return plans.back(); // the same for every count
@@ -862,7 +863,8 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
   {
     // Fewer cascades would do, but not by a margin: keep the previous count if it still does.
     ShadowSetup previous =
-      computeShadowSetupForCount(camera, wsLightDirection, sceneBounds, settings, receiverParts, kPrevious);
+      computeShadowSetupForCount(camera, wsLightDirection, sceneBounds, settings, receiverParts,
+        kPrevious, resolutionCeilingForCount(kPrevious, kMax, maximumResolution));
     if (errorOf(previous, kPrevious) <= targetError)
     {
       return previous;

@@ -163,10 +163,11 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
 
 /// The plan computeShadowSetupForError judges for exactly k cascades (settings.split.k is
 /// ignored): with the adaptive split scheme, Barroso & Celes 2007, Eq. 19's splits or the log
-/// splits, whichever predicts the smaller worst error; else computeShadowSetup's.
+/// splits, whichever predicts the smaller worst error on maps of the given size (turned to it;
+/// square by default); else computeShadowSetup's.
 ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
-  int k);
+  int k, const MapSize& tile = MapSize(1));
 
 /// Share of the error target a smaller cascade count must meet to replace a previous count, and
 /// share of the error a larger count must reach to be taken where none meets the target.

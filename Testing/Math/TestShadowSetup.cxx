@@ -760,8 +760,8 @@ TEST(Steps, CascadeCountFromTheErrorModel)
     auto next = settingsUpTo8;
     next.split.k = kMost + 1;
     const double eNext = csm::predictedError(
-      csm::computeShadowSetupForCount(
-        longView, lightAt(longView, 0.0), nullptr, next, nullptr, kMost + 1),
+      csm::computeShadowSetupForCount(longView, lightAt(longView, 0.0), nullptr, next, nullptr,
+        kMost + 1, csm::resolutionCeilingForCount(kMost + 1, 8, 2048)),
       600.0, csm::resolutionCeilingForCount(kMost + 1, 8, 2048));
     EXPECT_GE(eNext, csm::kCountHysteresis * eMost);
   }
@@ -773,8 +773,8 @@ TEST(Steps, CascadeCountFromTheErrorModel)
     auto fewer = settingsUpTo8;
     fewer.split.k = kMost - 1;
     const double eFewer = csm::predictedError(
-      csm::computeShadowSetupForCount(
-        longView, lightAt(longView, 0.0), nullptr, fewer, nullptr, kMost - 1),
+      csm::computeShadowSetupForCount(longView, lightAt(longView, 0.0), nullptr, fewer, nullptr,
+        kMost - 1, csm::resolutionCeilingForCount(kMost - 1, 8, 2048)),
       600.0, csm::resolutionCeilingForCount(kMost - 1, 8, 2048));
     const csm::ShadowSetup kept = csm::computeShadowSetupForError(longView,
       lightAt(longView, 0.0), nullptr, settingsUpTo8, nullptr, 600.0, 2048, 1e-6, kMost - 1);
