@@ -735,11 +735,12 @@ glm::dvec2 mapAxisAliasing(const Cascade& cascade)
 
 namespace
 {
-/// max(M_s / width, M_t / height) for the map as it is turned now.
-double errorAsTurned(const Cascade& cascade, const MapSize& map)
+/// max(M_s / width, M_t / height) for the map as it is turned now, or turned once more.
+double errorAsTurned(const Cascade& cascade, const MapSize& map, bool turnOnceMore = false)
 {
   const glm::dvec2 m = mapAxisAliasing(cascade);
-  return std::max(m.x / map.width, m.y / map.height);
+  return turnOnceMore ? std::max(m.y / map.width, m.x / map.height)
+                      : std::max(m.x / map.width, m.y / map.height);
 }
 }
 
@@ -749,9 +750,7 @@ double predictedError(const Cascade& cascade, double imageHeight, const MapSize&
   {
     return std::numeric_limits<double>::infinity();
   }
-  Cascade turned = cascade;
-  turned.mapTurned = !cascade.mapTurned;
-  return imageHeight * std::min(errorAsTurned(cascade, map), errorAsTurned(turned, map));
+  return imageHeight * std::min(errorAsTurned(cascade, map), errorAsTurned(cascade, map, true));
 }
 
 double predictedError(const ShadowSetup& setup, double imageHeight, const MapSize& map)
@@ -776,9 +775,7 @@ void orientToTile(ShadowSetup& setup, const MapSize& tile)
   }
   for (Cascade& c : setup.cascades)
   {
-    Cascade turned = c;
-    turned.mapTurned = !c.mapTurned;
-    if (!(errorAsTurned(turned, tile) < errorAsTurned(c, tile)))
+    if (!(errorAsTurned(c, tile, true) < errorAsTurned(c, tile)))
     {
       continue;
     }
@@ -878,7 +875,6 @@ AtlasGrid atlasLayout(int mostCascades, int resolution)
   AtlasGrid atlas;
   if (mostCascades < 1 || resolution < 1)
   {
-    atlas.tile = MapSize(0);
     return atlas;
   }
   atlas.columns = std::min(mostCascades, kAtlasFullMaps);
