@@ -56,6 +56,7 @@ struct Options
   int Frames = 0;
   double Orbit = 360.0; // degrees the camera turns over --frames
   bool Interactive = false; // --frames as a user dragging the camera (desired update rate 15)
+  bool Breakdown = false;   // --frames: also the median planning and map times (glFinish-bracketed)
   bool HaveLight = false;
   double Light[3] = { -0.45, -1.0, -0.35 };
   bool HaveGamma = false;
@@ -143,6 +144,7 @@ void usage()
     "  --orbit DEG        degrees the camera turns over the frames [%g]; 0: a still camera\n"
     "  --interactive      render --frames as while the user drags the camera (the window's\n"
     "                     desired update rate at the interactor's 15 fps)\n"
+    "  --breakdown        with --frames: also print the median planning and map times\n"
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
     "  t technique, l light angle +15 deg\n",
     o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
@@ -195,6 +197,8 @@ Options parse(int argc, char** argv)
       o.Offscreen = true;
     else if (f == "--interactive")
       o.Interactive = true;
+    else if (f == "--breakdown")
+      o.Breakdown = true;
     else if (f == "--scene")
     {
       if (!v)
@@ -539,7 +543,9 @@ int main(int argc, char** argv)
 
   if (app.Opt.Frames > 0)
   {
-    std::vector<double> times;
+    std::vector<double> times, planTimes, mapTimes;
+    if (app.Passes.Cascaded)
+      app.Passes.Cascaded->GetShadowMapBakerPass()->SetMeasureTimes(app.Opt.Breakdown);
     int cascadesRendered = 0, cascadesKept = 0, closedCasters = 0, compactCasters = 0,
         blocksDrawn = 0, withoutReceivers = 0;
     double texelsRendered = 0.0;
@@ -567,6 +573,8 @@ int main(int argc, char** argv)
         withoutReceivers +=
           app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastCastersWithoutReceivers();
         texelsRendered += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastTexelsRendered();
+        planTimes.push_back(1000.0 * app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastPlanSeconds());
+        mapTimes.push_back(1000.0 * app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastMapSeconds());
       }
     }
     window->SetDesiredUpdateRate(0.0001); // the interactor's still rate
@@ -576,6 +584,13 @@ int main(int argc, char** argv)
       std::printf("maps_rendered: %d  maps_kept: %d  (over %d frames), texels rendered per "
                   "frame: %.2f M\n",
         cascadesRendered, cascadesKept, app.Opt.Frames, texelsRendered / app.Opt.Frames / 1e6);
+    if (app.Passes.Cascaded && app.Opt.Breakdown)
+    {
+      std::sort(planTimes.begin(), planTimes.end());
+      std::sort(mapTimes.begin(), mapTimes.end());
+      std::printf("median_plan_ms: %.3f  median_map_ms: %.3f\n", planTimes[planTimes.size() / 2],
+        mapTimes[mapTimes.size() / 2]);
+    }
     if (app.Passes.Cascaded)
       std::printf("closed_casters: %d of %d actors (drawn into the maps from behind)\n",
         closedCasters, renderer->GetActors()->GetNumberOfItems());

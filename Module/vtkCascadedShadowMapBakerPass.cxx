@@ -433,8 +433,19 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   const int h = static_cast<int>(std::lround(maps.Tile[c][3] * height));
   ostate->vtkglViewport(x, y, w, h);
   ostate->vtkglScissor(x, y, w, h);
-  // Far depth where nothing casts (the scissor keeps the other cascades' tiles).
-  ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+  // Far depth where nothing casts, in this tile only. Clearing the texture's rectangle directly
+  // (GL 4.4, ARB_clear_texture) is several times cheaper on software Mesa than a scissored
+  // framebuffer clear; the scissor keeps the other cascades' tiles when it is missing.
+  if (GLEW_VERSION_4_4 || GLEW_ARB_clear_texture)
+  {
+    const GLfloat farDepth = 1.0f;
+    glClearTexSubImage(maps.Atlas->GetHandle(), 0, x, y, 0, w, h, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
+      &farDepth);
+  }
+  else
+  {
+    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+  }
   casterView(renderer, renderer->GetActiveCamera(), maps.CasterView[c]);
 
   // Only the casters whose bounds reach this cascade's light volume; for the closed ones, the
