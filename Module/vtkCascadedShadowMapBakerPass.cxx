@@ -49,6 +49,16 @@ vtkCxxSetObjectMacro(vtkCascadedShadowMapBakerPass, Controller, vtkMultiProcessC
 
 namespace
 {
+/// A cascade's rectangle in its light's atlas, in texels: x, y, width, height.
+std::array<int, 4> tileTexels(const vtkCascadedShadowMapBakerPass::LightMaps& maps, int c)
+{
+  const double width = static_cast<double>(maps.Atlas->GetWidth());
+  const double height = static_cast<double>(maps.Atlas->GetHeight());
+  return { static_cast<int>(std::lround(maps.Tile[c][0] * width)),
+    static_cast<int>(std::lround(maps.Tile[c][1] * height)),
+    static_cast<int>(std::lround(maps.Tile[c][2] * width)),
+    static_cast<int>(std::lround(maps.Tile[c][3] * height)) };
+}
 constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES;
 constexpr size_t kMaxReceiverBoxes = 64;
 /// Most receiver boxes a caster without self-shadow is tested against (CullCastersWithoutReceivers);
@@ -420,32 +430,58 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(vtkOpenGLRenderWindow* window,
   return true;
 }
 
+void vtkCascadedShadowMapBakerPass::ClearTiles(
+  vtkOpenGLState* ostate, const LightMaps& maps, const int* renderCascade)
+{
+  // Far depth where nothing casts, all before the first draw: a clear between two cascades'
+  // draws would wait for the one drawn before it (a software rasterizer maps the texture).
+  bool all = true;
+  for (int c = 0; c < maps.NumberOfCascades; ++c)
+  {
+    all = all && renderCascade[c];
+  }
+  if (all)
+  {
+    // Nothing kept: one clear of the whole atlas, the fast clear of every driver.
+    ostate->vtkglDisable(GL_SCISSOR_TEST);
+    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+    return;
+  }
+  // Some maps kept: only the others' tiles. Clearing the texture's rectangles directly (GL 4.4,
+  // ARB_clear_texture) is several times cheaper on software Mesa than a scissored framebuffer
+  // clear, which it draws as a quad.
+  const bool clearTexture = GLEW_VERSION_4_4 || GLEW_ARB_clear_texture;
+  ostate->vtkglEnable(GL_SCISSOR_TEST);
+  for (int c = 0; c < maps.NumberOfCascades; ++c)
+  {
+    if (!renderCascade[c])
+    {
+      continue;
+    }
+    const std::array<int, 4> tile = tileTexels(maps, c);
+    if (clearTexture)
+    {
+      const GLfloat farDepth = 1.0f;
+      glClearTexSubImage(maps.Atlas->GetHandle(), 0, tile[0], tile[1], 0, tile[2], tile[3], 1,
+        GL_DEPTH_COMPONENT, GL_FLOAT, &farDepth);
+    }
+    else
+    {
+      ostate->vtkglScissor(tile[0], tile[1], tile[2], tile[3]);
+      ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+    }
+  }
+}
+
 void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   vtkOpenGLFramebufferObject* frameBuffer, LightMaps& maps, int c, const FrameProps& props,
   bool depthClamp)
 {
   vtkOpenGLState* ostate = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow())->GetState();
-  const int width = static_cast<int>(maps.Atlas->GetWidth());
-  const int height = static_cast<int>(maps.Atlas->GetHeight());
-  const int x = static_cast<int>(std::lround(maps.Tile[c][0] * width));
-  const int y = static_cast<int>(std::lround(maps.Tile[c][1] * height));
-  const int w = static_cast<int>(std::lround(maps.Tile[c][2] * width));
-  const int h = static_cast<int>(std::lround(maps.Tile[c][3] * height));
+  const std::array<int, 4> tile = tileTexels(maps, c);
+  const int x = tile[0], y = tile[1], w = tile[2], h = tile[3];
   ostate->vtkglViewport(x, y, w, h);
-  ostate->vtkglScissor(x, y, w, h);
-  // Far depth where nothing casts, in this tile only. Clearing the texture's rectangle directly
-  // (GL 4.4, ARB_clear_texture) is several times cheaper on software Mesa than a scissored
-  // framebuffer clear; the scissor keeps the other cascades' tiles when it is missing.
-  if (GLEW_VERSION_4_4 || GLEW_ARB_clear_texture)
-  {
-    const GLfloat farDepth = 1.0f;
-    glClearTexSubImage(maps.Atlas->GetHandle(), 0, x, y, 0, w, h, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
-      &farDepth);
-  }
-  else
-  {
-    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
-  }
+  ostate->vtkglScissor(x, y, w, h); // ClearTiles gave it far depth
   casterView(renderer, renderer->GetActiveCamera(), maps.CasterView[c]);
 
   // Only the casters whose bounds reach this cascade's light volume; for the closed ones, the
@@ -1291,6 +1327,7 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
     ostate->vtkglEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(static_cast<GLfloat>(this->PolygonOffsetFactor),
       static_cast<GLfloat>(this->PolygonOffsetUnits));
+    this->ClearTiles(ostate, maps, renderCascade);
     ostate->vtkglEnable(GL_SCISSOR_TEST);
     glEnable(GL_PROGRAM_POINT_SIZE); // points sized as the main view draws them
     for (int c = 0; c < maps.NumberOfCascades; ++c)
@@ -1299,6 +1336,9 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
       {
         --this->LastCascadesKept;
         this->RenderCascade(renderer, state.FrameBuffer, maps, c, props, depthClamp);
+        // Hand the map to the GL while the next one is set up: a software rasterizer fills
+        // this one on its threads while this thread transforms and bins the next one's casters.
+        glFlush();
       }
     }
     glDisable(GL_PROGRAM_POINT_SIZE);

@@ -456,6 +456,8 @@ protected:
   /// reallocated when the texture is new (nothing in it may be kept).
   bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles, int resolution,
     bool& reallocated);
+  /// Gives the tiles of the cascades to render (renderCascade[c]) far depth.
+  void ClearTiles(vtkOpenGLState* ostate, const LightMaps& maps, const int* renderCascade);
   void RenderCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebufferObject* frameBuffer,
     LightMaps& maps, int cascade, const FrameProps& props, bool depthClamp);
   /// For a prop drawn from compact blocks (CompactCasters), appends its blocks to the casters

@@ -589,6 +589,115 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
   EXPECT_EQ(baker->GetLastCascadeRenders(), still.NumberOfCascades);
 }
 
+namespace
+{
+/// One cascade's depth texels, read back from its light's atlas (the window's context current).
+std::vector<float> cascadeDepths(
+  vtkRenderWindow* window, const vtkCascadedShadowMapBakerPass::LightMaps& maps, int c)
+{
+  window->MakeCurrent();
+  vtkTextureObject* atlas = maps.Atlas;
+  const int width = static_cast<int>(atlas->GetWidth());
+  const int height = static_cast<int>(atlas->GetHeight());
+  std::vector<float> all(static_cast<size_t>(width) * height);
+  atlas->Bind();
+  glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, all.data());
+  atlas->Deactivate();
+  const int x = static_cast<int>(std::lround(maps.Tile[c][0] * width));
+  const int y = static_cast<int>(std::lround(maps.Tile[c][1] * height));
+  const int w = static_cast<int>(std::lround(maps.Tile[c][2] * width));
+  const int h = static_cast<int>(std::lround(maps.Tile[c][3] * height));
+  std::vector<float> tile;
+  for (int row = y; row < y + h; ++row)
+  {
+    tile.insert(tile.end(), all.begin() + static_cast<size_t>(row) * width + x,
+      all.begin() + static_cast<size_t>(row) * width + x + w);
+  }
+  return tile;
+}
+} // namespace
+
+// A cascade re-rendered while others are kept begins from far depth: its tile holds exactly what
+// a pass that re-renders every map draws into it (nothing left of the casters of its last matrix).
+TEST(Passes, AMapReRenderedBesideKeptOnesHoldsOnlyItsOwnCasters)
+{
+  // A long ground seen low along it: several cascades, the near ones changing first.
+  BoxOverPlaneSettings settings;
+  settings.GroundHalfWidth = 2000.0;
+  settings.CameraPosition[0] = 0;
+  settings.CameraPosition[1] = 3;
+  settings.CameraPosition[2] = 12;
+  settings.LightPosition[0] = 4;
+  settings.LightPosition[1] = 10;
+  settings.LightPosition[2] = 3;
+  BoxOverPlane keep(settings), fresh(settings);
+  keep.Renderer->GetActiveCamera()->SetClippingRange(0.5, 4000.0);
+  fresh.Renderer->GetActiveCamera()->SetClippingRange(0.5, 4000.0);
+  // Boxes down the ground, in the farther cascades too (each window its own mappers).
+  vtkNew<vtkCubeSource> far;
+  far->SetBounds(-4, 4, 0, 16, -4, 4);
+  vtkNew<vtkPolyDataMapper> farMappers[2];
+  vtkNew<vtkActor> farBoxes[2][3];
+  for (int window = 0; window < 2; ++window)
+  {
+    farMappers[window]->SetInputConnection(far->GetOutputPort());
+    for (int k = 0; k < 3; ++k)
+    {
+      farBoxes[window][k]->SetMapper(farMappers[window]);
+      farBoxes[window][k]->SetScale(0.5 * (k + 1));
+      farBoxes[window][k]->SetPosition(6.0 * k - 6.0, 0.0, -30.0 - 90.0 * k * k);
+      (window == 0 ? keep : fresh).Renderer->AddActor(farBoxes[window][k]);
+    }
+  }
+  vtkCascadedShadowMapPass* a = vtkCascadedShadowMapPass::UseShadowsOn(keep.Renderer);
+  vtkCascadedShadowMapPass* b = vtkCascadedShadowMapPass::UseShadowsOn(fresh.Renderer);
+  a->GetShadowMapBakerPass()->SetErrorTarget(0.5);
+  b->GetShadowMapBakerPass()->SetErrorTarget(0.5);
+  b->GetShadowMapBakerPass()->SetMapReuseTolerance(1.0); // re-render whenever the camera moves
+  keep.Window->SetDesiredUpdateRate(15.0);
+  fresh.Window->SetDesiredUpdateRate(15.0);
+  keep.Frame();
+  fresh.Frame();
+  int compared = 0;
+  for (int frame = 0; frame < 24 && compared == 0; ++frame)
+  {
+    keep.Renderer->GetActiveCamera()->Azimuth(1.5);
+    fresh.Renderer->GetActiveCamera()->Azimuth(1.5);
+    keep.Frame();
+    fresh.Frame();
+    vtkCascadedShadowMapBakerPass* baker = a->GetShadowMapBakerPass();
+    if (baker->GetLastCascadesKept() == 0 || baker->GetLastCascadeRenders() == 0)
+    {
+      continue; // not a frame with both
+    }
+    const auto& mk = baker->GetLightMaps(keep.Renderer).at(0);
+    const auto& mf = b->GetShadowMapBakerPass()->GetLightMaps(fresh.Renderer).at(0);
+    ASSERT_EQ(mk.NumberOfCascades, mf.NumberOfCascades);
+    for (int c = 0; c < mk.NumberOfCascades; ++c)
+    {
+      // The re-rendered cascades: planned for this camera, as the reference's.
+      if (!std::equal(mk.WorldToMap[c], mk.WorldToMap[c] + 16, mf.WorldToMap[c]) ||
+        !std::equal(mk.Tile[c], mk.Tile[c] + 4, mf.Tile[c]))
+      {
+        continue;
+      }
+      const std::vector<float> kept = cascadeDepths(keep.Window, mk, c);
+      const std::vector<float> reference = cascadeDepths(fresh.Window, mf, c);
+      ASSERT_EQ(kept.size(), reference.size());
+      long differing = 0, covered = 0;
+      for (size_t k = 0; k < kept.size(); ++k)
+      {
+        differing += kept[k] != reference[k];
+        covered += reference[k] < 1.0f;
+      }
+      EXPECT_GT(covered, 0) << "cascade " << c << " holds casters";
+      EXPECT_EQ(differing, 0) << "frame " << frame << ", cascade " << c;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 0) << "no frame re-rendered a map beside a kept one";
+}
+
 // More than four cascades (tall tiles, maps turned to them) where the still frame's error
 // needs them, at most four while the user drags (VTK's interactive convention), and the shadow
 // there either way: a long ground seen low along it, the light from behind the viewer.
