@@ -591,6 +591,21 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
 
 namespace
 {
+/// The box on a ground 4000 wide, seen low along it from (0, 3, 12) (the clipping range to set:
+/// 0.5 to 4000), the light from the given point toward the origin.
+BoxOverPlaneSettings longGroundSeenLow(double lightX, double lightY, double lightZ)
+{
+  BoxOverPlaneSettings settings;
+  settings.GroundHalfWidth = 2000.0;
+  settings.CameraPosition[0] = 0;
+  settings.CameraPosition[1] = 3;
+  settings.CameraPosition[2] = 12;
+  settings.LightPosition[0] = lightX;
+  settings.LightPosition[1] = lightY;
+  settings.LightPosition[2] = lightZ;
+  return settings;
+}
+
 /// One cascade's depth texels, read back from its light's atlas (the window's context current).
 std::vector<float> cascadeDepths(
   vtkRenderWindow* window, const vtkCascadedShadowMapBakerPass::LightMaps& maps, int c)
@@ -621,15 +636,8 @@ std::vector<float> cascadeDepths(
 // a pass that re-renders every map draws into it (nothing left of the casters of its last matrix).
 TEST(Passes, AMapReRenderedBesideKeptOnesHoldsOnlyItsOwnCasters)
 {
-  // A long ground seen low along it: several cascades, the near ones changing first.
-  BoxOverPlaneSettings settings;
-  settings.GroundHalfWidth = 2000.0;
-  settings.CameraPosition[0] = 0;
-  settings.CameraPosition[1] = 3;
-  settings.CameraPosition[2] = 12;
-  settings.LightPosition[0] = 4;
-  settings.LightPosition[1] = 10;
-  settings.LightPosition[2] = 3;
+  // Several cascades, the near ones changing first.
+  const BoxOverPlaneSettings settings = longGroundSeenLow(4.0, 10.0, 3.0);
   BoxOverPlane keep(settings), fresh(settings);
   keep.Renderer->GetActiveCamera()->SetClippingRange(0.5, 4000.0);
   fresh.Renderer->GetActiveCamera()->SetClippingRange(0.5, 4000.0);
@@ -703,15 +711,8 @@ TEST(Passes, AMapReRenderedBesideKeptOnesHoldsOnlyItsOwnCasters)
 // there either way: a long ground seen low along it, the light from behind the viewer.
 TEST(Passes, MoreThanFourCascadesOnlyInStillFrames)
 {
-  BoxOverPlaneSettings settings;
-  settings.GroundHalfWidth = 2000.0;
-  settings.CameraPosition[0] = 0;
-  settings.CameraPosition[1] = 3;
-  settings.CameraPosition[2] = 12;
-  settings.LightPosition[0] = 0; // travels along the view, a little down
-  settings.LightPosition[1] = 3.5;
-  settings.LightPosition[2] = 12;
-  BoxOverPlane scene(settings);
+  // The light travels along the view, a little down.
+  BoxOverPlane scene(longGroundSeenLow(0.0, 3.5, 12.0));
   scene.Renderer->GetActiveCamera()->SetClippingRange(0.5, 4000.0);
   auto plain = scene.Render();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
