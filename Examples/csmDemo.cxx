@@ -578,19 +578,18 @@ int main(int argc, char** argv)
       }
     }
     window->SetDesiredUpdateRate(0.0001); // the interactor's still rate
-    std::sort(times.begin(), times.end());
-    std::printf("median_frame_ms: %.3f\n", times[times.size() / 2]);
+    auto median = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      return v[v.size() / 2];
+    };
+    std::printf("median_frame_ms: %.3f\n", median(times));
     if (app.Passes.Cascaded)
       std::printf("maps_rendered: %d  maps_kept: %d  (over %d frames), texels rendered per "
                   "frame: %.2f M\n",
         cascadesRendered, cascadesKept, app.Opt.Frames, texelsRendered / app.Opt.Frames / 1e6);
     if (app.Passes.Cascaded && app.Opt.Breakdown)
-    {
-      std::sort(planTimes.begin(), planTimes.end());
-      std::sort(mapTimes.begin(), mapTimes.end());
-      std::printf("median_plan_ms: %.3f  median_map_ms: %.3f\n", planTimes[planTimes.size() / 2],
-        mapTimes[mapTimes.size() / 2]);
-    }
+      std::printf("median_plan_ms: %.3f  median_map_ms: %.3f\n", median(planTimes),
+        median(mapTimes));
     if (app.Passes.Cascaded)
       std::printf("closed_casters: %d of %d actors (drawn into the maps from behind)\n",
         closedCasters, renderer->GetActors()->GetNumberOfItems());
