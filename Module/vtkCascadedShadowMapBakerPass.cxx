@@ -61,6 +61,9 @@ std::array<int, 4> tileTexels(const vtkCascadedShadowMapBakerPass::LightMaps& ma
 }
 constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES;
 constexpr size_t kMaxReceiverBoxes = 64;
+/// Most casters the cascade count is weighed with one by one (each is tested against every
+/// cascade of every count planned).
+constexpr size_t kMaxCasterLoads = 256;
 /// Most receiver boxes a caster without self-shadow is tested against (CullCastersWithoutReceivers);
 /// beyond, every caster is drawn.
 constexpr size_t kMaxReceiverTests = 4096;
@@ -378,20 +381,28 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(vtkOpenGLRenderWindow* window,
   LightMaps& maps, int tiles, int wanted, bool& reallocated)
 {
   reallocated = false;
-  csm::AtlasGrid layout = csm::atlasLayout(tiles, wanted);
+  // The texels of up to csm::kAtlasFullMaps full maps, in this frame's count of tiles (fewer
+  // cascades get larger ones; a new count is a new texture).
+  const csm::AtlasGrid budget = csm::atlasLayout(tiles, wanted);
+  const int count = std::max(maps.NumberOfCascades, 1);
   GLint maxSize = 4096;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  if (layout.tile.width * layout.columns > maxSize)
+  const csm::AtlasGrid unlimited = csm::atlasForCount(count, budget);
+  const csm::AtlasGrid grid = csm::atlasForCount(count, budget, maxSize);
+  // (Said where the tiles fall below what was asked for, not below the larger maps of fewer
+  // cascades.)
+  if (grid.tile.width < std::min(unlimited.tile.width, wanted) ||
+    grid.tile.height < std::min(unlimited.tile.height, wanted))
   {
-    layout.tile = csm::MapSize(maxSize / layout.columns);
     std::ostringstream message;
-    message << "Shadow map resolution " << wanted << " x " << layout.columns
-            << " cascades exceeds the GL limit " << maxSize << "; using " << layout.tile.width;
+    message << "Shadow map tiles of " << unlimited.tile.width << " x " << unlimited.tile.height
+            << " texels for " << count << " cascades exceed the GL limit " << maxSize
+            << "; using " << grid.tile.width << " x " << grid.tile.height;
     this->ReportOnce(false, message.str());
   }
   vtkTextureObject* atlas = maps.Atlas;
-  const unsigned int width = static_cast<unsigned int>(layout.columns * layout.tile.width);
-  const unsigned int height = static_cast<unsigned int>(layout.rows * layout.tile.height);
+  const unsigned int width = static_cast<unsigned int>(grid.columns * grid.tile.width);
+  const unsigned int height = static_cast<unsigned int>(grid.rows * grid.tile.height);
   if (atlas->GetContext() != window || atlas->GetWidth() != width ||
     atlas->GetHeight() != height || !atlas->GetHandle())
   {
@@ -415,9 +426,6 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(vtkOpenGLRenderWindow* window,
     atlas->Modified();
     reallocated = true;
   }
-  // This frame's cascades in equal tiles (up to kAtlasFullMaps of the atlas's own, more in
-  // smaller ones, not always square).
-  const csm::AtlasGrid grid = csm::atlasGrid(std::max(maps.NumberOfCascades, 1), layout);
   maps.Resolution[0] = grid.tile.width;
   maps.Resolution[1] = grid.tile.height;
   for (int i = 0; i < maps.NumberOfCascades; ++i)
@@ -681,6 +689,21 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   vtkOpenGLCheckErrorMacro("failed after rendering the cascaded shadow maps");
 }
 
+namespace
+{
+/// Cells of an actor's input data (0 for other props or without data).
+double casterCells(vtkProp* prop)
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkMapper* mapper = actor ? actor->GetMapper() : nullptr;
+  vtkDataObject* data = mapper && mapper->GetNumberOfInputPorts() > 0 &&
+      mapper->GetNumberOfInputConnections(0) > 0
+    ? mapper->GetInputDataObject(0, 0)
+    : nullptr;
+  return data ? static_cast<double>(data->GetNumberOfElements(vtkDataObject::CELL)) : 0.0;
+}
+}
+
 void vtkCascadedShadowMapBakerPass::CollectProps(
   vtkRenderer* renderer, RendererMaps& state, FrameProps& props)
 {
@@ -739,8 +762,12 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
         const bool itself = this->ShadowsItself(prop);
         for (size_t i = first; i < props.Casters.size(); ++i)
         {
+          const FrameProps::Caster& caster = props.Casters[i];
           props.Casters[i].ShadowsItself = itself;
           props.Casters[i].Receiver = static_cast<int>(props.Receivers.size()) - 1;
+          const std::array<double, 6>& box = caster.Bounds;
+          props.CasterLoads.push_back(
+            { box[0], box[1], box[2], box[3], box[4], box[5], casterCells(caster.Prop) });
         }
       }
     }
@@ -1049,6 +1076,29 @@ void vtkCascadedShadowMapBakerPass::GatherAcrossProcesses(FrameProps& props)
   int changed = props.Changed ? 1 : 0, anyChanged = 0;
   this->Controller->AllReduce(&changed, &anyChanged, 1, vtkCommunicator::MAX_OP);
   props.Changed = anyChanged != 0;
+  // The caster loads of every process (padded with loads of no cells).
+  {
+    std::vector<std::array<double, 7>>& loads = props.CasterLoads;
+    int mineCount = static_cast<int>(loads.size()), mostLoads = 0;
+    this->Controller->AllReduce(&mineCount, &mostLoads, 1, vtkCommunicator::MAX_OP);
+    std::vector<double> mineLoads(7 * static_cast<size_t>(mostLoads), 0.0), allLoads;
+    for (int i = 0; i < mineCount; ++i)
+    {
+      std::copy(loads[i].begin(), loads[i].end(), mineLoads.begin() + 7 * i);
+    }
+    allLoads.resize(mineLoads.size() * this->Controller->GetNumberOfProcesses());
+    this->Controller->AllGather(
+      mineLoads.data(), allLoads.data(), static_cast<vtkIdType>(mineLoads.size()));
+    loads.clear();
+    for (size_t i = 0; i + 6 < allLoads.size(); i += 7)
+    {
+      if (allLoads[i + 6] > 0.0)
+      {
+        loads.push_back({ allLoads[i], allLoads[i + 1], allLoads[i + 2], allLoads[i + 3],
+          allLoads[i + 4], allLoads[i + 5], allLoads[i + 6] });
+      }
+    }
+  }
   // The receiver boxes of every process (padded with empty boxes).
   std::vector<std::array<double, 6>>& receivers = props.Receivers;
   int count = static_cast<int>(receivers.size()), most = 0;
@@ -1090,6 +1140,25 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
     {
       this->Planner->AddReceiverBounds(b.data());
     }
+  }
+  // What each cascade's pass would draw weighs the cascade count (up to kMaxCasterLoads
+  // casters; beyond, one load of all their cells in the scene's box, which every cascade draws).
+  this->Planner->ClearCasterLoads();
+  if (props.CasterLoads.size() <= kMaxCasterLoads)
+  {
+    for (const auto& load : props.CasterLoads)
+    {
+      this->Planner->AddCasterLoad(load.data(), load[6]);
+    }
+  }
+  else
+  {
+    double cells = 0.0;
+    for (const auto& load : props.CasterLoads)
+    {
+      cells += load[6];
+    }
+    this->Planner->AddCasterLoad(sceneBounds, cells);
   }
   // Plan every shadowed light for this frame, and decide per cascade whether the map kept from
   // an earlier frame still serves (only the camera moved, it covers, its error is bounded).

@@ -72,7 +72,10 @@ public:
   void ReleaseGraphicsResources(vtkWindow* w) override;
 
   ///@{
-  /// Resolution: width and height of each cascade's map in texels, 64..8192. Default 2048.
+  /// Resolution: width and height in texels of each cascade's map when four cascades
+  /// (csm::kAtlasFullMaps) fill a light's atlas; fewer cascades share the same texels in larger
+  /// square maps (one: 2 Resolution a side, two: 1.41 Resolution), more in smaller tiles
+  /// (csm::atlasForCount). 64..8192. Default 2048.
   vtkSetClampMacro(Resolution, int, 64, 8192);
   vtkGetMacro(Resolution, int);
   ///@}
@@ -117,8 +120,10 @@ public:
    * each cascade's map gets the fewest texels (a multiple of RESOLUTION_STEP) at which its
    * predicted worst aliasing error m in this renderer's viewport is at most ErrorTarget
    * (default 1; 0: every map at the ceiling), with Resolution (InteractiveResolution while the
-   * user drags) the ceiling; with AdaptiveCascades (default on) the number of cascades is the
-   * smallest up to NumberOfCascades that meets ErrorTarget at the ceiling.
+   * user drags) the tile of four cascades; with AdaptiveCascades (default on) the number of
+   * cascades is, of those up to NumberOfCascades that meet ErrorTarget on the largest maps
+   * their count gets, the one that costs least to render: a caster pass per cascade (the
+   * casters' cells, csm::kTexelsPerCasterTriangle) and the texels of its maps.
    */
   void SetErrorTarget(double target);
   double GetErrorTarget();
@@ -315,8 +320,9 @@ public:
     /// point's w); 0 otherwise.
     double DepthW[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     double Tile[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][4] = {};            ///< atlas tile: offset x, y and scale x, y in [0, 1]
-    /// Texels of each cascade's tile, width and height (Resolution a side; less beyond
-    /// csm::kAtlasFullMaps cascades, in non-square tiles, or where GL limits).
+    /// Texels of each cascade's tile, width and height (csm::atlasForCount: more than
+    /// Resolution a side for fewer than csm::kAtlasFullMaps cascades, less beyond, in
+    /// non-square tiles, or where GL limits).
     int Resolution[2] = { 0, 0 };
     /// Texels of each cascade's map along its s and t axes (from ErrorTarget), in the lower left
     /// of its tile.
@@ -436,6 +442,10 @@ protected:
     };
     std::vector<Caster> Casters;
     std::vector<std::array<double, 6>> Receivers;
+    /// What the cascade count is weighed by (vtkCascadedShadowMapPlanner::AddCasterLoad): per
+    /// caster its world box and the cells of its data (triangles, strips, lines, vertices), all
+    /// processes' when distributed.
+    std::vector<std::array<double, 7>> CasterLoads;
   };
   /// The steps of Render(): collect the props, share them across processes, plan the lights
   /// (and choose the cascades to re-render: 1 in render per light slot and cascade), render the

@@ -41,6 +41,7 @@ struct vtkCascadedShadowMapPlanner::Internals
 {
   csm::ShadowSetup Setup;
   std::vector<csm::Bounds> Receivers;
+  std::vector<csm::CasterLoad> Casters; // what a map pass draws (AddCasterLoad)
   /// The error last reported per light (nullptr: plans from a direction) and the light's MTime
   /// then, so that a bad light is reported once until it changes.
   struct Reported
@@ -211,7 +212,8 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
     auto last = this->Internal->LastCount.find(lightKey);
     this->Internal->Setup = csm::computeShadowSetupForError(cam, direction, sceneOrNull, settings,
       parts, imageHeight, maximumResolution, this->ErrorTarget,
-      last == this->Internal->LastCount.end() ? 0 : last->second);
+      last == this->Internal->LastCount.end() ? 0 : last->second,
+      this->Internal->Casters.empty() ? nullptr : &this->Internal->Casters);
   }
   else if (!planned)
   {
@@ -471,6 +473,22 @@ void vtkCascadedShadowMapPlanner::AddReceiverBounds(const double bounds[6])
   if (bounds)
   {
     this->Internal->Receivers.push_back(toBounds(bounds));
+  }
+}
+
+void vtkCascadedShadowMapPlanner::ClearCasterLoads()
+{
+  this->Internal->Casters.clear();
+}
+
+void vtkCascadedShadowMapPlanner::AddCasterLoad(const double bounds[6], double cells)
+{
+  // (A box that is not finite or a count that is not positive weighs nothing.)
+  if (bounds && std::isfinite(cells) && cells > 0.0 &&
+    std::all_of(bounds, bounds + 6, [](double v) { return std::isfinite(v); }) &&
+    bounds[0] <= bounds[1] && bounds[2] <= bounds[3] && bounds[4] <= bounds[5])
+  {
+    this->Internal->Casters.push_back({ toBounds(bounds), cells });
   }
 }
 

@@ -91,7 +91,7 @@ public:
    * The aliasing error (Lloyd et al. 2006, Eq. 1: m, the width of a texel over that of a
    * pixel) the maps are sized for: each cascade's map gets the fewest texels at which its
    * predicted worst error is at most ErrorTarget (GetCascadeResolution()), and with
-   * AdaptiveCascades the number of cascades is the smallest that reaches it. 0: neither (every
+   * AdaptiveCascades the number of cascades is one that reaches it. 0: neither (every
    * map at the ceiling, NumberOfCascades cascades). Default 1 (one texel to a pixel where the
    * error is largest).
    */
@@ -101,9 +101,11 @@ public:
 
   ///@{
   /**
-   * Choose the number of cascades per frame from the error model: the smallest number up to
+   * Choose the number of cascades per frame from the error model: of the numbers up to
    * NumberOfCascades whose predicted worst error at the largest maps that count can have
-   * (csm::resolutionCeilingForCount) meets ErrorTarget; when none does, more cascades only
+   * (csm::resolutionCeilingForCount: fewer cascades get larger maps of the same atlas) meets
+   * ErrorTarget, the smallest, or where Plan() is told what a map pass draws, the one that
+   * costs least to render (passes and texels); when none does, more cascades only
    * while each cuts the predicted error to csm::kCountHysteresis; changed with hysteresis from the last
    * frame's (csm::computeShadowSetupForError; with the adaptive split scheme each count takes
    * Eq. 19's splits or the log splits, whichever predicts the smaller worst error). Needs the
@@ -217,6 +219,19 @@ public:
    */
   void ClearReceiverBounds();
   void AddReceiverBounds(const double bounds[6]);
+  ///@}
+
+  ///@{
+  /**
+   * The casters a map pass draws: each one's world box and its cells (triangles, lines,
+   * vertices). When given, AdaptiveCascades takes, of the counts that meet ErrorTarget, the one
+   * that costs least to render, each cascade's pass drawing the casters whose boxes reach it
+   * (csm::passTexels, csm::kTexelsPerCasterTriangle) and its maps' texels together; without
+   * them, the fewest cascades that meet it. Kept until cleared; like the receivers, not a
+   * property (setting them does not modify the planner).
+   */
+  void ClearCasterLoads();
+  void AddCasterLoad(const double bounds[6], double cells);
   ///@}
 
   ///@{

@@ -811,24 +811,77 @@ ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& w
     : plan;
 }
 
+double texelsForError(
+  const ShadowSetup& setup, double imageHeight, double targetError, const MapSize& ceiling)
+{
+  if (setup.cascades.empty() || !(targetError > 0.0))
+  {
+    return std::numeric_limits<double>::infinity();
+  }
+  double texels = 0.0;
+  for (const Cascade& c : setup.cascades)
+  {
+    // resolutionForError's sides, without the rounding to its step.
+    const double side = std::max(c.Mx, c.Mz) * imageHeight / targetError;
+    const double s = std::isfinite(side) ? side : ceiling.width;
+    const double t = std::isfinite(side) ? side : ceiling.height;
+    texels += std::min<double>(std::max(s, 1.0), ceiling.width) *
+      std::min<double>(std::max(t, 1.0), ceiling.height);
+  }
+  return texels;
+}
+
+double passTexels(
+  const ShadowSetup& setup, const std::vector<CasterLoad>& casters, bool depthClamp)
+{
+  double cells = 0.0;
+  for (const Cascade& c : setup.cascades)
+  {
+    for (const CasterLoad& caster : casters)
+    {
+      if (caster.cells > 0.0 && !boxOutsideClipVolume(c.wsToClip, caster.wsBox, depthClamp))
+      {
+        cells += caster.cells;
+      }
+    }
+  }
+  return cells * kTexelsPerCasterTriangle;
+}
+
 ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
-  double imageHeight, int maximumResolution, double targetError, int kPrevious)
+  double imageHeight, int maximumResolution, double targetError, int kPrevious,
+  const std::vector<CasterLoad>* casters)
 {
   const int kMax = std::max(1, settings.split.k);
+  auto ceilingOf = [&](int k) { return resolutionCeilingForCount(k, kMax, maximumResolution); };
   auto errorOf = [&](const ShadowSetup& plan, int k) {
-    return predictedError(
-      plan, imageHeight, resolutionCeilingForCount(k, kMax, maximumResolution));
+    return predictedError(plan, imageHeight, ceilingOf(k));
+  };
+  // With casters the counts that meet the target are weighed by what they cost to render;
+  // without, the smallest is taken (the cost is then the count).
+  const bool weighed = casters != nullptr;
+  auto costOf = [&](const ShadowSetup& plan, int k) {
+    return weighed ? passTexels(plan, *casters, settings.depthClamp) +
+        texelsForError(plan, imageHeight, targetError, ceilingOf(k))
+                   : static_cast<double>(k);
+  };
+  auto planFor = [&](int k) {
+    return computeShadowSetupForCount(
+      camera, wsLightDirection, sceneBounds, settings, receiverParts, k, ceilingOf(k));
   };
   std::vector<ShadowSetup> plans;
   std::vector<double> errors;
   int chosen = 0; // 1-based; 0: none meets the target
+  double chosenCost = 0.0;
   int best = 0;   // where none does: the count taken
   for (int k = 1; k <= kMax; ++k)
   {
-    plans.push_back(
-      computeShadowSetupForCount(camera, wsLightDirection, sceneBounds, settings, receiverParts, k,
-        resolutionCeilingForCount(k, kMax, maximumResolution)));
+    if (chosen > 0 && !weighed)
+    {
+      break;
+    }
+    plans.push_back(planFor(k));
     if (plans.back().status != Status::Ok)
     {
       return plans.back(); // the same for every count
@@ -842,8 +895,12 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
     {
       continue;
     }
-    chosen = k;
-    break;
+    const double cost = costOf(plans.back(), k);
+    if (chosen == 0 || cost < chosenCost)
+    {
+      chosen = k;
+      chosenCost = cost;
+    }
   }
   if (chosen == 0)
   {
@@ -856,18 +913,24 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
     }
     return plans[best - 1];
   }
-  if (kPrevious > chosen && kPrevious <= kMax && !(errors.back() <= kCountHysteresis * targetError))
+  if (kPrevious >= 1 && kPrevious <= kMax && kPrevious != chosen)
   {
-    // Fewer cascades would do, but not by a margin: keep the previous count if it still does.
-    ShadowSetup previous =
-      computeShadowSetupForCount(camera, wsLightDirection, sceneBounds, settings, receiverParts,
-        kPrevious, resolutionCeilingForCount(kPrevious, kMax, maximumResolution));
-    if (errorOf(previous, kPrevious) <= targetError)
+    // Another count does better, but not by a margin: keep the previous one if it still meets
+    // the target.
+    const bool byMargin = weighed ? false : errors[chosen - 1] <= kCountHysteresis * targetError;
+    if (weighed || (kPrevious > chosen && !byMargin))
     {
-      return previous;
+      ShadowSetup previous = kPrevious <= static_cast<int>(plans.size())
+        ? plans[kPrevious - 1]
+        : planFor(kPrevious);
+      if (previous.status == Status::Ok && errorOf(previous, kPrevious) <= targetError &&
+        (!weighed || kCountHysteresis * costOf(previous, kPrevious) <= chosenCost))
+      {
+        return previous;
+      }
     }
   }
-  return plans.back();
+  return plans[chosen - 1];
 }
 
 AtlasGrid atlasLayout(int mostCascades, int resolution)
@@ -912,11 +975,35 @@ AtlasGrid atlasGrid(int count, const AtlasGrid& atlas)
   return grid;
 }
 
+AtlasGrid atlasForCount(int count, const AtlasGrid& atlas, int maximumSide)
+{
+  const int tiles = atlas.columns * atlas.rows;
+  if (count < 1 || atlas.tile.width < 1 || atlas.tile.height < 1)
+  {
+    return AtlasGrid();
+  }
+  AtlasGrid grid = count > tiles ? atlasGrid(count, atlas) : AtlasGrid();
+  if (count <= tiles)
+  {
+    // The budget's area in count square tiles.
+    const double area = double(tiles) * atlas.tile.width * atlas.tile.height;
+    int side = static_cast<int>(std::sqrt(area / count) / kAtlasTileStep) * kAtlasTileStep;
+    side = std::max(side, std::min(atlas.tile.width, atlas.tile.height));
+    grid.columns = count;
+    grid.rows = 1;
+    grid.tile = MapSize(maximumSide > 0 ? std::max(1, std::min(side, maximumSide / count)) : side);
+  }
+  else if (maximumSide > 0)
+  {
+    grid.tile.width = std::max(1, std::min(grid.tile.width, maximumSide / grid.columns));
+    grid.tile.height = std::max(1, std::min(grid.tile.height, maximumSide / grid.rows));
+  }
+  return grid;
+}
+
 MapSize resolutionCeilingForCount(int count, int mostCascades, int resolution)
 {
-  const AtlasGrid atlas = atlasLayout(std::max(mostCascades, count), resolution);
-  const MapSize tile = atlasGrid(count, atlas).tile;
-  return MapSize(std::min(resolution, tile.width), std::min(resolution, tile.height));
+  return atlasForCount(count, atlasLayout(std::max(mostCascades, count), resolution)).tile;
 }
 
 int resolutionForError(double maxAliasing, double imageHeight, double targetError, int step,

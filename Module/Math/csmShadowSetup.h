@@ -135,31 +135,66 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
   const Bounds* sceneBounds, const Settings& settings,
   const std::vector<Bounds>* receiverParts = nullptr);
 
-/// The number of cascades from the error model: the smallest k in [1, settings.split.k] whose
-/// plan's predicted worst error, max over its cascades of max(M_x, M_z) (Lloyd et al. 2006,
-/// Eq. 9-10) times imageHeight / maximumResolution, is at most targetError; settings.split.k when
-/// none is. Changing the partitioning from frame to frame can pop (Lloyd et al. 2006, §5.2): from
-/// a previous count kPrevious (0: none) that still meets the target, a smaller count is taken
-/// only where it meets kCountHysteresis times the target. Returns the plan for the chosen count
-/// (its cascades.size() may be smaller where partitions are empty); the same input errors as
-/// computeShadowSetup. With the adaptive split scheme each count's plan takes Barroso & Celes
+/// A caster as the cascade count is weighed by: its world box and the cells (triangles, lines,
+/// vertices) a map pass draws of it.
+struct CasterLoad
+{
+  Bounds wsBox;
+  double cells = 0.0;
+};
+
+/// The number of cascades from the error model. Each count k in [1, settings.split.k] is judged
+/// by its plan's predicted worst error, max over its cascades of max(M_x, M_z) (Lloyd et al.
+/// 2006, Eq. 9-10) times imageHeight over the largest maps that count can have
+/// (resolutionCeilingForCount(k, settings.split.k, maximumResolution)); of the counts whose
+/// error is at most targetError, the one that costs least to render: its caster passes
+/// (passTexels: each cascade draws the casters whose boxes reach it) plus the texels its maps
+/// need to meet the target (texelsForError). Without casters (null, the default) that is the
+/// smallest count that meets the target. Where none meets it, settings.split.k (see below).
+/// Changing the partitioning from frame to frame can pop (Lloyd et al. 2006, §5.2): a previous
+/// count kPrevious (0: none) that still meets the target stays unless another costs at most
+/// kCountHysteresis of its cost (without casters: unless a smaller count meets
+/// kCountHysteresis times the target). Returns the plan for the chosen
+/// count (its cascades.size() may be smaller where partitions are empty); the same input errors
+/// as computeShadowSetup. With the adaptive split scheme each count's plan takes Barroso & Celes
 /// 2007, Eq. 19's splits unless the log splits (Lloyd et al. 2006, Eq. 15-16) predict a smaller
 /// worst error for this view: with the light along the view no warp helps, and over a long
 /// depth range Eq. 19 (which only moves splits beyond the log splits) leaves the first
 /// partition most of the range (f/n 1200, k 4, gamma 0: storage 22,512 against 139).
 ///
-/// Each count k is judged at the maps it can have: one light's maps share an atlas
-/// (atlasLayout), so up to kAtlasFullMaps cascades get maximumResolution texels a side and more
-/// get less, in tiles that need not be square (resolutionCeilingForCount(k, settings.split.k,
-/// maximumResolution)), each map turned to its tile (predictedError). The plan returned is not
-/// turned: the caller turns it for its tile (orientToTile). Where no count meets the target,
-/// more cascades are taken only while each step cuts the predicted worst error to
-/// kCountHysteresis of the best fewer cascades reach (the light along a 1:1,100 view, 4:3:
-/// five cascades in tiles of 1638 x 2048, 1.6 texels a pixel, where four of 2048 give 2.3); a
-/// previous count within 1 / kCountHysteresis of that error stays.
+/// One light's maps share an atlas of the texels of min(settings.split.k, kAtlasFullMaps) maps
+/// of maximumResolution a side (atlasLayout): fewer cascades get larger square maps of the same
+/// total area, more get smaller tiles that need not be square (atlasForCount), each map turned
+/// to its tile (predictedError). The plan returned is not turned: the caller turns it for its
+/// tile (orientToTile). Where no count meets the target, more cascades are taken only while
+/// each step cuts the predicted worst error to kCountHysteresis of the best fewer cascades reach
+/// (the light along a 1:1,100 view, 4:3: five cascades in tiles of 1638 x 2048, 1.6 texels a
+/// pixel, where four of 2048 give 2.3); a previous count within 1 / kCountHysteresis of that
+/// error stays.
 ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
-  double imageHeight, int maximumResolution, double targetError, int kPrevious);
+  double imageHeight, int maximumResolution, double targetError, int kPrevious,
+  const std::vector<CasterLoad>* casters = nullptr);
+
+/// What one caster triangle costs to draw into a shadow map, in texels filled: a map pass of T
+/// triangles costs as much as T times this many texels (passTexels). Measured on llvmpipe (Mesa's software rasterizer, 2 threads): about 130 ns a
+/// triangle of a thin-bar lattice against 8 ns a texel of a depth map (Documentation/Results.md,
+/// thirteenth session); a GPU's triangle setup against its depth fill is of the same order. A
+/// property of the renderer, not of a scene.
+constexpr double kTexelsPerCasterTriangle = 16.0;
+
+/// The cost of drawing the casters into a plan's maps, in texels filled: for each cascade, the
+/// cells of the casters whose boxes reach its light clip volume (boxOutsideClipVolume, as the
+/// passes cull them; depthClamp as they draw) times kTexelsPerCasterTriangle.
+double passTexels(
+  const ShadowSetup& setup, const std::vector<CasterLoad>& casters, bool depthClamp);
+
+/// The texels the maps of a plan need for a worst error of targetError in an image imageHeight
+/// pixels high: each cascade's map (square, max(M_x, M_z) texels per pixel along both axes, as
+/// resolutionForError sizes it, without its rounding) within ceiling; +infinity for a plan
+/// without cascades or a target that is not positive.
+double texelsForError(
+  const ShadowSetup& setup, double imageHeight, double targetError, const MapSize& ceiling);
 
 /// The plan computeShadowSetupForError judges for exactly k cascades (settings.split.k is
 /// ignored): with the adaptive split scheme, Barroso & Celes 2007, Eq. 19's splits or the log
@@ -173,10 +208,14 @@ ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& w
 /// share of the error a larger count must reach to be taken where none meets the target.
 constexpr double kCountHysteresis = 0.8;
 
-/// One light's cascades share one depth texture (an atlas) of at most this many maps of the
-/// largest resolution, in a row: more cascades share its area with smaller maps, so that the
-/// texels (and the memory) do not grow with the number of cascades.
+/// One light's cascades share one depth texture (an atlas) with the texels of at most this many
+/// maps of the largest resolution: fewer cascades get larger maps of the same total area, more
+/// share it with smaller maps, so that the texels (and the memory) do not grow with the number of
+/// cascades and fewer caster passes do not lose texels.
 constexpr int kAtlasFullMaps = 4;
+
+/// Sides of the atlas's tiles for fewer cascades than full maps are multiples of this.
+constexpr int kAtlasTileStep = 16;
 
 /// An atlas, or a grid of equal tiles in one: texels of the tiles along s and t, and their
 /// columns and rows.
@@ -187,9 +226,9 @@ struct AtlasGrid
   MapSize tile;
 };
 
-/// The atlas for at most mostCascades maps of resolution texels a side: min(mostCascades,
-/// kAtlasFullMaps) square tiles of that resolution in one row (a 1 x 1 grid of 0 texels for
-/// counts or resolutions below 1).
+/// The texel budget of the atlas for at most mostCascades maps of resolution texels a side:
+/// min(mostCascades, kAtlasFullMaps) square tiles of that resolution in one row (a 1 x 1 grid of
+/// 0 texels for counts or resolutions below 1).
 AtlasGrid atlasLayout(int mostCascades, int resolution);
 
 /// The grid of count equal tiles in an atlas of atlas.columns x atlas.rows tiles of atlas.tile
@@ -199,10 +238,18 @@ AtlasGrid atlasLayout(int mostCascades, int resolution);
 /// cascade turned to its tile (orientToTile) keeps 2048 texels where its error is largest.
 AtlasGrid atlasGrid(int count, const AtlasGrid& atlas);
 
+/// The atlas count cascades get from the budget of atlasLayout (atlas): up to its number of
+/// tiles, a row of count square tiles of the same total area, a multiple of kAtlasTileStep a
+/// side and never smaller than the budget's tile (4 x 2048² texels: 1 cascade 4096², 2 cascades
+/// 2896², 3 cascades 2352², 4 cascades 2048²); more, atlasGrid(count, atlas). The tiles' sides
+/// stay within maximumSide texels a row (a GL texture's size limit; 0: none), the row's tiles
+/// smaller where they would not. A 1 x 1 grid of 0 texels for counts or atlases without texels.
+AtlasGrid atlasForCount(int count, const AtlasGrid& atlas, int maximumSide = 0);
+
 /// The largest map count cascades can have in the atlas of atlasLayout(mostCascades,
-/// resolution): resolution a side up to kAtlasFullMaps cascades, less beyond (4 x 2048 texels a
-/// row: 5 cascades 1638 x 2048, 6 cascades 1365 x 2048, 8 cascades 2048 x 1024). 0 x 0 for counts
-/// or resolutions below 1.
+/// resolution): its tile in atlasForCount (4 x 2048² texels: 1 cascade 4096², 2 cascades 2896²,
+/// 3 cascades 2352², 4 cascades 2048², 5 cascades 1638 x 2048, 6 cascades 1365 x 2048, 8 cascades
+/// 2048 x 1024). 0 x 0 for counts or resolutions below 1.
 MapSize resolutionCeilingForCount(int count, int mostCascades, int resolution);
 
 /// A cascade's predicted worst error on a map of the given size, turned as orientToTile would

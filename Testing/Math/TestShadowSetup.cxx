@@ -731,7 +731,9 @@ TEST(Steps, CascadeCountFromTheErrorModel)
     csm::computeShadowSetup(midView, lightAt(midView, 0.0), nullptr, fewer, nullptr);
   EXPECT_GT(enough.cascades.size(), 2u);
   EXPECT_LE(csm::predictedError(enough, 600.0, 2048), 1.5);
-  EXPECT_GT(csm::predictedError(oneFewer, 600.0, 2048), 1.5);
+  EXPECT_GT(csm::predictedError(oneFewer, 600.0,
+              csm::resolutionCeilingForCount(fewer.split.k, 8, 2048)),
+    1.5);
   std::printf("cascades: overhead f/n 10: %zu (error %.3f); behind f/n 100: %zu (error %.3f, "
               "with one fewer %.3f); behind f/n 1e4: %zu (error %.1f)\n",
     overhead.cascades.size(), csm::predictedError(overhead, 600.0, 2048), enough.cascades.size(),
@@ -789,10 +791,12 @@ TEST(Steps, CascadeCountFromTheErrorModel)
   one.split.k = 1;
   auto two = settingsUpTo8;
   two.split.k = 2;
-  const double e1 =
-    csm::predictedError(csm::computeShadowSetup(mid, light, nullptr, one, nullptr), 1000.0, 2048);
-  const double e2 =
-    csm::predictedError(csm::computeShadowSetup(mid, light, nullptr, two, nullptr), 1000.0, 2048);
+  // (Each on the map its count gets: two tiles' texels, one map of 2896² or two of 2048².)
+  ASSERT_EQ(csm::resolutionCeilingForCount(1, 2, 2048), csm::MapSize(2896));
+  const double e1 = csm::predictedError(csm::computeShadowSetup(mid, light, nullptr, one, nullptr),
+    1000.0, csm::resolutionCeilingForCount(1, 2, 2048));
+  const double e2 = csm::predictedError(csm::computeShadowSetup(mid, light, nullptr, two, nullptr),
+    1000.0, csm::resolutionCeilingForCount(2, 2, 2048));
   ASSERT_LT(e2, e1);
   const double target = e1 / 0.9; // one cascade meets it, not by the hysteresis margin
   EXPECT_EQ(csm::computeShadowSetupForError(mid, light, nullptr, two, nullptr, 1000.0, 2048,
@@ -806,6 +810,108 @@ TEST(Steps, CascadeCountFromTheErrorModel)
     glm::dvec3(std::nan(""), 1.0, 0.0), nullptr, two, nullptr, 1000.0, 2048, 1.0, 0);
   EXPECT_EQ(bad.status, csm::Status::InvalidInput);
   EXPECT_TRUE(bad.cascades.empty());
+}
+
+// Of the counts that meet the target, the one that costs least: each cascade's caster pass (the
+// cells of the casters whose boxes reach it, kTexelsPerCasterTriangle texels a cell) plus the
+// texels its maps need. Without casters, the fewest cascades; a caster that every cascade draws
+// weighs k passes of it; one far away only the cascades that reach it. Hysteresis keeps a
+// previous count that meets the target unless another costs at most 0.8 of it.
+TEST(Steps, CascadeCountWeighsCasterPassesAgainstTexels)
+{
+  const auto upTo4 = settings(csm::WarpMode::Generalized, csm::SplitScheme::Adaptive, 4);
+  const csm::Camera view = camera(1.0, 300.0, 40.0, 4.0 / 3.0);
+  const glm::dvec3 light = lightAt(view, 50.0);
+  const double height = 600.0;
+  std::vector<csm::ShadowSetup> plans(5);
+  std::vector<double> error(5), texels(5);
+  for (int k = 1; k <= 4; ++k)
+  {
+    const csm::MapSize ceiling = csm::resolutionCeilingForCount(k, 4, 2048);
+    plans[k] = csm::computeShadowSetupForCount(view, light, nullptr, upTo4, nullptr, k, ceiling);
+    ASSERT_EQ(plans[k].status, csm::Status::Ok);
+    ASSERT_EQ(plans[k].cascades.size(), static_cast<size_t>(k));
+    error[k] = csm::predictedError(plans[k], height, ceiling);
+  }
+  // A target every count meets.
+  const double target = 1.01 * *std::max_element(error.begin() + 1, error.end());
+  for (int k = 1; k <= 4; ++k)
+  {
+    const csm::MapSize ceiling = csm::resolutionCeilingForCount(k, 4, 2048);
+    texels[k] = csm::texelsForError(plans[k], height, target, ceiling);
+    // Each map's texels: max(Mx, Mz) H / target a side, within the ceiling.
+    double sum = 0.0;
+    for (const csm::Cascade& c : plans[k].cascades)
+    {
+      const double side = std::min<double>(ceiling.width, std::max(c.Mx, c.Mz) * height / target);
+      sum += side * side;
+    }
+    EXPECT_NEAR(texels[k], sum, 1e-6 * sum) << k;
+    EXPECT_LE(texels[k], k * double(ceiling.width) * ceiling.height) << k;
+  }
+  std::printf("error at the count's ceiling: %.3f %.3f %.3f %.3f; texels for %.3f: %.0f %.0f "
+              "%.0f %.0f\n",
+    error[1], error[2], error[3], error[4], target, texels[1], texels[2], texels[3], texels[4]);
+  ASSERT_GT(texels[1], texels[4]); // more cascades need fewer texels here
+  auto countFor = [&](const std::vector<csm::CasterLoad>* casters, int previous = 0) {
+    return static_cast<int>(csm::computeShadowSetupForError(view, light, nullptr, upTo4, nullptr,
+      height, 2048, target, previous, casters)
+                              .cascades.size());
+  };
+  auto cheapest = [&](const std::vector<csm::CasterLoad>& casters) {
+    int best = 1;
+    double bestCost = 0.0;
+    for (int k = 1; k <= 4; ++k)
+    {
+      const double cost = csm::passTexels(plans[k], casters, true) + texels[k];
+      if (k == 1 || cost < bestCost)
+      {
+        best = k;
+        bestCost = cost;
+      }
+    }
+    return best;
+  };
+  EXPECT_EQ(countFor(nullptr), 1); // without casters: the fewest
+  // A caster around the whole view: every cascade draws it, k passes of its cells.
+  const csm::Bounds around{ glm::dvec3(-400.0), glm::dvec3(400.0) };
+  std::vector<int> seen;
+  for (double cells : { 0.0, 1e3, 1e4, 3e4, 1e5, 3e5, 1e10 })
+  {
+    const std::vector<csm::CasterLoad> casters{ { around, cells } };
+    for (int k = 1; k <= 4; ++k)
+    {
+      EXPECT_DOUBLE_EQ(
+        csm::passTexels(plans[k], casters, true), k * cells * csm::kTexelsPerCasterTriangle)
+        << k;
+    }
+    EXPECT_EQ(countFor(&casters), cheapest(casters)) << cells;
+    seen.push_back(countFor(&casters));
+  }
+  EXPECT_EQ(seen.front(), // no cells: the fewest texels
+    static_cast<int>(std::min_element(texels.begin() + 1, texels.end()) - texels.begin()));
+  EXPECT_EQ(seen.back(), 1); // passes that cost more than any texels: the fewest passes
+  // A caster at the far end of the view: the near cascades do not draw it.
+  const glm::dvec3 far = view.wsPosition + 280.0 * glm::dvec3(0.0, 0.0, -1.0);
+  const std::vector<csm::CasterLoad> farAway{ { csm::Bounds{ far - 5.0, far + 5.0 }, 1e5 } };
+  const double farPasses = csm::passTexels(plans[4], farAway, true);
+  EXPECT_GE(farPasses, 1e5 * csm::kTexelsPerCasterTriangle);
+  EXPECT_LT(farPasses, 4e5 * csm::kTexelsPerCasterTriangle);
+  EXPECT_EQ(countFor(&farAway), cheapest(farAway));
+  // Hysteresis: a previous count that costs less than 1 / 0.8 of the cheapest stays; one that
+  // costs more gives way.
+  const std::vector<csm::CasterLoad> casters{ { around, 6e4 } };
+  const int best = cheapest(casters);
+  auto costOf = [&](int k) { return csm::passTexels(plans[k], casters, true) + texels[k]; };
+  for (int previous = 1; previous <= 4; ++previous)
+  {
+    const double ratio = costOf(previous) / costOf(best);
+    EXPECT_EQ(countFor(&casters, previous), ratio * csm::kCountHysteresis <= 1.0 ? previous : best)
+      << previous << " (cost ratio " << ratio << ")";
+  }
+  // No texels for a plan without cascades or a target that is not positive.
+  EXPECT_TRUE(std::isinf(csm::texelsForError(csm::ShadowSetup(), height, 1.0, 2048)));
+  EXPECT_TRUE(std::isinf(csm::texelsForError(plans[1], height, 0.0, 2048)));
 }
 
 TEST(Steps, CascadesShareOneAtlasOfFourFullMaps)
@@ -823,6 +929,9 @@ TEST(Steps, CascadesShareOneAtlasOfFourFullMaps)
   // tiles of the row's full height.
   const csm::MapSize expected[9] = { {}, { 2048, 2048 }, { 2048, 2048 }, { 2048, 2048 },
     { 2048, 2048 }, { 1638, 2048 }, { 1365, 2048 }, { 1170, 2048 }, { 2048, 1024 } };
+  // Fewer cascades than four get the same texels in fewer, larger square maps: a row of them,
+  // sides in steps of kAtlasTileStep (2048 sqrt(4 / k): 4096, 2896.3, 2364.8).
+  const csm::MapSize fewer[5] = { {}, { 4096 }, { 2896 }, { 2352 }, { 2048 } };
   for (int k = 1; k <= 8; ++k)
   {
     const csm::AtlasGrid g = csm::atlasGrid(k, six);
@@ -830,12 +939,27 @@ TEST(Steps, CascadesShareOneAtlasOfFourFullMaps)
     EXPECT_GE(g.columns * g.rows, k);
     EXPECT_LE(g.columns * g.tile.width, 4 * 2048);
     EXPECT_LE(g.rows * g.tile.height, 2048);
-    EXPECT_EQ(csm::resolutionCeilingForCount(k, 6, 2048), expected[k]);
+    const csm::AtlasGrid f = csm::atlasForCount(k, six);
+    EXPECT_EQ(f.tile, k <= 4 ? fewer[k] : expected[k]) << k << " cascades";
+    EXPECT_EQ(f.columns * f.rows, k <= 4 ? k : g.columns * g.rows) << k << " cascades";
+    EXPECT_LE(double(f.columns) * f.rows * f.tile.width * f.tile.height, 4.0 * 2048 * 2048);
+    EXPECT_GT(double(k) * f.tile.width * f.tile.height, 0.95 * 4.0 * 2048 * 2048 * std::min(k, 4) / 4.0);
+    EXPECT_EQ(csm::resolutionCeilingForCount(k, 6, 2048), f.tile);
   }
+  // Two most cascades: one gets both tiles' texels.
+  EXPECT_EQ(csm::resolutionCeilingForCount(1, 2, 2048), csm::MapSize(2896));
+  EXPECT_EQ(csm::resolutionCeilingForCount(2, 2, 2048), csm::MapSize(2048));
+  // A GL size limit: the row's tiles shrink to fit it.
+  const csm::AtlasGrid limited = csm::atlasForCount(2, six, 4096);
+  EXPECT_EQ(limited.tile, csm::MapSize(2048));
+  EXPECT_EQ(csm::atlasForCount(1, six, 4096).tile, csm::MapSize(4096));
+  EXPECT_EQ(csm::atlasForCount(6, six, 4096).tile, csm::MapSize(682, 2048));
+  EXPECT_EQ(csm::atlasForCount(0, six).tile, csm::MapSize(0));
   // 4 x 2 and 8 x 1 tie at 1024 texels on the short side and in area: fewer columns.
   EXPECT_EQ(csm::atlasGrid(8, six).columns, 4);
-  // A ceiling below the tile (while interacting) stays the ceiling; bad counts give nothing.
-  EXPECT_EQ(csm::resolutionCeilingForCount(2, 6, 1024), csm::MapSize(1024));
+  // A smaller ceiling (while interacting) shares its own budget; bad counts give nothing.
+  EXPECT_EQ(csm::resolutionCeilingForCount(2, 6, 1024), csm::MapSize(1440));
+  EXPECT_EQ(csm::resolutionCeilingForCount(4, 6, 1024), csm::MapSize(1024));
   EXPECT_EQ(csm::resolutionCeilingForCount(6, 6, 1024), csm::MapSize(682, 1024));
   EXPECT_EQ(csm::resolutionCeilingForCount(0, 6, 2048), csm::MapSize(0));
   EXPECT_EQ(csm::resolutionCeilingForCount(3, 6, 0), csm::MapSize(0));

@@ -105,6 +105,47 @@ TEST(Passes, MapsAreRebakedOnlyWhenSomethingChanged)
   EXPECT_EQ(baker->GetBakeCount(), first + 4); // a lookup option needs no new maps
 }
 
+// The atlas holds the texels of four maps of Resolution²; a frame with fewer cascades gets them
+// in fewer, larger square maps (2048² x 4 = 4096² x 1 = 2896² x 2), so that a plan of fewer
+// caster passes loses no texels; its count's tiles are a new texture of the same memory.
+TEST(Passes, FewerCascadesShareTheTexelsOfFourMaps)
+{
+  BoxOverPlane scene;
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->SetResolution(256);
+  baker->SetNumberOfCascades(4);
+  baker->SetErrorTarget(0.05); // more than any count can give: every map at its tile
+  const long shadowed = DarkenedPixels(scene.Render(), plain);
+  ASSERT_EQ(baker->GetLightMaps().size(), 1u);
+  const auto& maps = baker->GetLightMaps()[0];
+  const int n = maps.NumberOfCascades;
+  ASSERT_GE(n, 1);
+  ASSERT_LT(n, 4); // the box over the plane is a short view: fewer than four (here one)
+  // 256 sqrt(4 / n) rounded down to 16 texels: 512, 352, 288, 256.
+  const int sides[5] = { 0, 512, 352, 288, 256 };
+  EXPECT_EQ(maps.Resolution[0], sides[n]) << n << " cascades";
+  EXPECT_EQ(maps.Resolution[1], sides[n]);
+  EXPECT_EQ(maps.Atlas->GetWidth(), static_cast<unsigned int>(n * sides[n]));
+  EXPECT_EQ(maps.Atlas->GetHeight(), static_cast<unsigned int>(sides[n]));
+  for (int c = 0; c < n; ++c)
+  {
+    EXPECT_EQ(maps.CascadeResolution[c][0], sides[n]) << c;
+    EXPECT_EQ(maps.CascadeResolution[c][1], sides[n]) << c;
+  }
+  EXPECT_GT(shadowed, 500);
+  // Four fixed cascades: the four tiles of Resolution, the same shadow within the penumbra's
+  // change.
+  baker->AdaptiveCascadesOff();
+  const long four = DarkenedPixels(scene.Render(), plain);
+  EXPECT_EQ(baker->GetLightMaps()[0].NumberOfCascades, 4);
+  EXPECT_EQ(baker->GetLightMaps()[0].Resolution[0], 256);
+  EXPECT_EQ(baker->GetLightMaps()[0].Atlas->GetWidth(), 1024u);
+  EXPECT_EQ(baker->GetLightMaps()[0].Atlas->GetHeight(), 256u);
+  EXPECT_NEAR(four, shadowed, 0.1 * shadowed);
+}
+
 TEST(Passes, ResolutionAndCascadesCanChangeBetweenFrames)
 {
   BoxOverPlane scene;
@@ -123,14 +164,14 @@ TEST(Passes, ResolutionAndCascadesCanChangeBetweenFrames)
   auto six = scene.Render();
   // Four full tiles a row at most: six cascades share that area, 6 x 1 tiles of 682 x 1024.
   const auto& maps = baker->GetLightMaps()[0];
-  EXPECT_EQ(maps.Atlas->GetWidth(), 4096u);
+  EXPECT_EQ(maps.Atlas->GetWidth(), 6u * 682u);
   EXPECT_EQ(maps.Atlas->GetHeight(), 1024u);
   ASSERT_EQ(maps.NumberOfCascades, 6);
   for (int c = 0; c < 6; ++c)
   {
     EXPECT_LE(maps.CascadeResolution[c][0], 682) << c;
     EXPECT_LE(maps.CascadeResolution[c][1], 1024) << c;
-    EXPECT_NEAR(maps.Tile[c][0], c * 682.0 / 4096.0, 1e-12) << c;
+    EXPECT_NEAR(maps.Tile[c][0], c / 6.0, 1e-12) << c;
     EXPECT_EQ(maps.Tile[c][1], 0.0) << c;
   }
   pass->SetPCFSize(1);
@@ -1659,6 +1700,9 @@ TEST(Passes, CameraSpaceMapShadesLikeCascades)
   BoxOverPlane scene(settings);
   auto plain = scene.Render();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  // Hard shadows: the techniques' maps differ in size (one camera space map gets the atlas's
+  // texels of four), and a filter in texels would widen their penumbrae apart.
+  pass->SetPCFSize(1);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   const long cascaded = DarkenedPixels(scene.Render(), plain);
   EXPECT_EQ(baker->GetLightMaps()[0].DepthW[0], 0.0);
