@@ -766,8 +766,12 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
           props.Casters[i].ShadowsItself = itself;
           props.Casters[i].Receiver = static_cast<int>(props.Receivers.size()) - 1;
           const std::array<double, 6>& box = caster.Bounds;
-          props.CasterLoads.push_back(
-            { box[0], box[1], box[2], box[3], box[4], box[5], casterCells(caster.Prop) });
+          float sizes[2];
+          vtkCascadedShadowMapBakerPass::GetScreenSizes(caster.Prop, sizes);
+          const bool screenSized = sizes[0] > 1.0f || sizes[1] > 1.0f;
+          props.CasterLoads.push_back({ box[0], box[1], box[2], box[3], box[4], box[5],
+            casterCells(caster.Prop), static_cast<double>(caster.Receiver), itself ? 1.0 : 0.0,
+            screenSized ? 1.0 : 0.0 });
         }
       }
     }
@@ -1078,24 +1082,28 @@ void vtkCascadedShadowMapBakerPass::GatherAcrossProcesses(FrameProps& props)
   props.Changed = anyChanged != 0;
   // The caster loads of every process (padded with loads of no cells).
   {
-    std::vector<std::array<double, 7>>& loads = props.CasterLoads;
+    // (Their receiver indices are each process's own: dropped.)
+    constexpr size_t n = std::tuple_size<FrameProps::CasterLoad>::value;
+    std::vector<FrameProps::CasterLoad>& loads = props.CasterLoads;
     int mineCount = static_cast<int>(loads.size()), mostLoads = 0;
     this->Controller->AllReduce(&mineCount, &mostLoads, 1, vtkCommunicator::MAX_OP);
-    std::vector<double> mineLoads(7 * static_cast<size_t>(mostLoads), 0.0), allLoads;
+    std::vector<double> mineLoads(n * static_cast<size_t>(mostLoads), 0.0), allLoads;
     for (int i = 0; i < mineCount; ++i)
     {
-      std::copy(loads[i].begin(), loads[i].end(), mineLoads.begin() + 7 * i);
+      std::copy(loads[i].begin(), loads[i].end(), mineLoads.begin() + n * i);
     }
     allLoads.resize(mineLoads.size() * this->Controller->GetNumberOfProcesses());
     this->Controller->AllGather(
       mineLoads.data(), allLoads.data(), static_cast<vtkIdType>(mineLoads.size()));
     loads.clear();
-    for (size_t i = 0; i + 6 < allLoads.size(); i += 7)
+    for (size_t i = 0; i + n <= allLoads.size(); i += n)
     {
       if (allLoads[i + 6] > 0.0)
       {
-        loads.push_back({ allLoads[i], allLoads[i + 1], allLoads[i + 2], allLoads[i + 3],
-          allLoads[i + 4], allLoads[i + 5], allLoads[i + 6] });
+        FrameProps::CasterLoad load;
+        std::copy(allLoads.begin() + i, allLoads.begin() + i + n, load.begin());
+        load[7] = -1.0;
+        loads.push_back(load);
       }
     }
   }
@@ -1148,17 +1156,21 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
   {
     for (const auto& load : props.CasterLoads)
     {
-      this->Planner->AddCasterLoad(load.data(), load[6]);
+      this->Planner->AddCasterLoad(load.data(), load[6],
+        props.Receivers.size() <= kMaxReceiverBoxes ? static_cast<int>(load[7]) : -1,
+        load[8] != 0.0, load[9] != 0.0);
     }
   }
   else
   {
     double cells = 0.0;
+    bool screenSized = false;
     for (const auto& load : props.CasterLoads)
     {
       cells += load[6];
+      screenSized = screenSized || load[9] != 0.0;
     }
-    this->Planner->AddCasterLoad(sceneBounds, cells);
+    this->Planner->AddCasterLoad(sceneBounds, cells, -1, true, screenSized);
   }
   // Plan every shadowed light for this frame, and decide per cascade whether the map kept from
   // an earlier frame still serves (only the camera moved, it covers, its error is bounded).
@@ -1617,6 +1629,7 @@ csmForwardToPlanner(SplitScheme, int)
 csmForwardToPlanner(Lambda, double)
 csmForwardToPlanner(Alpha, double)
 csmForwardToPlanner(DepthClamp, bool)
+csmForwardToPlanner(SceneFittedCascades, bool)
 csmForwardToPlanner(ErrorTarget, double)
 csmForwardToPlanner(AdaptiveCascades, bool)
 csmForwardToPlanner(FacePartitions, int)

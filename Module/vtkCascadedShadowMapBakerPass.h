@@ -112,6 +112,9 @@ public:
   void SetDepthClamp(bool clamp);
   bool GetDepthClamp();
   vtkBooleanMacro(DepthClamp, bool);
+  void SetSceneFittedCascades(bool fitted);
+  bool GetSceneFittedCascades();
+  vtkBooleanMacro(SceneFittedCascades, bool);
   ///@}
 
   ///@{
@@ -443,9 +446,11 @@ protected:
     std::vector<Caster> Casters;
     std::vector<std::array<double, 6>> Receivers;
     /// What the cascade count is weighed by (vtkCascadedShadowMapPlanner::AddCasterLoad): per
-    /// caster its world box and the cells of its data (triangles, strips, lines, vertices), all
-    /// processes' when distributed.
-    std::vector<std::array<double, 7>> CasterLoads;
+    /// caster its world box, the cells of its data (triangles, strips, lines, vertices), its
+    /// prop's receiver box (-1: none), whether it may shadow itself (1, 0) and whether it is
+    /// screen-sized (1, 0); all processes' when distributed (then without receiver boxes).
+    using CasterLoad = std::array<double, 10>;
+    std::vector<CasterLoad> CasterLoads;
   };
   /// The steps of Render(): collect the props, share them across processes, plan the lights
   /// (and choose the cascades to re-render: 1 in render per light slot and cascade), render the

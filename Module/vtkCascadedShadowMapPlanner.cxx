@@ -170,6 +170,7 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   settings.split.lambda = this->Lambda;
   settings.split.alpha = this->Alpha;
   settings.depthClamp = this->DepthClamp;
+  settings.sceneFitted = this->SceneFittedCascades;
   settings.stableOrthographic = true; // with GetCascadeMatrix(..., resolution)'s snap
   const csm::Bounds scene = toBounds(bounds);
   const glm::dvec3 direction(lightDirection[0], lightDirection[1], lightDirection[2]);
@@ -481,14 +482,16 @@ void vtkCascadedShadowMapPlanner::ClearCasterLoads()
   this->Internal->Casters.clear();
 }
 
-void vtkCascadedShadowMapPlanner::AddCasterLoad(const double bounds[6], double cells)
+void vtkCascadedShadowMapPlanner::AddCasterLoad(
+  const double bounds[6], double cells, int receiver, bool shadowsItself, bool screenSized)
 {
   // (A box that is not finite or a count that is not positive weighs nothing.)
   if (bounds && std::isfinite(cells) && cells > 0.0 &&
     std::all_of(bounds, bounds + 6, [](double v) { return std::isfinite(v); }) &&
     bounds[0] <= bounds[1] && bounds[2] <= bounds[3] && bounds[4] <= bounds[5])
   {
-    this->Internal->Casters.push_back({ toBounds(bounds), cells });
+    this->Internal->Casters.push_back(
+      { toBounds(bounds), cells, receiver, shadowsItself, screenSized });
   }
 }
 
@@ -541,7 +544,9 @@ void vtkCascadedShadowMapPlanner::GetCascadeMatrix(
     matrix->Identity();
     return;
   }
-  glm::dmat4 m = csm::withBorder(this->Internal->Setup.cascades[i].wsToClip, border);
+  // (A scene-fitted map holds the whole scene: no border, so that its matrix stays.)
+  const csm::Cascade& cascade = this->Internal->Setup.cascades[i];
+  glm::dmat4 m = csm::withBorder(cascade.wsToClip, cascade.sceneFitted ? 0.0 : border);
   if (this->WarpMode == WARP_NONE && resolution)
   {
     m = csm::snapToTexels(m, csm::MapSize(resolution[0], resolution[1]));
@@ -589,6 +594,12 @@ void vtkCascadedShadowMapPlanner::GetCascadeResolution(
     : most;
   resolution[0] = size.width;
   resolution[1] = size.height;
+}
+
+bool vtkCascadedShadowMapPlanner::GetCascadeSceneFitted(int i) const
+{
+  const auto& c = this->Internal->Setup.cascades;
+  return i >= 0 && i < static_cast<int>(c.size()) && c[i].sceneFitted;
 }
 
 bool vtkCascadedShadowMapPlanner::GetCascadeMapTurned(int i) const
@@ -687,6 +698,7 @@ void vtkCascadedShadowMapPlanner::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Lambda: " << this->Lambda << "\n";
   os << indent << "Alpha: " << this->Alpha << "\n";
   os << indent << "DepthClamp: " << (this->DepthClamp ? "on" : "off") << "\n";
+  os << indent << "SceneFittedCascades: " << (this->SceneFittedCascades ? "on" : "off") << "\n";
   os << indent << "ErrorTarget: " << this->ErrorTarget << "\n";
   os << indent << "AdaptiveCascades: " << (this->AdaptiveCascades ? "on" : "off") << "\n";
   os << indent << "FacePartitions: " << this->FacePartitions << "\n";

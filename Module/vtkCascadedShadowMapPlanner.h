@@ -191,6 +191,23 @@ public:
   vtkBooleanMacro(DepthClamp, bool);
   ///@}
 
+  ///@{
+  /**
+   * With AdaptiveCascades, the farthest cascade may get an orthographic map of the whole scene
+   * that does not follow the view (csm::sceneFittedCascade) where that meets ErrorTarget: its
+   * matrix depends only on the light and the scene bounds, so the baker keeps its map while
+   * they stay (an orbit around a model draws it once), at all the texels of its tile. A view
+   * that needs more (close to the scene, a long depth range) gets the cascade fitted to it.
+   * Default on.
+   */
+  vtkSetMacro(SceneFittedCascades, bool);
+  vtkGetMacro(SceneFittedCascades, bool);
+  vtkBooleanMacro(SceneFittedCascades, bool);
+  ///@}
+
+  /// Is cascade i of the last plan a scene-fitted one (SceneFittedCascades)?
+  bool GetCascadeSceneFitted(int i) const;
+
   /**
    * Plan the cascades for a camera seen in a viewport of the given aspect (width/height), a
    * directional light travelling along lightDirection (world), and the world bounds of the
@@ -223,15 +240,19 @@ public:
 
   ///@{
   /**
-   * The casters a map pass draws: each one's world box and its cells (triangles, lines,
-   * vertices). When given, AdaptiveCascades takes, of the counts that meet ErrorTarget, the one
-   * that costs least to render, each cascade's pass drawing the casters whose boxes reach it
-   * (csm::passTexels, csm::kTexelsPerCasterTriangle) and its maps' texels together; without
-   * them, the fewest cascades that meet it. Kept until cleared; like the receivers, not a
-   * property (setting them does not modify the planner).
+   * The casters a map pass draws: each one's world box, its cells (triangles, lines,
+   * vertices), the index of its prop's box among the receiver bounds (-1: none), whether
+   * that prop may shadow itself, and whether it is drawn wider than its data (screen-sized
+   * tubes, spheres, wide lines: no scene-fitted map then). When given, AdaptiveCascades takes, of the counts that meet
+   * ErrorTarget, the one that costs least to render, each cascade's pass drawing the casters
+   * whose boxes reach it (csm::passTexels, csm::kTexelsPerCasterTriangle) and its maps' texels
+   * together; without them, the fewest cascades that meet it. They also bound the
+   * scene-fitted map (SceneFittedCascades, csm::sceneFit). Kept until cleared; like the
+   * receivers, not a property (setting them does not modify the planner).
    */
   void ClearCasterLoads();
-  void AddCasterLoad(const double bounds[6], double cells);
+  void AddCasterLoad(const double bounds[6], double cells, int receiver = -1,
+    bool shadowsItself = true, bool screenSized = false);
   ///@}
 
   ///@{
@@ -358,6 +379,7 @@ protected:
   double Lambda = 0.5;
   double Alpha = 2.0;
   bool DepthClamp = true;
+  bool SceneFittedCascades = true;
   double ErrorTarget = 1.0;
   bool AdaptiveCascades = true;
   int FacePartitions = 0;

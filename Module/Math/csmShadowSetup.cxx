@@ -284,11 +284,17 @@ public:
     }
   }
 
-  std::vector<glm::dvec3> body(double d0, double d1) const
+  /// extra: more half-spaces (camera-centred) every part is clipped by.
+  std::vector<glm::dvec3> body(
+    double d0, double d1, const std::vector<Plane>* extra = nullptr) const
   {
-    const ConvexBody partition =
+    ConvexBody partition =
       ConvexBody::hexahedron(partitionCorners(this->Cam, this->Frame, d0, d1));
     const double epsilon = clipEpsilon(this->Cam, this->Frame, std::min(d1, this->Cam.vsFar));
+    for (const Plane& plane : extra ? *extra : std::vector<Plane>())
+    {
+      partition.clip(plane, epsilon);
+    }
     if (!this->Clip)
     {
       return partition.vertices(epsilon);
@@ -473,7 +479,8 @@ glm::dmat4 snapToTexels(const glm::dmat4& wsToClip, const MapSize& resolution)
 }
 
 ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDirection,
-  const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts)
+  const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
+  const SceneFit* fit)
 {
   ShadowSetup setup;
   setup.message = validate(camera, wsLightDirection, sceneBounds, settings);
@@ -583,6 +590,38 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
     setup.cascades.push_back(std::move(cascade));
   }
 
+  if (fit && sceneBounds && !setup.cascades.empty())
+  {
+    // The farthest cascade once more with the scene-fitted map: its receivers within the map's
+    // extent across the light (the rest cannot be in shadow).
+    const Cascade& last = setup.cascades.back();
+    std::vector<Plane> cwsPrism;
+    for (const Plane& plane : fit->wsPrism)
+    {
+      cwsPrism.push_back({ plane.normal, plane.offset + glm::dot(plane.normal, camera.wsPosition) });
+    }
+    const std::vector<glm::dvec3> cwsBody = receivers.body(last.vsNear, last.vsFar, &cwsPrism);
+    if (!cwsBody.empty())
+    {
+      Cascade fitted;
+      fitted.vsNear = last.vsNear;
+      fitted.vsFar = last.vsFar;
+      fitted.gammaLimDeg = last.gammaLimDeg;
+      fitted.nPrime = kInf;
+      fitted.sceneFitted = true;
+      fitted.wsToClip = fit->wsToClip;
+      for (const glm::dvec3& p : cwsBody)
+      {
+        fitted.wsBody.push_back(p + camera.wsPosition);
+        const Aliasing m =
+          aliasingAt(fitted.wsToClip, camera, fit->wsMapX, fit->wsMapZ, fitted.wsBody.back());
+        fitted.Mx = std::max(fitted.Mx, m.mx);
+        fitted.Mz = std::max(fitted.Mz, m.mz);
+      }
+      fitted.storage = fitted.Mx * fitted.Mz / camera.aspect;
+      setup.sceneFitted.push_back(std::move(fitted));
+    }
+  }
   setup.storageOptimal = camera.parallel
     ? std::numeric_limits<double>::quiet_NaN()
     : (std::log(f) - std::log(n)) / (2.0 * frame.tanY); // Lloyd et al. 2006, App. C
@@ -594,6 +633,101 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
   }
   setup.status = Status::Ok;
   return setup;
+}
+
+bool sceneFit(const glm::dvec3& wsLightDirection, const Bounds& sceneBounds,
+  const std::vector<CasterLoad>& casters, const std::vector<Bounds>* receiverParts,
+  SceneFit& fit)
+{
+  if (!finite(wsLightDirection) || !(glm::length(wsLightDirection) > 0.0) ||
+    !sceneBounds.isFinite() || sceneBounds.isEmpty())
+  {
+    return false;
+  }
+  // Axes fixed in the world: the light's direction of travel and a perpendicular of it alone.
+  LightBasis ls;
+  ls.y = glm::normalize(wsLightDirection);
+  ls.x = perpendicular(ls.y);
+  ls.z = glm::cross(ls.x, ls.y);
+  const glm::dvec3 wsOrigin = 0.5 * (sceneBounds.wsMin + sceneBounds.wsMax);
+  // A box's extent in light space (x, y, z), about the origin.
+  auto lsExtent = [&](const Bounds& box, glm::dvec3& lo, glm::dvec3& hi) {
+    lo = glm::dvec3(kInf);
+    hi = glm::dvec3(-kInf);
+    for (int i = 0; i < 8; ++i)
+    {
+      const glm::dvec3 p = boxCorner(box, i) - wsOrigin;
+      const glm::dvec3 q(glm::dot(p, ls.x), glm::dot(p, ls.y), glm::dot(p, ls.z));
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+  };
+  const std::vector<Bounds> sceneOnly{ sceneBounds };
+  const std::vector<Bounds>& receivers =
+    receiverParts && !receiverParts->empty() ? *receiverParts : sceneOnly;
+  std::vector<glm::dvec3> receiverLo(receivers.size()), receiverHi(receivers.size());
+  for (size_t r = 0; r < receivers.size(); ++r)
+  {
+    lsExtent(receivers[r], receiverLo[r], receiverHi[r]);
+  }
+  // Across the light: the union of caster footprints over the receivers each can reach.
+  glm::dvec2 lo(kInf), hi(-kInf);
+  for (const CasterLoad& caster : casters)
+  {
+    if (caster.screenSized)
+    {
+      return false;
+    }
+    if (!caster.wsBox.isFinite() || caster.wsBox.isEmpty())
+    {
+      continue;
+    }
+    glm::dvec3 cLo, cHi;
+    lsExtent(caster.wsBox, cLo, cHi);
+    for (size_t r = 0; r < receivers.size(); ++r)
+    {
+      const bool own = &receivers == receiverParts && static_cast<int>(r) == caster.receiver;
+      if ((own && !caster.shadowsItself) || receivers[r].isEmpty() ||
+        !sweptBoxReachesBox(caster.wsBox, ls.y, receivers[r], 0.0))
+      {
+        continue;
+      }
+      const glm::dvec2 a = glm::max(glm::dvec2(cLo.x, cLo.z), glm::dvec2(receiverLo[r].x, receiverLo[r].z));
+      const glm::dvec2 b = glm::min(glm::dvec2(cHi.x, cHi.z), glm::dvec2(receiverHi[r].x, receiverHi[r].z));
+      if (a.x <= b.x && a.y <= b.y)
+      {
+        lo = glm::min(lo, a);
+        hi = glm::max(hi, b);
+      }
+    }
+  }
+  if (!(lo.x <= hi.x && lo.y <= hi.y))
+  {
+    return false; // nothing can be in shadow
+  }
+  // Along the light: the scene's extent; a flat extent gets a minimum size, as a cascade's.
+  glm::dvec3 sceneLo, sceneHi;
+  lsExtent(sceneBounds, sceneLo, sceneHi);
+  glm::dvec3 lsLo(lo.x, sceneLo.y, lo.y), lsHi(hi.x, sceneHi.y, hi.y);
+  const double minSize = inflation(glm::length(sceneBounds.wsMax - sceneBounds.wsMin), 0.0);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const double grow = 0.5 * std::max(minSize - (lsHi[axis] - lsLo[axis]), 0.0) + minSize;
+    lsLo[axis] -= grow;
+    lsHi[axis] += grow;
+  }
+  const std::vector<glm::dvec3> lsPoints{ lsLo, lsHi };
+  const glm::dmat4 wsToLs = fromRows({ ls.x, -glm::dot(ls.x, wsOrigin) },
+    { ls.y, -glm::dot(ls.y, wsOrigin) }, { ls.z, -glm::dot(ls.z, wsOrigin) }, { 0, 0, 0, 1 });
+  const glm::dmat4 lsToMap = warpMatrix(kInf, 0.0);
+  fit.wsToClip = focusMatrix(lsPoints, lsToMap, false) * lsToMap * wsToLs;
+  fit.wsMapX = ls.x;
+  fit.wsMapZ = ls.z;
+  // x >= lsLo.x: ls.x . (p - origin) - lsLo.x >= 0, and so on.
+  fit.wsPrism = { { { ls.x, -glm::dot(ls.x, wsOrigin) - lsLo.x },
+    { -ls.x, glm::dot(ls.x, wsOrigin) + lsHi.x }, { ls.z, -glm::dot(ls.z, wsOrigin) - lsLo.z },
+    { -ls.z, glm::dot(ls.z, wsOrigin) + lsHi.z } } };
+  return true;
 }
 
 ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosition,
@@ -775,9 +909,9 @@ void orientToTile(ShadowSetup& setup, const MapSize& tile)
   }
   for (Cascade& c : setup.cascades)
   {
-    if (!(errorAsTurned(c, tile, true) < errorAsTurned(c, tile)))
+    if (c.sceneFitted || !(errorAsTurned(c, tile, true) < errorAsTurned(c, tile)))
     {
-      continue;
+      continue; // (a scene-fitted map keeps its axes: its matrix must not change with the view)
     }
     // New s = old t, new t = -old s (glm is column-major: m[column][row]).
     for (int column = 0; column < 4; ++column)
@@ -792,18 +926,19 @@ void orientToTile(ShadowSetup& setup, const MapSize& tile)
 
 ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
-  int k, const MapSize& tile)
+  int k, const MapSize& tile, const SceneFit* fit)
 {
   Settings s = settings;
   s.split.k = k;
-  ShadowSetup plan = computeShadowSetup(camera, wsLightDirection, sceneBounds, s, receiverParts);
+  ShadowSetup plan =
+    computeShadowSetup(camera, wsLightDirection, sceneBounds, s, receiverParts, fit);
   if (plan.status != Status::Ok || k < 2 || s.split.scheme != SplitScheme::Adaptive)
   {
     return plan;
   }
   s.split.scheme = SplitScheme::Log;
   ShadowSetup logPlan =
-    computeShadowSetup(camera, wsLightDirection, sceneBounds, s, receiverParts);
+    computeShadowSetup(camera, wsLightDirection, sceneBounds, s, receiverParts, fit);
   // The common factor imageHeight does not change the order.
   return logPlan.status == Status::Ok &&
       predictedError(logPlan, 1.0, tile) < predictedError(plan, 1.0, tile)
@@ -821,10 +956,13 @@ double texelsForError(
   double texels = 0.0;
   for (const Cascade& c : setup.cascades)
   {
-    // resolutionForError's sides, without the rounding to its step.
-    const double side = std::max(c.Mx, c.Mz) * imageHeight / targetError;
+    // resolutionForError's sides, without the rounding to its step (a scene-fitted map: its
+    // tile).
+    const double side =
+      c.sceneFitted ? kInf : std::max(c.Mx, c.Mz) * imageHeight / targetError;
     const double s = std::isfinite(side) ? side : ceiling.width;
     const double t = std::isfinite(side) ? side : ceiling.height;
+    // (std::min below keeps a scene-fitted map at its tile.)
     texels += std::min<double>(std::max(s, 1.0), ceiling.width) *
       std::min<double>(std::max(t, 1.0), ceiling.height);
   }
@@ -859,20 +997,68 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
     return predictedError(plan, imageHeight, ceilingOf(k));
   };
   // With casters the counts that meet the target are weighed by what they cost to render;
-  // without, the smallest is taken (the cost is then the count).
+  // without, the smallest is taken (the cost is then the count). A scene-fitted map costs
+  // nothing: it is drawn once while the scene and the light stay.
   const bool weighed = casters != nullptr;
   auto costOf = [&](const ShadowSetup& plan, int k) {
-    return weighed ? passTexels(plan, *casters, settings.depthClamp) +
-        texelsForError(plan, imageHeight, targetError, ceilingOf(k))
-                   : static_cast<double>(k);
+    if (!weighed)
+    {
+      return static_cast<double>(k);
+    }
+    ShadowSetup followingView = plan;
+    followingView.cascades.clear();
+    for (const Cascade& c : plan.cascades)
+    {
+      if (!c.sceneFitted)
+      {
+        followingView.cascades.push_back(c);
+      }
+    }
+    return followingView.cascades.empty()
+      ? 0.0
+      : passTexels(followingView, *casters, settings.depthClamp) +
+        texelsForError(followingView, imageHeight, targetError, ceilingOf(k));
   };
+  // A count's plan, or (settings.sceneFitted, square tiles) the same with its farthest cascade
+  // fitted to the whole scene, whichever meets the target at less cost; false: neither does.
+  auto meeting = [&](const ShadowSetup& plan, int k, ShadowSetup& taken, double& cost) {
+    bool found = false;
+    if (errorOf(plan, k) <= targetError)
+    {
+      taken = plan;
+      cost = costOf(plan, k);
+      found = true;
+    }
+    const MapSize tile = ceilingOf(k);
+    if (!plan.sceneFitted.empty() && !plan.cascades.empty() && tile.width == tile.height)
+    {
+      ShadowSetup fitted = plan;
+      fitted.cascades.back() = plan.sceneFitted.front();
+      if (errorOf(fitted, k) <= targetError)
+      {
+        const double fittedCost = costOf(fitted, k);
+        if (!found || fittedCost <= cost)
+        {
+          taken = std::move(fitted);
+          cost = fittedCost;
+          found = true;
+        }
+      }
+    }
+    return found;
+  };
+  // The scene-fitted map, the same for every count.
+  SceneFit fit;
+  const bool fitted = settings.sceneFitted && casters && sceneBounds &&
+    sceneFit(wsLightDirection, *sceneBounds, *casters, receiverParts, fit);
   auto planFor = [&](int k) {
-    return computeShadowSetupForCount(
-      camera, wsLightDirection, sceneBounds, settings, receiverParts, k, ceilingOf(k));
+    return computeShadowSetupForCount(camera, wsLightDirection, sceneBounds, settings,
+      receiverParts, k, ceilingOf(k), fitted ? &fit : nullptr);
   };
   std::vector<ShadowSetup> plans;
   std::vector<double> errors;
   int chosen = 0; // 1-based; 0: none meets the target
+  ShadowSetup chosenPlan;
   double chosenCost = 0.0;
   int best = 0;   // where none does: the count taken
   for (int k = 1; k <= kMax; ++k)
@@ -891,14 +1077,12 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
     {
       best = k;
     }
-    if (!(errors.back() <= targetError))
-    {
-      continue;
-    }
-    const double cost = costOf(plans.back(), k);
-    if (chosen == 0 || cost < chosenCost)
+    ShadowSetup taken;
+    double cost = 0.0;
+    if (meeting(plans.back(), k, taken, cost) && (chosen == 0 || cost < chosenCost))
     {
       chosen = k;
+      chosenPlan = std::move(taken);
       chosenCost = cost;
     }
   }
@@ -917,20 +1101,23 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
   {
     // Another count does better, but not by a margin: keep the previous one if it still meets
     // the target.
-    const bool byMargin = weighed ? false : errors[chosen - 1] <= kCountHysteresis * targetError;
+    const bool byMargin =
+      !weighed && errorOf(chosenPlan, chosen) <= kCountHysteresis * targetError;
     if (weighed || (kPrevious > chosen && !byMargin))
     {
-      ShadowSetup previous = kPrevious <= static_cast<int>(plans.size())
+      const ShadowSetup previous = kPrevious <= static_cast<int>(plans.size())
         ? plans[kPrevious - 1]
         : planFor(kPrevious);
-      if (previous.status == Status::Ok && errorOf(previous, kPrevious) <= targetError &&
-        (!weighed || kCountHysteresis * costOf(previous, kPrevious) <= chosenCost))
+      ShadowSetup taken;
+      double cost = 0.0;
+      if (previous.status == Status::Ok && meeting(previous, kPrevious, taken, cost) &&
+        (!weighed || kCountHysteresis * cost <= chosenCost))
       {
-        return previous;
+        return taken;
       }
     }
   }
-  return plans[chosen - 1];
+  return chosenPlan;
 }
 
 AtlasGrid atlasLayout(int mostCascades, int resolution)
@@ -1026,6 +1213,10 @@ MapSize resolutionForError(const Cascade& cascade, double imageHeight, double ta
 {
   // Both axes get the texels of the larger M (a map sharper along its other axis than the target
   // asks costs little and keeps the filter's footprint round); each within its side of the tile.
+  if (cascade.sceneFitted)
+  {
+    return MapSize(std::max(ceiling.width, 1), std::max(ceiling.height, 1)); // drawn once
+  }
   const double m = std::max(cascade.Mx, cascade.Mz);
   return MapSize(resolutionForError(m, imageHeight, targetError, step, ceiling.width),
     resolutionForError(m, imageHeight, targetError, step, ceiling.height));

@@ -14,12 +14,14 @@
 //       NDC x is the shadow-map s axis (ls x), NDC y the t axis (ls z), NDC z the light depth.
 #pragma once
 
+#include "csmConvexBody.h"
 #include "csmSplits.h"
 #include "csmWarp.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -57,6 +59,10 @@ struct Settings
   /// that snapToTexels() can fix their texel grid in the world. Off for the analysis (the
   /// papers' storage factors); the render passes turn it on.
   bool stableOrthographic = false;
+  /// computeShadowSetupForError may give the farthest cascade the map of sceneFit, which does not
+  /// follow the view, where that meets the error target (with caster loads): the passes keep it
+  /// while the scene and the light stay. Off for the analysis; the render passes turn it on.
+  bool sceneFitted = false;
 };
 
 /// Perspective aliasing at one point (Lloyd et al. 2006, Eq. 1-4 with all resolutions set to 1).
@@ -80,6 +86,9 @@ struct Cascade
   /// The map is turned a quarter (orientToTile): its s axis follows ls z and its t axis ls x, so
   /// that Mz gets the tile's width and Mx its height.
   bool mapTurned = false;
+  /// Its map does not follow the view (sceneFit): it is drawn once while the scene and the light
+  /// stay, with all the texels of its tile.
+  bool sceneFitted = false;
 };
 
 /// Texels of a map or a tile along its s axis (width) and t axis (height).
@@ -123,7 +132,48 @@ struct ShadowSetup
   std::vector<Cascade> cascades; ///< the non-empty cascades, near to far
   double storageTotal = 0.0;     ///< sum of the cascades' storage factors
   double storageOptimal = 0.0;   ///< Lloyd et al. 2006, App. C: ln(f/n) / (2 tan theta); NaN for parallel projection
+  /// With a SceneFit: the farthest cascade with the scene-fitted map instead (0 or 1 of them).
+  std::vector<Cascade> sceneFitted;
 };
+
+/// A caster as the cascade count and the scene-fitted map are judged by: its world box, the cells
+/// (triangles, lines, vertices) a map pass draws of it, the receiver box (index into the
+/// receiver parts; -1: none) of its own prop, whether that prop may shadow itself, and whether
+/// it is drawn wider than its data (tubes, spheres, wide lines sized in the main view's pixels:
+/// its box does not hold its shadow's extent).
+struct CasterLoad
+{
+  Bounds wsBox;
+  double cells = 0.0;
+  int receiver = -1;
+  bool shadowsItself = true;
+  bool screenSized = false;
+};
+
+/// An orthographic map fixed in the world of the part of the scene that can be in shadow
+/// (sceneFit): its light clip matrix, its map axes s and t in the world, and the four
+/// half-spaces of its s, t extent (world space; normal . p + offset >= 0 inside).
+struct SceneFit
+{
+  glm::dmat4 wsToClip{ 1.0 };
+  glm::dvec3 wsMapX{ 1.0, 0.0, 0.0 };
+  glm::dvec3 wsMapZ{ 0.0, 0.0, 1.0 };
+  std::array<Plane, 4> wsPrism;
+};
+
+/// The map of the part of the scene a directional light can shadow, fixed in the world: a point
+/// is in shadow only if a caster lies toward the light from it, so across the light only the
+/// footprints of caster boxes over the boxes of receivers they can reach (sweptBoxReachesBox;
+/// a prop that cannot shadow itself not over its own box) need texels; a wide ground under a
+/// structure adds only the structure's footprint. Axes: the light's direction of travel as
+/// depth (the scene box's extent along it), s and t perpendicular to it from the direction alone
+/// (not from the view). Without receiver parts the scene box is the one receiver. Its matrix
+/// depends only on the light and the boxes, so a map drawn for one view serves every view they
+/// stay for. False (fit unchanged) where no caster can shadow anything, a caster is screen-sized
+/// (its shadow's extent changes with the view) or the input is not finite.
+bool sceneFit(const glm::dvec3& wsLightDirection, const Bounds& sceneBounds,
+  const std::vector<CasterLoad>& casters, const std::vector<Bounds>* receiverParts,
+  SceneFit& fit);
 
 /// Everything a shadow pass needs for one directional light in one frame. wsLightDirection is the
 /// direction the light travels. sceneBounds may be null (no clipping, no caster extrusion: the
@@ -131,17 +181,15 @@ struct ShadowSetup
 /// with sceneBounds) are the boxes of the individual props: the receivers are then the
 /// partitions clipped by each box, which fits the depth range and the maps tighter than the one
 /// box around everything (a large flat ground and a tall structure, say).
+///
+/// With a SceneFit (and sceneBounds), sceneFitted holds the farthest cascade once more with that
+/// map: its body the partition's receivers within the fit's s, t extent (the rest cannot be in
+/// shadow), its Mx, Mz Lloyd et al. 2006, §4.4's maxima over that body along the fit's axes;
+/// empty where that body is.
 ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings,
-  const std::vector<Bounds>* receiverParts = nullptr);
+  const std::vector<Bounds>* receiverParts = nullptr, const SceneFit* fit = nullptr);
 
-/// A caster as the cascade count is weighed by: its world box and the cells (triangles, lines,
-/// vertices) a map pass draws of it.
-struct CasterLoad
-{
-  Bounds wsBox;
-  double cells = 0.0;
-};
 
 /// The number of cascades from the error model. Each count k in [1, settings.split.k] is judged
 /// by its plan's predicted worst error, max over its cascades of max(M_x, M_z) (Lloyd et al.
@@ -202,7 +250,7 @@ double texelsForError(
 /// square by default); else computeShadowSetup's.
 ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
-  int k, const MapSize& tile = MapSize(1));
+  int k, const MapSize& tile = MapSize(1), const SceneFit* fit = nullptr);
 
 /// Share of the error target a smaller cascade count must meet to replace a previous count, and
 /// share of the error a larger count must reach to be taken where none meets the target.

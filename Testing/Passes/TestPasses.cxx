@@ -80,6 +80,8 @@ TEST(Passes, MapsAreRebakedOnlyWhenSomethingChanged)
   BoxOverPlane scene;
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  // (The cascades that follow the view: a scene-fitted map would serve every view here.)
+  baker->SceneFittedCascadesOff();
   // (Window renders only: grabbing an image renders with a copy of the camera. Two warm-up
   // frames: anything the first frame creates, such as an actor's default property, is a change.)
   scene.Window->Render();
@@ -185,6 +187,7 @@ TEST(Passes, ResolutionAndCascadesCanChangeBetweenFrames)
   {
     BoxOverPlane fresh;
     vtkCascadedShadowMapPass* first = vtkCascadedShadowMapPass::UseShadowsOn(fresh.Renderer);
+    first->GetShadowMapBakerPass()->AdaptiveCascadesOff();
     first->GetShadowMapBakerPass()->SetResolution(512);
     first->GetShadowMapBakerPass()->SetNumberOfCascades(1);
     first->SetPCFSize(5);
@@ -522,6 +525,8 @@ TEST(Passes, DegenerateLightIsReportedOnce)
   bad->SetFocalPoint(1, 1, 1); // no direction
   scene.Renderer->AddLight(bad);
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  // (The cascades that follow the view: a scene-fitted map would serve every view here.)
+  pass->GetShadowMapBakerPass()->SceneFittedCascadesOff();
   ErrorCounter errors(pass->GetShadowMapBakerPass()->GetPlanner());
   for (int frame = 0; frame < 20; ++frame)
   {
@@ -587,6 +592,9 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
   vtkCascadedShadowMapPass* b = vtkCascadedShadowMapPass::UseShadowsOn(fresh.Renderer);
   b->GetShadowMapBakerPass()->SetInteractiveMapBorder(0.0);
   b->GetShadowMapBakerPass()->SetMapReuseTolerance(1.0); // re-render whenever the camera moves
+  // (The cascades that follow the view: a scene-fitted map would serve every view here.)
+  a->GetShadowMapBakerPass()->SceneFittedCascadesOff();
+  b->GetShadowMapBakerPass()->SceneFittedCascadesOff();
   keep.Frame();
   fresh.Frame();
   keep.Window->SetDesiredUpdateRate(15.0); // as vtkRenderWindowInteractor while dragging
@@ -759,6 +767,9 @@ TEST(Passes, MoreThanFourCascadesOnlyInStillFrames)
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->SetErrorTarget(0.05); // out of reach: as many as pay
+  // (Of the cascades that follow the view: one scene-fitted map of the box's footprint would
+  // meet even this.)
+  baker->SceneFittedCascadesOff();
   const long still = DarkenedPixels(scene.Render(), plain);
   const auto& maps = baker->GetLightMaps().at(0);
   EXPECT_GT(maps.NumberOfCascades, 4);
@@ -808,7 +819,11 @@ TEST(Passes, LeavingAKeptMapReRendersItInThatFrame)
 {
   BoxOverPlane scene, reference;
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
-  vtkCascadedShadowMapPass::UseShadowsOn(reference.Renderer);
+  // (The cascades that follow the view: a scene-fitted map would serve every view here.)
+  pass->GetShadowMapBakerPass()->SceneFittedCascadesOff();
+  vtkCascadedShadowMapPass::UseShadowsOn(reference.Renderer)
+    ->GetShadowMapBakerPass()
+    ->SceneFittedCascadesOff();
   scene.Window->SetDesiredUpdateRate(15.0);
   reference.Window->SetDesiredUpdateRate(15.0);
   scene.Frame();
@@ -1110,7 +1125,11 @@ TEST(Passes, NaNLineWidthAndPointSizeGiveNoGarbage)
     tubes->GetProperty()->RenderPointsAsSpheresOn();
     scene.Renderer->AddActor(tubes);
     auto plain = scene.Render();
-    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+    // (At the view-fitted maps: a hairline's shadow is a texel wide, and a scene-fitted map's
+    // texels are finer.)
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)
+      ->GetShadowMapBakerPass()
+      ->SceneFittedCascadesOff();
     auto shadowed = scene.Render();
     float sizes[2] = { 0, 0 };
     vtkCascadedShadowMapBakerPass::GetScreenSizes(tubes, sizes);
@@ -1147,6 +1166,7 @@ TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
   };
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->SceneFittedCascadesOff(); // (a scene-fitted map has all the texels of its tile)
   baker->SetErrorTarget(0.0);
   const long full = halfDark(scene.Render());
   for (int c = 0; c < baker->GetLightMaps().at(0).NumberOfCascades; ++c)
@@ -1528,6 +1548,7 @@ TEST(Passes, VisibleDepthFitStartsTheCascadesAtTheNearestSample)
 
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->SceneFittedCascadesOff(); // (the cascades that follow the view)
   baker->VisibleDepthFitOff();
   auto boxes = scene.Frame();
   const double boxesNear = baker->GetLightMaps()[0].SplitNear;
