@@ -124,6 +124,8 @@ void usage()
     "  --cull-without-receivers on|off  casters that shadow nothing (a ground under\n"
     "                     everything) left out of the maps [%s]\n"
     "  --visible-fit on|off  cascades begin at the nearest sample of the last frame [%s]\n"
+    "  --scene-fitted on|off  the farthest cascade may be a map fixed in the world of what\n"
+    "                     can be in shadow, kept while the scene and light stay [%s]\n"
     "  --alpha A          adaptive ratio > 1 [%g]\n"
     "  --resolution R     texels per cascade side at most, 64..8192 [%d]\n"
     "  --error-target M   each cascade's resolution for aliasing error <= M (texel/pixel);\n"
@@ -150,7 +152,7 @@ void usage()
     o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
     d.CameraSpaceFocus, vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
     d.CompactCasters ? "on" : "off", d.CullCastersWithoutReceivers ? "on" : "off",
-    d.VisibleDepthFit ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
+    d.VisibleDepthFit ? "on" : "off", d.SceneFittedCascades ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
     d.SlopeBias, d.ClosedSurfaceBiasFactor, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
     o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
@@ -270,6 +272,12 @@ Options parse(int argc, char** argv)
     {
       const char* const names[] = { "off", "on" };
       o.Shadow.VisibleDepthFit = choice(f, v, names, 2) == 1;
+      next();
+    }
+    else if (f == "--scene-fitted")
+    {
+      const char* const names[] = { "off", "on" };
+      o.Shadow.SceneFittedCascades = choice(f, v, names, 2) == 1;
       next();
     }
     else if (f == "--depth-clamp")

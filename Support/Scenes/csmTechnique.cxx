@@ -35,6 +35,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->CompactCasters = baker->GetCompactCasters();
   this->CullCastersWithoutReceivers = baker->GetCullCastersWithoutReceivers();
   this->VisibleDepthFit = baker->GetVisibleDepthFit();
+  this->SceneFittedCascades = baker->GetSceneFittedCascades();
   this->FacePartitions = baker->GetFacePartitions();
   this->CameraSpace = baker->GetCameraSpace();
   this->CameraSpaceFocus = baker->GetCameraSpaceFocus();
@@ -64,6 +65,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetCompactCasters(o.CompactCasters);
   baker->SetCullCastersWithoutReceivers(o.CullCastersWithoutReceivers);
   baker->SetVisibleDepthFit(o.VisibleDepthFit);
+  baker->SetSceneFittedCascades(o.SceneFittedCascades);
   baker->SetFacePartitions(o.FacePartitions);
   baker->SetCameraSpace(o.CameraSpace);
   baker->SetCameraSpaceFocus(o.CameraSpaceFocus);

@@ -39,6 +39,7 @@ struct ShadowOptions
   bool CompactCasters;           ///< casters drawn into the maps from compact spatial blocks
   bool CullCastersWithoutReceivers; ///< casters that shadow nothing left out of the maps
   bool VisibleDepthFit;           ///< cascades fitted to the depths the view has samples at
+  bool SceneFittedCascades;       ///< the farthest cascade may be a map fixed in the world
   int FacePartitions;            ///< 0 cascades; 1 FP+W, 2 FP+ZP+W (z-partitions per face)
   bool CameraSpace;              ///< camera space shadow maps (general case)
   double CameraSpaceFocus;       ///< their focus range, a view depth (0: automatic)

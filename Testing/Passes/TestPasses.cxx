@@ -148,6 +148,54 @@ TEST(Passes, FewerCascadesShareTheTexelsOfFourMaps)
   EXPECT_NEAR(four, shadowed, 0.1 * shadowed);
 }
 
+// The farthest cascade's scene-fitted map (the box's footprint: the ground shadows nothing of
+// itself) serves every view of an orbit: drawn in the first frame, kept while the camera turns,
+// shading as a fresh pass's; a moved prop draws it again.
+TEST(Passes, SceneFittedMapServesEveryViewOfAnOrbit)
+{
+  BoxOverPlane scene;
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  EXPECT_TRUE(baker->GetSceneFittedCascades()); // the default
+  scene.Frame();
+  const int first = baker->GetLastCascadeRenders();
+  EXPECT_GE(first, 1);
+  int kept = 0;
+  for (int frame = 0; frame < 6; ++frame)
+  {
+    scene.Renderer->GetActiveCamera()->Azimuth(35.0);
+    auto image = scene.Frame();
+    const auto& maps = baker->GetLightMaps().at(0);
+    ASSERT_GE(maps.NumberOfCascades, 1);
+    const int last = maps.NumberOfCascades - 1;
+    EXPECT_TRUE(baker->GetPlanner()->GetCascadeSceneFitted(last)) << "frame " << frame;
+    kept += baker->GetLastCascadesKept();
+    EXPECT_EQ(baker->GetLastCascadeRenders(), last) << "frame " << frame; // only the others
+    // As a pass that plans this view afresh.
+    BoxOverPlane other;
+    other.Renderer->GetActiveCamera()->DeepCopy(scene.Renderer->GetActiveCamera());
+    auto plain = other.Frame();
+    vtkCascadedShadowMapPass::UseShadowsOn(other.Renderer);
+    auto expected = other.Frame();
+    EXPECT_LE(csmTest::DifferingPixels(image, expected, 26), image->GetNumberOfPoints() / 200)
+      << "frame " << frame;
+    EXPECT_GT(DarkenedPixels(image, plain), 500) << "frame " << frame;
+  }
+  EXPECT_GE(kept, 6);
+  // A prop moved: drawn again.
+  scene.Box->SetPosition(0.5, 0, 0);
+  scene.Frame();
+  EXPECT_GE(baker->GetLastCascadeRenders(), 1);
+  // Off: the farthest cascade follows the view, and a turn draws it again.
+  baker->SceneFittedCascadesOff();
+  scene.Frame();
+  scene.Renderer->GetActiveCamera()->Azimuth(35.0);
+  scene.Frame();
+  EXPECT_FALSE(baker->GetPlanner()->GetCascadeSceneFitted(
+    baker->GetLightMaps().at(0).NumberOfCascades - 1));
+  EXPECT_GE(baker->GetLastCascadeRenders(), 1);
+}
+
 TEST(Passes, ResolutionAndCascadesCanChangeBetweenFrames)
 {
   BoxOverPlane scene;
