@@ -765,13 +765,10 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
           const FrameProps::Caster& caster = props.Casters[i];
           props.Casters[i].ShadowsItself = itself;
           props.Casters[i].Receiver = static_cast<int>(props.Receivers.size()) - 1;
-          const std::array<double, 6>& box = caster.Bounds;
           float sizes[2];
           vtkCascadedShadowMapBakerPass::GetScreenSizes(caster.Prop, sizes);
-          const bool screenSized = sizes[0] > 1.0f || sizes[1] > 1.0f;
-          props.CasterLoads.push_back({ box[0], box[1], box[2], box[3], box[4], box[5],
-            casterCells(caster.Prop), static_cast<double>(caster.Receiver), itself ? 1.0 : 0.0,
-            screenSized ? 1.0 : 0.0 });
+          props.CasterLoads.push_back({ caster.Bounds, casterCells(caster.Prop),
+            caster.Receiver, itself, sizes[0] > 1.0f || sizes[1] > 1.0f });
         }
       }
     }
@@ -1082,15 +1079,20 @@ void vtkCascadedShadowMapBakerPass::GatherAcrossProcesses(FrameProps& props)
   props.Changed = anyChanged != 0;
   // The caster loads of every process (padded with loads of no cells).
   {
-    // (Their receiver indices are each process's own: dropped.)
-    constexpr size_t n = std::tuple_size<FrameProps::CasterLoad>::value;
+    // Box, cells, shadows itself, screen-sized (their receiver indices are each process's
+    // own: dropped).
+    constexpr size_t n = 9;
     std::vector<FrameProps::CasterLoad>& loads = props.CasterLoads;
     int mineCount = static_cast<int>(loads.size()), mostLoads = 0;
     this->Controller->AllReduce(&mineCount, &mostLoads, 1, vtkCommunicator::MAX_OP);
     std::vector<double> mineLoads(n * static_cast<size_t>(mostLoads), 0.0), allLoads;
     for (int i = 0; i < mineCount; ++i)
     {
-      std::copy(loads[i].begin(), loads[i].end(), mineLoads.begin() + n * i);
+      double* out = mineLoads.data() + n * i;
+      std::copy(loads[i].Bounds.begin(), loads[i].Bounds.end(), out);
+      out[6] = loads[i].Cells;
+      out[7] = loads[i].ShadowsItself ? 1.0 : 0.0;
+      out[8] = loads[i].ScreenSized ? 1.0 : 0.0;
     }
     allLoads.resize(mineLoads.size() * this->Controller->GetNumberOfProcesses());
     this->Controller->AllGather(
@@ -1098,11 +1100,13 @@ void vtkCascadedShadowMapBakerPass::GatherAcrossProcesses(FrameProps& props)
     loads.clear();
     for (size_t i = 0; i + n <= allLoads.size(); i += n)
     {
-      if (allLoads[i + 6] > 0.0)
+      if (allLoads[i + 6] > 0.0) // (padding has no cells)
       {
         FrameProps::CasterLoad load;
-        std::copy(allLoads.begin() + i, allLoads.begin() + i + n, load.begin());
-        load[7] = -1.0;
+        std::copy(allLoads.begin() + i, allLoads.begin() + i + 6, load.Bounds.begin());
+        load.Cells = allLoads[i + 6];
+        load.ShadowsItself = allLoads[i + 7] != 0.0;
+        load.ScreenSized = allLoads[i + 8] != 0.0;
         loads.push_back(load);
       }
     }
@@ -1156,9 +1160,9 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
   {
     for (const auto& load : props.CasterLoads)
     {
-      this->Planner->AddCasterLoad(load.data(), load[6],
-        props.Receivers.size() <= kMaxReceiverBoxes ? static_cast<int>(load[7]) : -1,
-        load[8] != 0.0, load[9] != 0.0);
+      this->Planner->AddCasterLoad(load.Bounds.data(), load.Cells,
+        props.Receivers.size() <= kMaxReceiverBoxes ? load.Receiver : -1, load.ShadowsItself,
+        load.ScreenSized);
     }
   }
   else
@@ -1167,8 +1171,8 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
     bool screenSized = false;
     for (const auto& load : props.CasterLoads)
     {
-      cells += load[6];
-      screenSized = screenSized || load[9] != 0.0;
+      cells += load.Cells;
+      screenSized = screenSized || load.ScreenSized;
     }
     this->Planner->AddCasterLoad(sceneBounds, cells, -1, true, screenSized);
   }

@@ -445,11 +445,17 @@ protected:
     };
     std::vector<Caster> Casters;
     std::vector<std::array<double, 6>> Receivers;
-    /// What the cascade count is weighed by (vtkCascadedShadowMapPlanner::AddCasterLoad): per
-    /// caster its world box, the cells of its data (triangles, strips, lines, vertices), its
-    /// prop's receiver box (-1: none), whether it may shadow itself (1, 0) and whether it is
-    /// screen-sized (1, 0); all processes' when distributed (then without receiver boxes).
-    using CasterLoad = std::array<double, 10>;
+    /// What the cascade count and the scene-fitted map are judged by
+    /// (vtkCascadedShadowMapPlanner::AddCasterLoad), per caster; all processes' when
+    /// distributed (then without receiver boxes).
+    struct CasterLoad
+    {
+      std::array<double, 6> Bounds;
+      double Cells = 0.0; ///< of its data: triangles, strips, lines, vertices
+      int Receiver = -1;  ///< its prop's box in Receivers (-1: none)
+      bool ShadowsItself = true;
+      bool ScreenSized = false; ///< drawn wider than its data (tubes, spheres, wide lines)
+    };
     std::vector<CasterLoad> CasterLoads;
   };
   /// The steps of Render(): collect the props, share them across processes, plan the lights

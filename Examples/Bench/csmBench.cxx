@@ -389,10 +389,28 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
     const double q[3] = { p[0] - eye[0], p[1] - eye[1], p[2] - eye[2] };
     const double depth = Dot(q, dir);
     const auto& lm = maps[0];
-    const int c = vtkCascadedShadowMapPlanner::GetCascadeAtDepth(
+    int c = vtkCascadedShadowMapPlanner::GetCascadeAtDepth(
       depth, lm.SplitNear, lm.SplitFar, lm.NumberOfCascades);
     if (c < 0)
       return NAN;
+    // The map the lookup takes: this cascade's where it holds the point, else the next one's
+    // (a kept map may miss its slice's edge); none where neither does (a scene-fitted map holds
+    // only what can be in shadow: the point is lit without a map, and has no m).
+    auto holds = [&](int i) {
+      double h[4];
+      const double ph[4] = { p[0], p[1], p[2], 1.0 };
+      for (int r = 0; r < 4; ++r)
+        h[r] = lm.WorldToMap[i][4 * r] * ph[0] + lm.WorldToMap[i][4 * r + 1] * ph[1] +
+          lm.WorldToMap[i][4 * r + 2] * ph[2] + lm.WorldToMap[i][4 * r + 3] * ph[3];
+      return h[3] > 0.0 && std::abs(h[0]) <= h[3] && std::abs(h[1]) <= h[3] && h[2] <= h[3];
+    };
+    if (!holds(c))
+    {
+      if (c + 1 < lm.NumberOfCascades && holds(c + 1))
+        ++c;
+      else
+        return NAN;
+    }
     vtkCascadedShadowMapPlanner::ComputeAliasing(camera, aspect, light, lm.WorldToMap[c], p, m);
     // The resolution this view's map was rendered at (t along light space x if it was turned).
     const bool turned = lm.MapTurned[c];

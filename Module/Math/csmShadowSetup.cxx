@@ -612,9 +612,10 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
       fitted.wsToClip = fit->wsToClip;
       for (const glm::dvec3& p : cwsBody)
       {
+        // Along this view's ls x and z (the rows of the fit's map best aligned with them), as
+        // Lloyd's M of every cascade.
         fitted.wsBody.push_back(p + camera.wsPosition);
-        const Aliasing m =
-          aliasingAt(fitted.wsToClip, camera, fit->wsMapX, fit->wsMapZ, fitted.wsBody.back());
+        const Aliasing m = aliasingAt(fitted.wsToClip, camera, ls.y, fitted.wsBody.back());
         fitted.Mx = std::max(fitted.Mx, m.mx);
         fitted.Mz = std::max(fitted.Mz, m.mz);
       }

@@ -184,8 +184,9 @@ bool sceneFit(const glm::dvec3& wsLightDirection, const Bounds& sceneBounds,
 ///
 /// With a SceneFit (and sceneBounds), sceneFitted holds the farthest cascade once more with that
 /// map: its body the partition's receivers within the fit's s, t extent (the rest cannot be in
-/// shadow), its Mx, Mz Lloyd et al. 2006, §4.4's maxima over that body along the fit's axes;
-/// empty where that body is.
+/// shadow), its Mx, Mz Lloyd et al. 2006, §4.4's maxima over that body along this view's ls x
+/// and z (aliasingAt: the map's rows best aligned with them, so a map turned about the light
+/// by 45 degrees reads sqrt 2 times its texel); empty where that body is.
 ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings,
   const std::vector<Bounds>* receiverParts = nullptr, const SceneFit* fit = nullptr);

@@ -1047,7 +1047,7 @@ TEST(Steps, SceneFittedCascadeServesEveryViewThatItMeets)
     for (const glm::dvec3& p : last.wsBody)
     {
       EXPECT_TRUE(insidePrism(fit, p, 1e-6)) << azimuth;
-      const csm::Aliasing m = csm::aliasingAt(fit.wsToClip, view, fit.wsMapX, fit.wsMapZ, p);
+      const csm::Aliasing m = csm::aliasingAt(fit.wsToClip, view, light, p);
       mx = std::max(mx, m.mx);
       mz = std::max(mz, m.mz);
     }
