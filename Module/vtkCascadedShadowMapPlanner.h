@@ -243,10 +243,10 @@ public:
    * The casters a map pass draws: each one's world box, its cells (triangles, lines,
    * vertices), the index of its prop's box among the receiver bounds (-1: none), whether
    * that prop may shadow itself, and whether it is drawn wider than its data (screen-sized
-   * tubes, spheres, wide lines: no scene-fitted map then). When given, AdaptiveCascades takes, of the counts that meet
-   * ErrorTarget, the one that costs least to render, each cascade's pass drawing the casters
-   * whose boxes reach it (csm::passTexels, csm::kTexelsPerCasterTriangle) and its maps' texels
-   * together; without them, the fewest cascades that meet it. They also bound the
+   * tubes, spheres, wide lines: no scene-fitted map then). When given, AdaptiveCascades takes,
+   * of the counts that meet ErrorTarget, the one that costs least to render, each cascade's
+   * pass drawing the casters (csm::passTexels, csm::kTexelsPerCasterTriangle) and its maps'
+   * texels together; without them, the fewest cascades that meet it. They also bound the
    * scene-fitted map (SceneFittedCascades, csm::sceneFit). Kept until cleared; like the
    * receivers, not a property (setting them does not modify the planner).
    */

@@ -970,21 +970,19 @@ double texelsForError(
   return texels;
 }
 
-double passTexels(
-  const ShadowSetup& setup, const std::vector<CasterLoad>& casters, bool depthClamp)
+double passTexels(const ShadowSetup& setup, const std::vector<CasterLoad>& casters)
 {
   double cells = 0.0;
+  for (const CasterLoad& caster : casters)
+  {
+    cells += std::max(caster.cells, 0.0);
+  }
+  double passes = 0.0;
   for (const Cascade& c : setup.cascades)
   {
-    for (const CasterLoad& caster : casters)
-    {
-      if (caster.cells > 0.0 && !boxOutsideClipVolume(c.wsToClip, caster.wsBox, depthClamp))
-      {
-        cells += caster.cells;
-      }
-    }
+    passes += c.sceneFitted ? 0.0 : 1.0;
   }
-  return cells * kTexelsPerCasterTriangle;
+  return passes * cells * kTexelsPerCasterTriangle;
 }
 
 ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& wsLightDirection,
@@ -1017,7 +1015,7 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
     }
     return followingView.cascades.empty()
       ? 0.0
-      : passTexels(followingView, *casters, settings.depthClamp) +
+      : passTexels(followingView, *casters) +
         texelsForError(followingView, imageHeight, targetError, ceilingOf(k));
   };
   // A count's plan, or (settings.sceneFitted, square tiles) the same with its farthest cascade

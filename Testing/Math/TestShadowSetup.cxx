@@ -812,11 +812,10 @@ TEST(Steps, CascadeCountFromTheErrorModel)
   EXPECT_TRUE(bad.cascades.empty());
 }
 
-// Of the counts that meet the target, the one that costs least: each cascade's caster pass (the
-// cells of the casters whose boxes reach it, kTexelsPerCasterTriangle texels a cell) plus the
-// texels its maps need. Without casters, the fewest cascades; a caster that every cascade draws
-// weighs k passes of it; one far away only the cascades that reach it. Hysteresis keeps a
-// previous count that meets the target unless another costs at most 0.8 of it.
+// Of the counts that meet the target, the one that costs least: each cascade's caster pass (all
+// the casters' cells, kTexelsPerCasterTriangle texels a cell) plus the texels its maps need.
+// Without casters, the fewest cascades. Hysteresis keeps a previous count that meets the target
+// unless another costs at most 0.8 of it.
 TEST(Steps, CascadeCountWeighsCasterPassesAgainstTexels)
 {
   const auto upTo4 = settings(csm::WarpMode::Generalized, csm::SplitScheme::Adaptive, 4);
@@ -863,7 +862,7 @@ TEST(Steps, CascadeCountWeighsCasterPassesAgainstTexels)
     double bestCost = 0.0;
     for (int k = 1; k <= 4; ++k)
     {
-      const double cost = csm::passTexels(plans[k], casters, true) + texels[k];
+      const double cost = csm::passTexels(plans[k], casters) + texels[k];
       if (k == 1 || cost < bestCost)
       {
         best = k;
@@ -873,7 +872,7 @@ TEST(Steps, CascadeCountWeighsCasterPassesAgainstTexels)
     return best;
   };
   EXPECT_EQ(countFor(nullptr), 1); // without casters: the fewest
-  // A caster around the whole view: every cascade draws it, k passes of its cells.
+  // k passes of the casters' cells.
   const csm::Bounds around{ glm::dvec3(-400.0), glm::dvec3(400.0) };
   std::vector<int> seen;
   for (double cells : { 0.0, 1e3, 1e4, 3e4, 1e5, 3e5, 1e10 })
@@ -882,7 +881,7 @@ TEST(Steps, CascadeCountWeighsCasterPassesAgainstTexels)
     for (int k = 1; k <= 4; ++k)
     {
       EXPECT_DOUBLE_EQ(
-        csm::passTexels(plans[k], casters, true), k * cells * csm::kTexelsPerCasterTriangle)
+        csm::passTexels(plans[k], casters), k * cells * csm::kTexelsPerCasterTriangle)
         << k;
     }
     EXPECT_EQ(countFor(&casters), cheapest(casters)) << cells;
@@ -891,18 +890,21 @@ TEST(Steps, CascadeCountWeighsCasterPassesAgainstTexels)
   EXPECT_EQ(seen.front(), // no cells: the fewest texels
     static_cast<int>(std::min_element(texels.begin() + 1, texels.end()) - texels.begin()));
   EXPECT_EQ(seen.back(), 1); // passes that cost more than any texels: the fewest passes
-  // A caster at the far end of the view: the near cascades do not draw it.
+  // Every pass counts all the casters (culling saves triangles, not the pass), wherever they
+  // are; a scene-fitted cascade is drawn once: nothing.
   const glm::dvec3 far = view.wsPosition + 280.0 * glm::dvec3(0.0, 0.0, -1.0);
-  const std::vector<csm::CasterLoad> farAway{ { csm::Bounds{ far - 5.0, far + 5.0 }, 1e5 } };
-  const double farPasses = csm::passTexels(plans[4], farAway, true);
-  EXPECT_GE(farPasses, 1e5 * csm::kTexelsPerCasterTriangle);
-  EXPECT_LT(farPasses, 4e5 * csm::kTexelsPerCasterTriangle);
-  EXPECT_EQ(countFor(&farAway), cheapest(farAway));
+  const std::vector<csm::CasterLoad> two{ { csm::Bounds{ far - 5.0, far + 5.0 }, 1e5 },
+    { around, 2e5 } };
+  EXPECT_DOUBLE_EQ(csm::passTexels(plans[4], two), 4 * 3e5 * csm::kTexelsPerCasterTriangle);
+  EXPECT_EQ(countFor(&two), cheapest(two));
+  csm::ShadowSetup withFitted = plans[3];
+  withFitted.cascades.back().sceneFitted = true;
+  EXPECT_DOUBLE_EQ(csm::passTexels(withFitted, two), 2 * 3e5 * csm::kTexelsPerCasterTriangle);
   // Hysteresis: a previous count that costs less than 1 / 0.8 of the cheapest stays; one that
   // costs more gives way.
   const std::vector<csm::CasterLoad> casters{ { around, 6e4 } };
   const int best = cheapest(casters);
-  auto costOf = [&](int k) { return csm::passTexels(plans[k], casters, true) + texels[k]; };
+  auto costOf = [&](int k) { return csm::passTexels(plans[k], casters) + texels[k]; };
   for (int previous = 1; previous <= 4; ++previous)
   {
     const double ratio = costOf(previous) / costOf(best);
