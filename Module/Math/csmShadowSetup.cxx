@@ -598,7 +598,8 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
     std::vector<Plane> cwsPrism;
     for (const Plane& plane : fit->wsPrism)
     {
-      cwsPrism.push_back({ plane.normal, plane.offset + glm::dot(plane.normal, camera.wsPosition) });
+      cwsPrism.push_back(
+        { plane.normal, plane.offset + glm::dot(plane.normal, camera.wsPosition) });
     }
     const std::vector<glm::dvec3> cwsBody = receivers.body(last.vsNear, last.vsFar, &cwsPrism);
     if (!cwsBody.empty())
@@ -693,8 +694,11 @@ bool sceneFit(const glm::dvec3& wsLightDirection, const Bounds& sceneBounds,
       {
         continue;
       }
-      const glm::dvec2 a = glm::max(glm::dvec2(cLo.x, cLo.z), glm::dvec2(receiverLo[r].x, receiverLo[r].z));
-      const glm::dvec2 b = glm::min(glm::dvec2(cHi.x, cHi.z), glm::dvec2(receiverHi[r].x, receiverHi[r].z));
+      // (x and z: across the light.)
+      const glm::dvec2 a =
+        glm::max(glm::dvec2(cLo.x, cLo.z), glm::dvec2(receiverLo[r].x, receiverLo[r].z));
+      const glm::dvec2 b =
+        glm::min(glm::dvec2(cHi.x, cHi.z), glm::dvec2(receiverHi[r].x, receiverHi[r].z));
       if (a.x <= b.x && a.y <= b.y)
       {
         lo = glm::min(lo, a);
@@ -1019,7 +1023,8 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
         texelsForError(followingView, imageHeight, targetError, ceilingOf(k));
   };
   // A count's plan, or (settings.sceneFitted, square tiles) the same with its farthest cascade
-  // fitted to the whole scene, whichever meets the target at less cost; false: neither does.
+  // on the scene-fitted map (sceneFit), whichever meets the target at less cost; false:
+  // neither does.
   auto meeting = [&](const ShadowSetup& plan, int k, ShadowSetup& taken, double& cost) {
     bool found = false;
     if (errorOf(plan, k) <= targetError)

@@ -1001,7 +1001,8 @@ TEST(Steps, SceneFitSpansWhatCanBeInShadow)
   auto tubes = casters;
   tubes[1].screenSized = true;
   EXPECT_FALSE(csm::sceneFit(glm::dvec3(0.0, -1.0, 0.0), scene, tubes, &receivers, none));
-  EXPECT_FALSE(csm::sceneFit(glm::dvec3(std::nan(""), -1.0, 0.0), scene, casters, &receivers, none));
+  EXPECT_FALSE(
+    csm::sceneFit(glm::dvec3(std::nan(""), -1.0, 0.0), scene, casters, &receivers, none));
   EXPECT_FALSE(csm::sceneFit(glm::dvec3(0.0), scene, casters, &receivers, none));
   EXPECT_EQ(none.wsToClip, before);
 }
@@ -1107,7 +1108,8 @@ TEST(Steps, CascadesShareOneAtlasOfFourFullMaps)
     EXPECT_EQ(f.tile, k <= 4 ? fewer[k] : expected[k]) << k << " cascades";
     EXPECT_EQ(f.columns * f.rows, k <= 4 ? k : g.columns * g.rows) << k << " cascades";
     EXPECT_LE(double(f.columns) * f.rows * f.tile.width * f.tile.height, 4.0 * 2048 * 2048);
-    EXPECT_GT(double(k) * f.tile.width * f.tile.height, 0.95 * 4.0 * 2048 * 2048 * std::min(k, 4) / 4.0);
+    EXPECT_GT(double(k) * f.tile.width * f.tile.height,
+      0.95 * 4.0 * 2048 * 2048 * std::min(k, 4) / 4.0);
     EXPECT_EQ(csm::resolutionCeilingForCount(k, 6, 2048), f.tile);
   }
   // Two most cascades: one gets both tiles' texels.
