@@ -974,6 +974,28 @@ vtkSmartPointer<vtkActor> TubeRow(double y, double z0, double z1, float pixels)
   return actor;
 }
 
+// Screen-sized casters (tubes drawn in the main view's pixels) have no fixed extent and cost
+// their fragments: while one is in the scene there is no scene-fitted map.
+TEST(Passes, ScreenSizedCastersGetNoSceneFittedMap)
+{
+  BoxOverPlane scene;
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  auto lastFitted = [&]() {
+    return baker->GetPlanner()->GetCascadeSceneFitted(
+      baker->GetLightMaps().at(0).NumberOfCascades - 1);
+  };
+  scene.Frame();
+  EXPECT_TRUE(lastFitted()); // the box alone
+  vtkSmartPointer<vtkActor> tubes = TubeRow(2.0, -4.0, 4.0, 4.0f);
+  scene.Renderer->AddActor(tubes);
+  scene.Frame();
+  EXPECT_FALSE(lastFitted());
+  scene.Renderer->RemoveActor(tubes);
+  scene.Frame();
+  EXPECT_TRUE(lastFitted());
+}
+
 /// Pixels that differ from the background colour (0.2, 0.3, 0.4).
 std::vector<char> Covered(vtkImageData* image)
 {
