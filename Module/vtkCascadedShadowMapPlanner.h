@@ -104,8 +104,8 @@ public:
    * Choose the number of cascades per frame from the error model: of the numbers up to
    * NumberOfCascades whose predicted worst error at the largest maps that count can have
    * (csm::resolutionCeilingForCount: fewer cascades get larger maps of the same atlas) meets
-   * ErrorTarget, the smallest, or where Plan() is told what a map pass draws, the one that
-   * costs least to render (passes and texels); when none does, more cascades only
+   * ErrorTarget, the smallest, or with caster loads (AddCasterLoad()) the one that costs least
+   * to render (passes and texels); when none does, more cascades only
    * while each cuts the predicted error to csm::kCountHysteresis; changed with hysteresis from the last
    * frame's (csm::computeShadowSetupForError; with the adaptive split scheme each count takes
    * Eq. 19's splits or the log splits, whichever predicts the smaller worst error). Needs the
@@ -193,12 +193,12 @@ public:
 
   ///@{
   /**
-   * With AdaptiveCascades, the farthest cascade may get an orthographic map of the whole scene
-   * that does not follow the view (csm::sceneFittedCascade) where that meets ErrorTarget: its
-   * matrix depends only on the light and the scene bounds, so the baker keeps its map while
-   * they stay (an orbit around a model draws it once), at all the texels of its tile. A view
-   * that needs more (close to the scene, a long depth range) gets the cascade fitted to it.
-   * Default on.
+   * With AdaptiveCascades and caster loads (AddCasterLoad()), the farthest cascade may get an
+   * orthographic map fixed in the world of the part of the scene that can be in shadow
+   * (csm::sceneFit) where that meets ErrorTarget: its matrix depends only on the light and
+   * the boxes, so the baker keeps its map while they stay (an orbit around a model draws it
+   * once), at all the texels of its tile. A view that needs more (close to the scene, a long
+   * depth range) gets the cascade fitted to it. Default on.
    */
   vtkSetMacro(SceneFittedCascades, bool);
   vtkGetMacro(SceneFittedCascades, bool);
