@@ -387,8 +387,23 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(vtkOpenGLRenderWindow* window,
   const int count = std::max(maps.NumberOfCascades, 1);
   GLint maxSize = 4096;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  const csm::AtlasGrid unlimited = csm::atlasForCount(count, budget);
-  const csm::AtlasGrid grid = csm::atlasForCount(count, budget, maxSize);
+  csm::AtlasGrid unlimited = csm::atlasForCount(count, budget);
+  csm::AtlasGrid grid = csm::atlasForCount(count, budget, maxSize);
+  bool sceneFitted = false;
+  for (int c = 0; c < maps.NumberOfCascades; ++c)
+  {
+    sceneFitted = sceneFitted || maps.SceneFitted[c];
+  }
+  if (!sceneFitted)
+  {
+    // Maps that follow the view are at most Resolution a side (csm::ceilingsForCount): tiles
+    // no larger (a new texture where a scene-fitted map comes or goes).
+    for (csm::AtlasGrid* g : { &unlimited, &grid })
+    {
+      g->tile.width = std::min(g->tile.width, wanted);
+      g->tile.height = std::min(g->tile.height, wanted);
+    }
+  }
   // (Said where the tiles fall below what was asked for, not below the larger maps of fewer
   // cascades.)
   if (grid.tile.width < std::min(unlimited.tile.width, wanted) ||
@@ -1257,14 +1272,17 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       ? &state.Maps[slot]
       : nullptr;
     vtkNew<vtkMatrix4x4> m;
-    // The largest map this count of cascades has in the atlas (csm::resolutionCeilingForCount:
-    // the planner judged the count at the same).
-    const csm::MapSize countTile = csm::resolutionCeilingForCount(
+    // The largest maps this count of cascades has in the atlas (csm::ceilingsForCount: the
+    // planner judged the count at the same).
+    const csm::CascadeCeilings countCeilings = csm::ceilingsForCount(
       maps.NumberOfCascades, this->Planner->GetNumberOfCascades(), ceiling);
-    const int countCeiling[2] = { countTile.width, countTile.height };
     for (int c = 0; c < maps.NumberOfCascades; ++c)
     {
       int* resolution = maps.CascadeResolution[c];
+      maps.SceneFitted[c] = this->Planner->GetCascadeSceneFitted(c);
+      const csm::MapSize& most = maps.SceneFitted[c] ? countCeilings.sceneFitted
+        : countCeilings.following;
+      const int countCeiling[2] = { most.width, most.height };
       this->Planner->GetCascadeResolution(c, imageHeight, RESOLUTION_STEP, countCeiling, resolution);
       maps.MapTurned[c] = this->Planner->GetCascadeMapTurned(c);
       this->Planner->GetCascadeMatrix(c, m, border, resolution);

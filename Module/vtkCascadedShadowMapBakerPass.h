@@ -323,13 +323,15 @@ public:
     /// point's w); 0 otherwise.
     double DepthW[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     double Tile[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][4] = {};            ///< atlas tile: offset x, y and scale x, y in [0, 1]
-    /// Texels of each cascade's tile, width and height (csm::atlasForCount: more than
-    /// Resolution a side for fewer than csm::kAtlasFullMaps cascades, less beyond, in
-    /// non-square tiles, or where GL limits).
+    /// Texels of each cascade's tile, width and height (csm::atlasForCount: where a map is
+    /// scene-fitted, more than Resolution a side for fewer than csm::kAtlasFullMaps cascades;
+    /// less beyond, in non-square tiles, or where GL limits).
     int Resolution[2] = { 0, 0 };
     /// Texels of each cascade's map along its s and t axes (from ErrorTarget), in the lower left
     /// of its tile.
     int CascadeResolution[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][2] = {};
+    /// Each cascade's map is fixed in the world (vtkCascadedShadowMapPlanner::GetCascadeSceneFitted).
+    bool SceneFitted[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     /// Each cascade's map is turned a quarter to its tile (vtkCascadedShadowMapPlanner::GetCascadeMapTurned).
     bool MapTurned[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     double LightGeometry[7] = { 0, 0, 0, 0, 0, 0, 0 }; ///< position, focal point, cone angle (-1: directional) the maps were rendered for

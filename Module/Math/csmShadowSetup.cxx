@@ -892,16 +892,16 @@ double predictedError(const Cascade& cascade, double imageHeight, const MapSize&
   return imageHeight * std::min(errorAsTurned(cascade, map), errorAsTurned(cascade, map, true));
 }
 
-double predictedError(const ShadowSetup& setup, double imageHeight, const MapSize& map)
+double predictedError(const ShadowSetup& setup, double imageHeight, const CascadeCeilings& maps)
 {
-  if (setup.cascades.empty() || map.width <= 0 || map.height <= 0)
+  if (setup.cascades.empty())
   {
     return std::numeric_limits<double>::infinity();
   }
   double worst = 0.0;
   for (const Cascade& c : setup.cascades)
   {
-    worst = std::max(worst, predictedError(c, imageHeight, map));
+    worst = std::max(worst, predictedError(c, imageHeight, maps.of(c)));
   }
   return worst;
 }
@@ -931,7 +931,7 @@ void orientToTile(ShadowSetup& setup, const MapSize& tile)
 
 ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
-  int k, const MapSize& tile, const SceneFit* fit)
+  int k, const CascadeCeilings& maps, const SceneFit* fit)
 {
   Settings s = settings;
   s.split.k = k;
@@ -946,13 +946,13 @@ ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& w
     computeShadowSetup(camera, wsLightDirection, sceneBounds, s, receiverParts, fit);
   // The common factor imageHeight does not change the order.
   return logPlan.status == Status::Ok &&
-      predictedError(logPlan, 1.0, tile) < predictedError(plan, 1.0, tile)
+      predictedError(logPlan, 1.0, maps) < predictedError(plan, 1.0, maps)
     ? logPlan
     : plan;
 }
 
-double texelsForError(
-  const ShadowSetup& setup, double imageHeight, double targetError, const MapSize& ceiling)
+double texelsForError(const ShadowSetup& setup, double imageHeight, double targetError,
+  const CascadeCeilings& ceilings)
 {
   if (setup.cascades.empty() || !(targetError > 0.0))
   {
@@ -963,6 +963,7 @@ double texelsForError(
   {
     // resolutionForError's sides, without the rounding to its step (a scene-fitted map: its
     // tile).
+    const MapSize& ceiling = ceilings.of(c);
     const double side =
       c.sceneFitted ? kInf : std::max(c.Mx, c.Mz) * imageHeight / targetError;
     const double s = std::isfinite(side) ? side : ceiling.width;
@@ -995,7 +996,7 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
   const std::vector<CasterLoad>* casters)
 {
   const int kMax = std::max(1, settings.split.k);
-  auto ceilingOf = [&](int k) { return resolutionCeilingForCount(k, kMax, maximumResolution); };
+  auto ceilingOf = [&](int k) { return ceilingsForCount(k, kMax, maximumResolution); };
   auto errorOf = [&](const ShadowSetup& plan, int k) {
     return predictedError(plan, imageHeight, ceilingOf(k));
   };
@@ -1033,7 +1034,7 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
       cost = costOf(plan, k);
       found = true;
     }
-    const MapSize tile = ceilingOf(k);
+    const MapSize tile = ceilingOf(k).sceneFitted;
     if (!plan.sceneFitted.empty() && !plan.cascades.empty() && tile.width == tile.height)
     {
       ShadowSetup fitted = plan;
@@ -1195,6 +1196,14 @@ AtlasGrid atlasForCount(int count, const AtlasGrid& atlas, int maximumSide)
 MapSize resolutionCeilingForCount(int count, int mostCascades, int resolution)
 {
   return atlasForCount(count, atlasLayout(std::max(mostCascades, count), resolution)).tile;
+}
+
+CascadeCeilings ceilingsForCount(int count, int mostCascades, int resolution)
+{
+  CascadeCeilings ceilings(resolutionCeilingForCount(count, mostCascades, resolution));
+  ceilings.following.width = std::min(ceilings.following.width, std::max(resolution, 0));
+  ceilings.following.height = std::min(ceilings.following.height, std::max(resolution, 0));
+  return ceilings;
 }
 
 int resolutionForError(double maxAliasing, double imageHeight, double targetError, int step,

@@ -136,6 +136,31 @@ struct ShadowSetup
   std::vector<Cascade> sceneFitted;
 };
 
+/// The largest maps count cascades can have: a scene-fitted cascade (drawn once while the scene
+/// and the light stay) its whole tile of the atlas, resolutionCeilingForCount; a cascade that
+/// follows the view (drawn again as the view moves) at most resolution texels a side of that
+/// tile, so that the larger tiles of fewer cascades do not make its map cost more per frame nor
+/// outgrow the map a moving view keeps (Documentation/Results.md, fifteenth session). One size
+/// for both converts to this.
+struct CascadeCeilings
+{
+  MapSize sceneFitted;
+  MapSize following;
+  CascadeCeilings(const MapSize& both = MapSize()) // NOLINT: a size for both kinds
+    : sceneFitted(both)
+    , following(both)
+  {
+  }
+  CascadeCeilings(int side) // NOLINT: a square map of side texels for both
+    : CascadeCeilings(MapSize(side))
+  {
+  }
+  const MapSize& of(const Cascade& cascade) const
+  {
+    return cascade.sceneFitted ? sceneFitted : following;
+  }
+};
+
 /// A caster as the cascade count and the scene-fitted map are judged by: its world box, the cells
 /// (triangles, lines, vertices) a map pass draws of it, the receiver box (index into the
 /// receiver parts; -1: none) of its own prop, whether that prop may shadow itself, and whether
@@ -244,18 +269,18 @@ double passTexels(const ShadowSetup& setup, const std::vector<CasterLoad>& caste
 
 /// The texels the maps of a plan need for a worst error of targetError in an image imageHeight
 /// pixels high: each cascade's map (square, max(M_x, M_z) texels per pixel along both axes, as
-/// resolutionForError sizes it, without its rounding) within ceiling; +infinity for a plan
-/// without cascades or a target that is not positive.
-double texelsForError(
-  const ShadowSetup& setup, double imageHeight, double targetError, const MapSize& ceiling);
+/// resolutionForError sizes it, without its rounding) within its ceiling (CascadeCeilings::of);
+/// +infinity for a plan without cascades or a target that is not positive.
+double texelsForError(const ShadowSetup& setup, double imageHeight, double targetError,
+  const CascadeCeilings& ceilings);
 
 /// The plan computeShadowSetupForError judges for exactly k cascades (settings.split.k is
 /// ignored): with the adaptive split scheme, Barroso & Celes 2007, Eq. 19's splits or the log
-/// splits, whichever predicts the smaller worst error on maps of the given size (turned to it;
-/// square by default); else computeShadowSetup's.
+/// splits, whichever predicts the smaller worst error on maps of the given sizes (turned to
+/// them; square by default); else computeShadowSetup's.
 ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
-  int k, const MapSize& tile = MapSize(1), const SceneFit* fit = nullptr);
+  int k, const CascadeCeilings& maps = MapSize(1), const SceneFit* fit = nullptr);
 
 /// Share of the error target a smaller cascade count must meet to replace a previous count, and
 /// share of the error a larger count must reach to be taken where none meets the target.
@@ -305,14 +330,19 @@ AtlasGrid atlasForCount(int count, const AtlasGrid& atlas, int maximumSide = 0);
 /// 2048 x 1024). 0 x 0 for counts or resolutions below 1.
 MapSize resolutionCeilingForCount(int count, int mostCascades, int resolution);
 
+/// ceilingsForCount(count, mostCascades, resolution): see CascadeCeilings (0 x 0 where
+/// resolutionCeilingForCount is).
+CascadeCeilings ceilingsForCount(int count, int mostCascades, int resolution);
+
 /// A cascade's predicted worst error on a map of the given size, turned as orientToTile would
 /// turn it: min over both orientations of max(M_s / width, M_t / height) times imageHeight.
 /// +infinity for a map without texels.
 double predictedError(const Cascade& cascade, double imageHeight, const MapSize& map);
 
 /// The predicted worst error of a plan (see computeShadowSetupForError): the largest of its
-/// cascades' on maps of the given size; +infinity without cascades.
-double predictedError(const ShadowSetup& setup, double imageHeight, const MapSize& map);
+/// cascades' on the largest maps they can have (CascadeCeilings::of); +infinity without
+/// cascades.
+double predictedError(const ShadowSetup& setup, double imageHeight, const CascadeCeilings& maps);
 
 /// Turn each cascade's map a quarter (rows s, t of wsToClip to t, -s: a rotation, so the
 /// triangles keep their winding) where that gives its larger error the longer side of a

@@ -732,7 +732,7 @@ TEST(Steps, CascadeCountFromTheErrorModel)
   EXPECT_GT(enough.cascades.size(), 2u);
   EXPECT_LE(csm::predictedError(enough, 600.0, 2048), 1.5);
   EXPECT_GT(csm::predictedError(oneFewer, 600.0,
-              csm::resolutionCeilingForCount(fewer.split.k, 8, 2048)),
+              csm::ceilingsForCount(fewer.split.k, 8, 2048)),
     1.5);
   std::printf("cascades: overhead f/n 10: %zu (error %.3f); behind f/n 100: %zu (error %.3f, "
               "with one fewer %.3f); behind f/n 1e4: %zu (error %.1f)\n",
@@ -753,9 +753,9 @@ TEST(Steps, CascadeCountFromTheErrorModel)
     return csm::predictedError(
       csm::computeShadowSetupForError(longView, lightAt(longView, 0.0), nullptr, s, nullptr, 600.0,
         2048, 1e-6, 0),
-      600.0, csm::resolutionCeilingForCount(k, 8, 2048));
+      600.0, csm::ceilingsForCount(k, 8, 2048));
   };
-  const double eMost = csm::predictedError(most, 600.0, csm::resolutionCeilingForCount(kMost, 8, 2048));
+  const double eMost = csm::predictedError(most, 600.0, csm::ceilingsForCount(kMost, 8, 2048));
   EXPECT_LT(eMost, csm::kCountHysteresis * errorAt(4));
   if (kMost < 8)
   {
@@ -763,8 +763,8 @@ TEST(Steps, CascadeCountFromTheErrorModel)
     next.split.k = kMost + 1;
     const double eNext = csm::predictedError(
       csm::computeShadowSetupForCount(longView, lightAt(longView, 0.0), nullptr, next, nullptr,
-        kMost + 1, csm::resolutionCeilingForCount(kMost + 1, 8, 2048)),
-      600.0, csm::resolutionCeilingForCount(kMost + 1, 8, 2048));
+        kMost + 1, csm::ceilingsForCount(kMost + 1, 8, 2048)),
+      600.0, csm::ceilingsForCount(kMost + 1, 8, 2048));
     EXPECT_GE(eNext, csm::kCountHysteresis * eMost);
   }
   std::printf("unreachable target, f/n 1e4, light behind: %d cascades (error %.2f; four: %.2f)\n",
@@ -776,8 +776,8 @@ TEST(Steps, CascadeCountFromTheErrorModel)
     fewer.split.k = kMost - 1;
     const double eFewer = csm::predictedError(
       csm::computeShadowSetupForCount(longView, lightAt(longView, 0.0), nullptr, fewer, nullptr,
-        kMost - 1, csm::resolutionCeilingForCount(kMost - 1, 8, 2048)),
-      600.0, csm::resolutionCeilingForCount(kMost - 1, 8, 2048));
+        kMost - 1, csm::ceilingsForCount(kMost - 1, 8, 2048)),
+      600.0, csm::ceilingsForCount(kMost - 1, 8, 2048));
     const csm::ShadowSetup kept = csm::computeShadowSetupForError(longView,
       lightAt(longView, 0.0), nullptr, settingsUpTo8, nullptr, 600.0, 2048, 1e-6, kMost - 1);
     EXPECT_EQ(kept.cascades.size(),
@@ -791,12 +791,14 @@ TEST(Steps, CascadeCountFromTheErrorModel)
   one.split.k = 1;
   auto two = settingsUpTo8;
   two.split.k = 2;
-  // (Each on the map its count gets: two tiles' texels, one map of 2896² or two of 2048².)
-  ASSERT_EQ(csm::resolutionCeilingForCount(1, 2, 2048), csm::MapSize(2896));
+  // (Each on the map its count gets: two tiles' texels, but a map that follows the view at most
+  // 2048² however few share them; a scene-fitted one gets its whole tile, 2896² for one.)
+  ASSERT_EQ(csm::ceilingsForCount(1, 2, 2048).following, csm::MapSize(2048));
+  ASSERT_EQ(csm::ceilingsForCount(1, 2, 2048).sceneFitted, csm::MapSize(2896));
   const double e1 = csm::predictedError(csm::computeShadowSetup(mid, light, nullptr, one, nullptr),
-    1000.0, csm::resolutionCeilingForCount(1, 2, 2048));
+    1000.0, csm::ceilingsForCount(1, 2, 2048));
   const double e2 = csm::predictedError(csm::computeShadowSetup(mid, light, nullptr, two, nullptr),
-    1000.0, csm::resolutionCeilingForCount(2, 2, 2048));
+    1000.0, csm::ceilingsForCount(2, 2, 2048));
   ASSERT_LT(e2, e1);
   const double target = e1 / 0.9; // one cascade meets it, not by the hysteresis margin
   EXPECT_EQ(csm::computeShadowSetupForError(mid, light, nullptr, two, nullptr, 1000.0, 2048,
@@ -826,7 +828,7 @@ TEST(Steps, CascadeCountWeighsCasterPassesAgainstTexels)
   std::vector<double> error(5), texels(5);
   for (int k = 1; k <= 4; ++k)
   {
-    const csm::MapSize ceiling = csm::resolutionCeilingForCount(k, 4, 2048);
+    const csm::MapSize ceiling = csm::ceilingsForCount(k, 4, 2048).following;
     plans[k] = csm::computeShadowSetupForCount(view, light, nullptr, upTo4, nullptr, k, ceiling);
     ASSERT_EQ(plans[k].status, csm::Status::Ok);
     ASSERT_EQ(plans[k].cascades.size(), static_cast<size_t>(k));
@@ -836,7 +838,7 @@ TEST(Steps, CascadeCountWeighsCasterPassesAgainstTexels)
   const double target = 1.01 * *std::max_element(error.begin() + 1, error.end());
   for (int k = 1; k <= 4; ++k)
   {
-    const csm::MapSize ceiling = csm::resolutionCeilingForCount(k, 4, 2048);
+    const csm::MapSize ceiling = csm::ceilingsForCount(k, 4, 2048).following;
     texels[k] = csm::texelsForError(plans[k], height, target, ceiling);
     // Each map's texels: max(Mx, Mz) H / target a side, within the ceiling.
     double sum = 0.0;

@@ -107,10 +107,12 @@ TEST(Passes, MapsAreRebakedOnlyWhenSomethingChanged)
   EXPECT_EQ(baker->GetBakeCount(), first + 4); // a lookup option needs no new maps
 }
 
-// The atlas holds the texels of four maps of Resolution²; a frame with fewer cascades gets them
-// in fewer, larger square maps (2048² x 4 = 4096² x 1 = 2896² x 2), so that a plan of fewer
-// caster passes loses no texels; its count's tiles are a new texture of the same memory.
-TEST(Passes, FewerCascadesShareTheTexelsOfFourMaps)
+// The atlas holds the texels of four maps of Resolution²; a frame with fewer cascades gives them
+// to its scene-fitted map (drawn once) in fewer, larger square tiles (2048² x 4 = 4096² x 1 =
+// 2896² x 2), while the maps that follow the view stay at most Resolution a side (a larger one
+// would cost more every time the view moves, and outgrow the map a moving view keeps); without
+// a scene-fitted map the tiles are no larger than Resolution.
+TEST(Passes, FewerCascadesGiveTheirTexelsToTheSceneFittedMap)
 {
   BoxOverPlane scene;
   auto plain = scene.Render();
@@ -118,27 +120,54 @@ TEST(Passes, FewerCascadesShareTheTexelsOfFourMaps)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->SetResolution(256);
   baker->SetNumberOfCascades(4);
-  baker->SetErrorTarget(0.05); // more than any count can give: every map at its tile
-  const long shadowed = DarkenedPixels(scene.Render(), plain);
-  ASSERT_EQ(baker->GetLightMaps().size(), 1u);
-  const auto& maps = baker->GetLightMaps()[0];
-  const int n = maps.NumberOfCascades;
-  ASSERT_GE(n, 1);
-  ASSERT_LT(n, 4); // the box over the plane is a short view: fewer than four (here one)
   // 256 sqrt(4 / n) rounded down to 16 texels: 512, 352, 288, 256.
   const int sides[5] = { 0, 512, 352, 288, 256 };
-  EXPECT_EQ(maps.Resolution[0], sides[n]) << n << " cascades";
-  EXPECT_EQ(maps.Resolution[1], sides[n]);
-  EXPECT_EQ(maps.Atlas->GetWidth(), static_cast<unsigned int>(n * sides[n]));
-  EXPECT_EQ(maps.Atlas->GetHeight(), static_cast<unsigned int>(sides[n]));
-  for (int c = 0; c < n; ++c)
+  bool sawFitted = false;
+  for (bool fitted : { true, false })
   {
-    EXPECT_EQ(maps.CascadeResolution[c][0], sides[n]) << c;
-    EXPECT_EQ(maps.CascadeResolution[c][1], sides[n]) << c;
+    // (A target no count meets gets no scene-fitted map: the count of least error is taken.
+    // Without one, a target more than any count can give: every map at its ceiling.)
+    baker->SetErrorTarget(fitted ? 1.0 : 0.05);
+    baker->SetSceneFittedCascades(fitted);
+    const long shadowed = DarkenedPixels(scene.Render(), plain);
+    ASSERT_EQ(baker->GetLightMaps().size(), 1u);
+    const auto& maps = baker->GetLightMaps()[0];
+    const int n = maps.NumberOfCascades;
+    ASSERT_GE(n, 1);
+    ASSERT_LT(n, 4); // the box over the plane is a short view: fewer than four
+    bool anyFitted = false;
+    for (int c = 0; c < n; ++c)
+    {
+      anyFitted = anyFitted || maps.SceneFitted[c];
+      for (int axis = 0; axis < 2; ++axis)
+      {
+        if (maps.SceneFitted[c])
+        {
+          EXPECT_EQ(maps.CascadeResolution[c][axis], sides[n]) << c << " of " << n;
+        }
+        else if (fitted)
+        {
+          EXPECT_LE(maps.CascadeResolution[c][axis], 256) << c << " of " << n; // from need
+        }
+        else
+        {
+          EXPECT_EQ(maps.CascadeResolution[c][axis], 256) << c << " of " << n;
+        }
+      }
+    }
+    EXPECT_FALSE(!fitted && anyFitted);
+    sawFitted = sawFitted || anyFitted;
+    const int tile = anyFitted ? sides[n] : 256;
+    EXPECT_EQ(maps.Resolution[0], tile) << n << " cascades";
+    EXPECT_EQ(maps.Resolution[1], tile);
+    EXPECT_EQ(maps.Atlas->GetWidth(), static_cast<unsigned int>(n * tile));
+    EXPECT_EQ(maps.Atlas->GetHeight(), static_cast<unsigned int>(tile));
+    EXPECT_GT(shadowed, 500);
   }
-  EXPECT_GT(shadowed, 500);
+  EXPECT_TRUE(sawFitted); // the box's footprint on the ground: a scene-fitted map
   // Four fixed cascades: the four tiles of Resolution, the same shadow within the penumbra's
   // change.
+  const long shadowed = DarkenedPixels(scene.Render(), plain);
   baker->AdaptiveCascadesOff();
   const long four = DarkenedPixels(scene.Render(), plain);
   EXPECT_EQ(baker->GetLightMaps()[0].NumberOfCascades, 4);
