@@ -381,43 +381,25 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(vtkOpenGLRenderWindow* window,
   LightMaps& maps, int tiles, int wanted, bool& reallocated)
 {
   reallocated = false;
-  // The texels of up to csm::kAtlasFullMaps full maps, in this frame's count of tiles (fewer
-  // cascades get larger ones; a new count is a new texture).
-  const csm::AtlasGrid budget = csm::atlasLayout(tiles, wanted);
-  const int count = std::max(maps.NumberOfCascades, 1);
+  // The texels of up to csm::kAtlasFullMaps full maps in one texture for every count of
+  // cascades (a new texture would cost its allocation and every map's render); this frame's
+  // count in its tiles.
   GLint maxSize = 4096;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
-  csm::AtlasGrid unlimited = csm::atlasForCount(count, budget);
-  csm::AtlasGrid grid = csm::atlasForCount(count, budget, maxSize);
-  bool sceneFitted = false;
-  for (int c = 0; c < maps.NumberOfCascades; ++c)
-  {
-    sceneFitted = sceneFitted || maps.SceneFitted[c];
-  }
-  if (!sceneFitted)
-  {
-    // Maps that follow the view are at most Resolution a side (csm::ceilingsForCount): tiles
-    // no larger (a new texture where a scene-fitted map comes or goes).
-    for (csm::AtlasGrid* g : { &unlimited, &grid })
-    {
-      g->tile.width = std::min(g->tile.width, wanted);
-      g->tile.height = std::min(g->tile.height, wanted);
-    }
-  }
-  // (Said where the tiles fall below what was asked for, not below the larger maps of fewer
-  // cascades.)
-  if (grid.tile.width < std::min(unlimited.tile.width, wanted) ||
-    grid.tile.height < std::min(unlimited.tile.height, wanted))
+  const csm::AtlasGrid budget = csm::atlasLayout(tiles, wanted, maxSize);
+  const int count = std::max(maps.NumberOfCascades, 1);
+  const csm::AtlasGrid grid = csm::atlasForCount(count, budget);
+  if (budget.tile.width < wanted)
   {
     std::ostringstream message;
-    message << "Shadow map tiles of " << unlimited.tile.width << " x " << unlimited.tile.height
-            << " texels for " << count << " cascades exceed the GL limit " << maxSize
-            << "; using " << grid.tile.width << " x " << grid.tile.height;
+    message << "Shadow map tiles of " << wanted << " texels exceed the GL limit " << maxSize
+            << " in an atlas of " << budget.columns << " x " << budget.rows << "; using "
+            << budget.tile.width;
     this->ReportOnce(false, message.str());
   }
   vtkTextureObject* atlas = maps.Atlas;
-  const unsigned int width = static_cast<unsigned int>(grid.columns * grid.tile.width);
-  const unsigned int height = static_cast<unsigned int>(grid.rows * grid.tile.height);
+  const unsigned int width = static_cast<unsigned int>(budget.columns * budget.tile.width);
+  const unsigned int height = static_cast<unsigned int>(budget.rows * budget.tile.height);
   if (atlas->GetContext() != window || atlas->GetWidth() != width ||
     atlas->GetHeight() != height || !atlas->GetHandle())
   {

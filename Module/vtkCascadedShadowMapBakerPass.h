@@ -323,9 +323,9 @@ public:
     /// point's w); 0 otherwise.
     double DepthW[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     double Tile[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][4] = {};            ///< atlas tile: offset x, y and scale x, y in [0, 1]
-    /// Texels of each cascade's tile, width and height (csm::atlasForCount: where a map is
-    /// scene-fitted, more than Resolution a side for fewer than csm::kAtlasFullMaps cascades;
-    /// less beyond, in non-square tiles, or where GL limits).
+    /// Texels of each cascade's tile, width and height (csm::atlasForCount: twice Resolution a
+    /// side for one cascade in 2 x 2 tiles, Resolution for up to csm::kAtlasFullMaps, less
+    /// beyond, in non-square tiles, or where GL limits).
     int Resolution[2] = { 0, 0 };
     /// Texels of each cascade's map along its s and t axes (from ErrorTarget), in the lower left
     /// of its tile.

@@ -248,14 +248,25 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   // variants, not one per count: AdaptiveCascades changes the count with the view, and a count
   // compiled in would rebuild every shader; measured, two more varyings cost a vertex-heavy
   // frame ~2 %, so the up to 8 of NumberOfCascades are compiled in only where they are used.
+  // Once a light has used more than four, the more stay while the baker's NumberOfCascades,
+  // AdaptiveCascades and the shadowed lights stay: the count changes with the view, and a switch
+  // of variant rebuilds every shader (the towers' fly-through: 0.1-0.2 s a switch on llvmpipe).
   if (this->MapCoordinatesFromVertices)
   {
     const int most = baker->GetNumberOfCascades();
+    const int key[3] = { most, baker->GetAdaptiveCascades() ? 1 : 0,
+      static_cast<int>(u.Lights()) };
     int cascades = std::min(most, csm::kAtlasFullMaps);
+    if (std::equal(key, key + 3, this->VaryingsKey))
+    {
+      cascades = std::max(cascades, this->VaryingsUsed);
+    }
+    std::copy(key, key + 3, this->VaryingsKey);
     for (int count : u.Count)
     {
       cascades = count > cascades ? std::max(most, count) : cascades;
     }
+    this->VaryingsUsed = cascades;
     if (u.Lights() * cascades <= static_cast<size_t>(MAXIMUM_MAP_COORDINATE_VARYINGS))
     {
       this->LastMapCoordinateVaryings = cascades;

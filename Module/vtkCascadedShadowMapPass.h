@@ -187,6 +187,8 @@ protected:
   int DebugMode = DEBUG_OFF;
   bool MapCoordinatesFromVertices = true;
   int LastMapCoordinateVaryings = 0;
+  int VaryingsKey[3] = { 0, 0, 0 }; ///< NumberOfCascades, AdaptiveCascades, lights of VaryingsUsed
+  int VaryingsUsed = 0;             ///< the cascades a light needed coordinates for
 
   /// What the shader needs this frame, packed as its uniform arrays (light j's cascade c at
   /// 8 j + c): filled once per frame in Render(), only uploaded per draw.

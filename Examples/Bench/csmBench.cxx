@@ -613,7 +613,8 @@ Options Parse(int argc, char** argv)
                   "640x480, 6 frames a path, budget 2048, VTK's pass and ours with the defaults.\n"
                   "Timed paths: coarse orbit + fly-through (interleaved), an interactive orbit of\n"
                   "2 degrees a frame and a still camera. --breakdown: per frame, the planning and\n"
-                  "map times (glFinish around them) and the maps rendered / kept.\n"
+                  "map times (glFinish around them) and the maps rendered / kept, and each path\n"
+                  "frame printed.\n"
                   "--labels a,b,...: only these techniques (their labels as in the CSV).\n"
                   "--error-images DIR: per measured view and technique, DIR/scene-label-view.png:\n"
                   "false shadow red, false light blue, right light / dark grey, not compared dark.\n");
@@ -794,6 +795,20 @@ int main(int argc, char** argv)
           timer->StopTimer();
           t.Times.push_back(1000.0 * timer->GetElapsedTime());
           Account(t, renderer);
+          if (o.Breakdown)
+          {
+            // Each path frame: its time, and what the baker did in it.
+            std::printf("    %-18s frame %2zu %7.1f ms", t.Label.c_str(), i, t.Times.back());
+            if (t.Passes.Cascaded)
+            {
+              auto* b = t.Passes.Cascaded->GetShadowMapBakerPass();
+              std::printf("  plan %.1f  maps %.1f ms  rendered %d kept %d of k %d",
+                1000.0 * b->GetLastPlanSeconds(), 1000.0 * b->GetLastMapSeconds(),
+                b->GetLastCascadeRenders(), b->GetLastCascadesKept(),
+                b->GetLightMaps().empty() ? 0 : b->GetLightMaps()[0].NumberOfCascades);
+            }
+            std::printf("\n");
+          }
         }
       }
     }

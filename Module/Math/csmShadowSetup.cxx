@@ -1125,15 +1125,23 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
   return chosenPlan;
 }
 
-AtlasGrid atlasLayout(int mostCascades, int resolution)
+AtlasGrid atlasLayout(int mostCascades, int resolution, int maximumSide)
 {
   AtlasGrid atlas;
   if (mostCascades < 1 || resolution < 1)
   {
     return atlas;
   }
-  atlas.columns = std::min(mostCascades, kAtlasFullMaps);
-  atlas.tile = MapSize(resolution);
+  const int maps = std::min(mostCascades, kAtlasFullMaps);
+  const int side = static_cast<int>(std::lround(std::sqrt(double(maps))));
+  atlas.columns = side * side == maps ? side : maps;
+  atlas.rows = side * side == maps ? side : 1;
+  int tile = resolution;
+  if (maximumSide > 0)
+  {
+    tile = std::max(1, std::min(tile, maximumSide / std::max(atlas.columns, atlas.rows)));
+  }
+  atlas.tile = MapSize(tile);
   return atlas;
 }
 
@@ -1167,30 +1175,19 @@ AtlasGrid atlasGrid(int count, const AtlasGrid& atlas)
   return grid;
 }
 
-AtlasGrid atlasForCount(int count, const AtlasGrid& atlas, int maximumSide)
+AtlasGrid atlasForCount(int count, const AtlasGrid& atlas)
 {
-  const int tiles = atlas.columns * atlas.rows;
   if (count < 1 || atlas.tile.width < 1 || atlas.tile.height < 1)
   {
     return AtlasGrid();
   }
-  AtlasGrid grid = count > tiles ? atlasGrid(count, atlas) : AtlasGrid();
-  if (count <= tiles)
+  if (count > 1)
   {
-    // The budget's area in count square tiles.
-    const double area = double(tiles) * atlas.tile.width * atlas.tile.height;
-    int side = static_cast<int>(std::sqrt(area / count) / kAtlasTileStep) * kAtlasTileStep;
-    side = std::max(side, std::min(atlas.tile.width, atlas.tile.height));
-    grid.columns = count;
-    grid.rows = 1;
-    grid.tile = MapSize(maximumSide > 0 ? std::max(1, std::min(side, maximumSide / count)) : side);
+    return atlasGrid(count, atlas);
   }
-  else if (maximumSide > 0)
-  {
-    grid.tile.width = std::max(1, std::min(grid.tile.width, maximumSide / grid.columns));
-    grid.tile.height = std::max(1, std::min(grid.tile.height, maximumSide / grid.rows));
-  }
-  return grid;
+  AtlasGrid one;
+  one.tile = MapSize(std::min(atlas.columns * atlas.tile.width, atlas.rows * atlas.tile.height));
+  return one;
 }
 
 MapSize resolutionCeilingForCount(int count, int mostCascades, int resolution)

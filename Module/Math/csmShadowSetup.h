@@ -239,14 +239,12 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
 /// partition most of the range (f/n 1200, k 4, gamma 0: storage 22,512 against 139).
 ///
 /// One light's maps share an atlas of the texels of min(settings.split.k, kAtlasFullMaps) maps
-/// of maximumResolution a side (atlasLayout): fewer cascades get larger square maps of the same
-/// total area, more get smaller tiles that need not be square (atlasForCount), each map turned
-/// to its tile (predictedError). The plan returned is not turned: the caller turns it for its
-/// tile (orientToTile). Where no count meets the target, more cascades are taken only while
-/// each step cuts the predicted worst error to kCountHysteresis of the best fewer cascades reach
-/// (the light along a 1:1,100 view, 4:3: five cascades in tiles of 1638 x 2048, 1.6 texels a
-/// pixel, where four of 2048 give 2.3); a previous count within 1 / kCountHysteresis of that
-/// error stays.
+/// of maximumResolution a side (atlasLayout): one scene-fitted cascade gets them all, more get
+/// tiles of at most maximumResolution that need not be square (atlasForCount, ceilingsForCount),
+/// each map turned to its tile (predictedError). The plan returned is not turned: the caller
+/// turns it for its tile (orientToTile). Where no count meets the target, more cascades are
+/// taken only while each step cuts the predicted worst error to kCountHysteresis of the best
+/// fewer cascades reach; a previous count within 1 / kCountHysteresis of that error stays.
 ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
   double imageHeight, int maximumResolution, double targetError, int kPrevious,
@@ -287,13 +285,12 @@ ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& w
 constexpr double kCountHysteresis = 0.8;
 
 /// One light's cascades share one depth texture (an atlas) with the texels of at most this many
-/// maps of the largest resolution: fewer cascades get larger maps of the same total area, more
-/// share it with smaller maps, so that the texels (and the memory) do not grow with the number of
-/// cascades and fewer caster passes do not lose texels.
+/// maps of the largest resolution, allocated once for the most cascades planned: the count
+/// changes with the view, and a new texture would cost its allocation (on a software
+/// rasterizer, more than drawing the maps into it) and every map's render. The texels (and the
+/// memory) do not grow with the number of cascades; one cascade alone, where it is scene-fitted
+/// (drawn once), gets them all in one map.
 constexpr int kAtlasFullMaps = 4;
-
-/// Sides of the atlas's tiles for fewer cascades than full maps are multiples of this.
-constexpr int kAtlasTileStep = 16;
 
 /// An atlas, or a grid of equal tiles in one: texels of the tiles along s and t, and their
 /// columns and rows.
@@ -304,30 +301,29 @@ struct AtlasGrid
   MapSize tile;
 };
 
-/// The texel budget of the atlas for at most mostCascades maps of resolution texels a side:
-/// min(mostCascades, kAtlasFullMaps) square tiles of that resolution in one row (a 1 x 1 grid of
-/// 0 texels for counts or resolutions below 1).
-AtlasGrid atlasLayout(int mostCascades, int resolution);
+/// The atlas for at most mostCascades maps of resolution texels a side: min(mostCascades,
+/// kAtlasFullMaps) square tiles of that resolution, four in 2 x 2 (a square texture: one map
+/// can have all its texels), two or three in a row. Where maximumSide (a GL texture's size
+/// limit; 0: none) is less than the texture's side, the tiles shrink to fit it. A 1 x 1 grid of
+/// 0 texels for counts or resolutions below 1.
+AtlasGrid atlasLayout(int mostCascades, int resolution, int maximumSide = 0);
 
 /// The grid of count equal tiles in an atlas of atlas.columns x atlas.rows tiles of atlas.tile
 /// texels, no side longer than atlas.tile's: of the grids with columns x rows >= count, the one
 /// whose tiles have the longest short side, then the largest area (ties: fewer columns). Tiles
-/// need not be square: 5 cascades in a row of 4 x 2048 texels get 1638 x 2048 each, and a
+/// need not be square: 5 or 6 cascades in 2 x 2 tiles of 2048 get 2048 x 1365 each, and a
 /// cascade turned to its tile (orientToTile) keeps 2048 texels where its error is largest.
 AtlasGrid atlasGrid(int count, const AtlasGrid& atlas);
 
-/// The atlas count cascades get from the budget of atlasLayout (atlas): up to its number of
-/// tiles, a row of count square tiles of the same total area, a multiple of kAtlasTileStep a
-/// side and never smaller than the budget's tile (4 x 2048² texels: 1 cascade 4096², 2 cascades
-/// 2896², 3 cascades 2352², 4 cascades 2048²); more, atlasGrid(count, atlas). The tiles' sides
-/// stay within maximumSide texels a row (a GL texture's size limit; 0: none), the row's tiles
-/// smaller where they would not. A 1 x 1 grid of 0 texels for counts or atlases without texels.
-AtlasGrid atlasForCount(int count, const AtlasGrid& atlas, int maximumSide = 0);
+/// The tiles count cascades get in the atlas of atlasLayout (atlas), within its texture: one
+/// cascade the largest square it holds (4096² in 2 x 2 tiles of 2048), more the grid of
+/// atlasGrid(count, atlas). A 1 x 1 grid of 0 texels for counts or atlases without texels.
+AtlasGrid atlasForCount(int count, const AtlasGrid& atlas);
 
 /// The largest map count cascades can have in the atlas of atlasLayout(mostCascades,
-/// resolution): its tile in atlasForCount (4 x 2048² texels: 1 cascade 4096², 2 cascades 2896²,
-/// 3 cascades 2352², 4 cascades 2048², 5 cascades 1638 x 2048, 6 cascades 1365 x 2048, 8 cascades
-/// 2048 x 1024). 0 x 0 for counts or resolutions below 1.
+/// resolution): its tile in atlasForCount (at 2048 with four or more most cascades: 1 cascade
+/// 4096², 2-4 cascades 2048², 5-6 cascades 2048 x 1365, 7-8 cascades 2048 x 1024). 0 x 0 for
+/// counts or resolutions below 1.
 MapSize resolutionCeilingForCount(int count, int mostCascades, int resolution);
 
 /// ceilingsForCount(count, mostCascades, resolution): see CascadeCeilings (0 x 0 where

@@ -791,10 +791,9 @@ TEST(Steps, CascadeCountFromTheErrorModel)
   one.split.k = 1;
   auto two = settingsUpTo8;
   two.split.k = 2;
-  // (Each on the map its count gets: two tiles' texels, but a map that follows the view at most
-  // 2048² however few share them; a scene-fitted one gets its whole tile, 2896² for one.)
+  // (Each on the map its count gets: two tiles in a row, a full map each.)
   ASSERT_EQ(csm::ceilingsForCount(1, 2, 2048).following, csm::MapSize(2048));
-  ASSERT_EQ(csm::ceilingsForCount(1, 2, 2048).sceneFitted, csm::MapSize(2896));
+  ASSERT_EQ(csm::ceilingsForCount(1, 2, 2048).sceneFitted, csm::MapSize(2048));
   const double e1 = csm::predictedError(csm::computeShadowSetup(mid, light, nullptr, one, nullptr),
     1000.0, csm::ceilingsForCount(1, 2, 2048));
   const double e2 = csm::predictedError(csm::computeShadowSetup(mid, light, nullptr, two, nullptr),
@@ -1083,55 +1082,62 @@ TEST(Steps, SceneFittedCascadeServesEveryViewThatItMeets)
 
 TEST(Steps, CascadesShareOneAtlasOfFourFullMaps)
 {
-  // Up to four cascades: a row of full-size tiles, as many as the most cascades.
+  // Two or three most cascades: a row of full-size tiles; four or more: 2 x 2 of them.
   const csm::AtlasGrid two = csm::atlasLayout(2, 2048);
   EXPECT_EQ(two.columns, 2);
   EXPECT_EQ(two.rows, 1);
   EXPECT_EQ(two.tile, csm::MapSize(2048));
+  EXPECT_EQ(csm::atlasLayout(3, 2048).columns, 3);
+  EXPECT_EQ(csm::atlasLayout(1, 2048).columns, 1);
+  EXPECT_EQ(csm::atlasLayout(1, 2048).rows, 1);
   const csm::AtlasGrid six = csm::atlasLayout(6, 2048);
-  EXPECT_EQ(six.columns, 4); // never more than four full maps' texels
-  EXPECT_EQ(six.rows, 1);
+  EXPECT_EQ(six.columns, 2); // never more than four full maps' texels
+  EXPECT_EQ(six.rows, 2);
   EXPECT_EQ(six.tile, csm::MapSize(2048));
-  // More cascades share the row in the grid whose tiles have the longest short side: tall
-  // tiles of the row's full height.
-  const csm::MapSize expected[9] = { {}, { 2048, 2048 }, { 2048, 2048 }, { 2048, 2048 },
-    { 2048, 2048 }, { 1638, 2048 }, { 1365, 2048 }, { 1170, 2048 }, { 2048, 1024 } };
-  // Fewer cascades than four get the same texels in fewer, larger square maps: a row of them,
-  // sides in steps of kAtlasTileStep (2048 sqrt(4 / k): 4096, 2896.3, 2364.8).
-  const csm::MapSize fewer[5] = { {}, { 4096 }, { 2896 }, { 2352 }, { 2048 } };
+  // One cascade gets the whole texture; more share it in the grid whose tiles have the longest
+  // short side, none larger than a full map.
+  const csm::MapSize expected[9] = { {}, { 4096, 4096 }, { 2048, 2048 }, { 2048, 2048 },
+    { 2048, 2048 }, { 2048, 1365 }, { 2048, 1365 }, { 1365, 1365 }, { 1365, 1365 } };
   for (int k = 1; k <= 8; ++k)
   {
-    const csm::AtlasGrid g = csm::atlasGrid(k, six);
-    EXPECT_EQ(g.tile, expected[k]) << k << " cascades";
-    EXPECT_GE(g.columns * g.rows, k);
-    EXPECT_LE(g.columns * g.tile.width, 4 * 2048);
-    EXPECT_LE(g.rows * g.tile.height, 2048);
     const csm::AtlasGrid f = csm::atlasForCount(k, six);
-    EXPECT_EQ(f.tile, k <= 4 ? fewer[k] : expected[k]) << k << " cascades";
-    EXPECT_EQ(f.columns * f.rows, k <= 4 ? k : g.columns * g.rows) << k << " cascades";
-    EXPECT_LE(double(f.columns) * f.rows * f.tile.width * f.tile.height, 4.0 * 2048 * 2048);
-    EXPECT_GT(double(k) * f.tile.width * f.tile.height,
-      0.95 * 4.0 * 2048 * 2048 * std::min(k, 4) / 4.0);
+    EXPECT_EQ(f.tile, expected[k]) << k << " cascades";
+    EXPECT_GE(f.columns * f.rows, k);
+    // Within the one texture of every count.
+    EXPECT_LE(f.columns * f.tile.width, 2 * 2048) << k;
+    EXPECT_LE(f.rows * f.tile.height, 2 * 2048) << k;
+    if (k > 1)
+    {
+      EXPECT_EQ(csm::atlasGrid(k, six).tile, f.tile) << k;
+    }
     EXPECT_EQ(csm::resolutionCeilingForCount(k, 6, 2048), f.tile);
+    // A scene-fitted map gets its tile; one that follows the view at most 2048 a side.
+    EXPECT_EQ(csm::ceilingsForCount(k, 6, 2048).sceneFitted, f.tile) << k;
+    EXPECT_EQ(csm::ceilingsForCount(k, 6, 2048).following,
+      csm::MapSize(std::min(f.tile.width, 2048), std::min(f.tile.height, 2048)))
+      << k;
   }
-  // Two most cascades: one gets both tiles' texels.
-  EXPECT_EQ(csm::resolutionCeilingForCount(1, 2, 2048), csm::MapSize(2896));
+  // Two most cascades in a row: one gets a full map.
+  EXPECT_EQ(csm::resolutionCeilingForCount(1, 2, 2048), csm::MapSize(2048));
   EXPECT_EQ(csm::resolutionCeilingForCount(2, 2, 2048), csm::MapSize(2048));
-  // A GL size limit: the row's tiles shrink to fit it.
-  const csm::AtlasGrid limited = csm::atlasForCount(2, six, 4096);
+  // A GL size limit: the tiles shrink to fit it.
+  const csm::AtlasGrid limited = csm::atlasLayout(6, 4096, 4096);
   EXPECT_EQ(limited.tile, csm::MapSize(2048));
-  EXPECT_EQ(csm::atlasForCount(1, six, 4096).tile, csm::MapSize(4096));
-  EXPECT_EQ(csm::atlasForCount(6, six, 4096).tile, csm::MapSize(682, 2048));
+  EXPECT_EQ(csm::atlasForCount(1, limited).tile, csm::MapSize(4096));
+  EXPECT_EQ(csm::atlasForCount(6, limited).tile, csm::MapSize(2048, 1365));
+  EXPECT_EQ(csm::atlasLayout(3, 2048, 4096).tile, csm::MapSize(1365));
   EXPECT_EQ(csm::atlasForCount(0, six).tile, csm::MapSize(0));
-  // 4 x 2 and 8 x 1 tie at 1024 texels on the short side and in area: fewer columns.
-  EXPECT_EQ(csm::atlasGrid(8, six).columns, 4);
+  // 2 x 3 and 3 x 2 tie at 1365 texels on the short side and in area: fewer columns.
+  EXPECT_EQ(csm::atlasGrid(6, six).columns, 2);
+  EXPECT_EQ(csm::atlasGrid(8, six).columns, 3); // 3 x 3 of 1365 beats 2 x 4 of 2048 x 1024
   // A smaller ceiling (while interacting) shares its own budget; bad counts give nothing.
-  EXPECT_EQ(csm::resolutionCeilingForCount(2, 6, 1024), csm::MapSize(1440));
+  EXPECT_EQ(csm::resolutionCeilingForCount(1, 6, 1024), csm::MapSize(2048));
   EXPECT_EQ(csm::resolutionCeilingForCount(4, 6, 1024), csm::MapSize(1024));
-  EXPECT_EQ(csm::resolutionCeilingForCount(6, 6, 1024), csm::MapSize(682, 1024));
+  EXPECT_EQ(csm::resolutionCeilingForCount(6, 6, 1024), csm::MapSize(1024, 682));
   EXPECT_EQ(csm::resolutionCeilingForCount(0, 6, 2048), csm::MapSize(0));
   EXPECT_EQ(csm::resolutionCeilingForCount(3, 6, 0), csm::MapSize(0));
   EXPECT_EQ(csm::atlasLayout(0, 2048).tile, csm::MapSize(0));
+  EXPECT_EQ(csm::ceilingsForCount(0, 6, 2048).following, csm::MapSize(0));
   // More than the most planned: the atlas grows to hold them (a caller's safety, not a use).
   EXPECT_EQ(csm::resolutionCeilingForCount(3, 1, 2048), csm::MapSize(2048));
 }
@@ -1146,7 +1152,7 @@ TEST(Steps, MapsTurnToTheirTilesWhereTheLongSideServesTheLargerError)
     csm::computeShadowSetup(cam, light, nullptr, settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 5));
   ASSERT_EQ(plain.status, csm::Status::Ok);
   ASSERT_EQ(plain.cascades.size(), 5u);
-  const csm::MapSize tile = csm::resolutionCeilingForCount(5, 8, 2048); // 1638 x 2048
+  const csm::MapSize tile(1638, 2048); // a tall tile (five in a row of four full maps)
   csm::ShadowSetup turned = plain;
   csm::orientToTile(turned, tile);
   int turnedCount = 0;
