@@ -72,10 +72,10 @@ public:
   void ReleaseGraphicsResources(vtkWindow* w) override;
 
   ///@{
-  /// Resolution: width and height in texels of each cascade's map when four cascades
-  /// (csm::kAtlasFullMaps) fill a light's atlas; fewer cascades share the same texels in larger
-  /// square maps (one: 2 Resolution a side, two: 1.41 Resolution), more in smaller tiles
-  /// (csm::atlasForCount). 64..8192. Default 2048.
+  /// Resolution: width and height in texels of each cascade's map at most, four of them
+  /// (csm::kAtlasFullMaps) in 2 x 2 tiles of a light's atlas; more cascades share its texels in
+  /// smaller tiles, and one scene-fitted cascade alone gets them all, 2 Resolution a side
+  /// (csm::atlasForCount, csm::ceilingsForCount). 64..8192. Default 2048.
   vtkSetClampMacro(Resolution, int, 64, 8192);
   vtkGetMacro(Resolution, int);
   ///@}

@@ -802,10 +802,19 @@ int main(int argc, char** argv)
             if (t.Passes.Cascaded)
             {
               auto* b = t.Passes.Cascaded->GetShadowMapBakerPass();
-              std::printf("  plan %.1f  maps %.1f ms  rendered %d kept %d of k %d",
+              std::printf("  plan %.1f  maps %.1f ms  rendered %d kept %d of k %d  %.2f M texels"
+                          "  %d blocks",
                 1000.0 * b->GetLastPlanSeconds(), 1000.0 * b->GetLastMapSeconds(),
                 b->GetLastCascadeRenders(), b->GetLastCascadesKept(),
-                b->GetLightMaps().empty() ? 0 : b->GetLightMaps()[0].NumberOfCascades);
+                b->GetLightMaps().empty() ? 0 : b->GetLightMaps()[0].NumberOfCascades,
+                1e-6 * b->GetLastTexelsRendered(), b->GetLastBlocksDrawn());
+              if (!b->GetLightMaps().empty())
+              {
+                const auto& maps = b->GetLightMaps()[0];
+                for (int c = 0; c < maps.NumberOfCascades; ++c)
+                  std::printf(" %dx%d%s", maps.CascadeResolution[c][0],
+                    maps.CascadeResolution[c][1], maps.SceneFitted[c] ? "f" : "");
+              }
             }
             std::printf("\n");
           }

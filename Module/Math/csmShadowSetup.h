@@ -322,7 +322,7 @@ AtlasGrid atlasForCount(int count, const AtlasGrid& atlas);
 
 /// The largest map count cascades can have in the atlas of atlasLayout(mostCascades,
 /// resolution): its tile in atlasForCount (at 2048 with four or more most cascades: 1 cascade
-/// 4096², 2-4 cascades 2048², 5-6 cascades 2048 x 1365, 7-8 cascades 2048 x 1024). 0 x 0 for
+/// 4096², 2-4 cascades 2048², 5-6 cascades 2048 x 1365, 7-8 cascades 1365²). 0 x 0 for
 /// counts or resolutions below 1.
 MapSize resolutionCeilingForCount(int count, int mostCascades, int resolution);
 

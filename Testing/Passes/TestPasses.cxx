@@ -859,9 +859,17 @@ TEST(Passes, MoreThanFourCascadesOnlyInStillFrames)
   }
   std::printf("still: %d cascades (%d turned), tiles %d x %d\n", maps.NumberOfCascades, turned,
     maps.Resolution[0], maps.Resolution[1]);
+  EXPECT_EQ(pass->GetLastMapCoordinateVaryings(),
+    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES);
+  const vtkMTimeType shaders = pass->GetShaderStageMTime();
   scene.Window->SetDesiredUpdateRate(15.0); // as vtkRenderWindowInteractor while dragging
   const long dragged = DarkenedPixels(scene.Render(), plain);
   EXPECT_LE(baker->GetLightMaps().at(0).NumberOfCascades, 4);
+  // The count changes with the view: the shaders keep the eight cascades' coordinates they
+  // were built with (a new variant would rebuild every shader).
+  EXPECT_EQ(pass->GetLastMapCoordinateVaryings(),
+    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES);
+  EXPECT_EQ(pass->GetShaderStageMTime(), shaders);
   EXPECT_GT(still, 200);
   EXPECT_NEAR(dragged, still, 0.1 * still);
 }
