@@ -71,11 +71,14 @@ public:
   /**
    * Map coordinates from the vertices. A cascade's map coordinates are linear in the view
    * position, so where no geometry shader sits between the stages (not for tubes, spheres or
-   * wide lines) the vertex shader computes them for every cascade and the rasterizer
-   * interpolates them: the lookup makes no matrix product per fragment (on llvmpipe ~8 % of a
-   * still frame), with the same result up to float rounding. Only while shadowed lights times
-   * the baker's NumberOfCascades is at most MAXIMUM_MAP_COORDINATE_VARYINGS (varyings are few);
-   * otherwise, or off, the fragment shader multiplies. Default on.
+   * wide lines) the vertex shader can compute them for every cascade and the rasterizer
+   * interpolate them: the lookup then makes no matrix product per fragment, with the same
+   * result up to float rounding. Only while shadowed lights times the cascades is at most
+   * MAXIMUM_MAP_COORDINATE_VARYINGS (varyings are few); otherwise, or off, the fragment shader
+   * multiplies, for the cascades it tests only. Default off since the fifteenth session: on
+   * llvmpipe the varyings' set-up for every triangle cost more than the products they save
+   * (csm-bench --quick, side by side: towers still frames 0.85x VTK's with them, 0.61x
+   * without; platform 0.77x, 0.73x; the engine the same).
    */
   vtkSetMacro(MapCoordinatesFromVertices, bool);
   vtkGetMacro(MapCoordinatesFromVertices, bool);
@@ -185,7 +188,7 @@ protected:
   double BlendBand = 0.05;
   double ShadowDarkness = 1.0;
   int DebugMode = DEBUG_OFF;
-  bool MapCoordinatesFromVertices = true;
+  bool MapCoordinatesFromVertices = false;
   int LastMapCoordinateVaryings = 0;
   int VaryingsKey[3] = { 0, 0, 0 }; ///< NumberOfCascades, AdaptiveCascades, lights of VaryingsUsed
   int VaryingsUsed = 0;             ///< the cascades a light needed coordinates for

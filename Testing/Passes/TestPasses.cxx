@@ -848,6 +848,7 @@ TEST(Passes, MoreThanFourCascadesOnlyInStillFrames)
   // (Of the cascades that follow the view: one scene-fitted map of the box's footprint would
   // meet even this.)
   baker->SceneFittedCascadesOff();
+  pass->MapCoordinatesFromVerticesOn(); // (off by default)
   const long still = DarkenedPixels(scene.Render(), plain);
   const auto& maps = baker->GetLightMaps().at(0);
   EXPECT_GT(maps.NumberOfCascades, 4);
@@ -1539,6 +1540,7 @@ TEST(Passes, MapCoordinatesFromTheVerticesGiveTheSameShadows)
   auto plain = scene.Render();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  EXPECT_FALSE(pass->GetMapCoordinatesFromVertices()); // the default
   baker->AdaptiveCascadesOff(); // the counts set here
   for (int cascades : { 2, 3, vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES })
   {
@@ -1572,6 +1574,7 @@ TEST(Passes, MapCoordinatesFromTheVerticesGiveTheSameShadows)
   two.Renderer->AddLight(second);
   auto twoPlain = two.Render();
   vtkCascadedShadowMapPass* twoPass = vtkCascadedShadowMapPass::UseShadowsOn(two.Renderer);
+  twoPass->MapCoordinatesFromVerticesOn();
   twoPass->GetShadowMapBakerPass()->SetNumberOfCascades(
     vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES);
   two.Render();
