@@ -122,7 +122,7 @@ public:
    * Texels only where the view needs them (forwarded to GetPlanner(), which documents them):
    * each cascade's map gets the fewest texels (a multiple of RESOLUTION_STEP) at which its
    * predicted worst aliasing error m in this renderer's viewport is at most ErrorTarget
-   * (default 1; 0: every map at the ceiling), with Resolution (InteractiveResolution while the
+   * (default 0.7; 0: every map at the ceiling), with Resolution (InteractiveResolution while the
    * user drags) the tile of four cascades; with AdaptiveCascades (default on) the number of
    * cascades is, of those up to NumberOfCascades that meet ErrorTarget on the largest maps
    * their count gets, the one that costs least to render: a caster pass per cascade (the

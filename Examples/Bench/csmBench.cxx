@@ -162,7 +162,7 @@ std::vector<Technique> Techniques(const Options& o)
     addDefaults("default boxes fit", 0, true, false);
     // The defaults with maps sized for a smaller error (more texels where the view needs them):
     // the error target's trade of speed against error.
-    for (double target : { 0.7, 0.5 })
+    for (double target : { 1.0, 0.5 })
     {
       std::ostringstream label;
       label << "default target " << target;

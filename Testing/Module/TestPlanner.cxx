@@ -146,7 +146,7 @@ TEST(Planner, NonFiniteOptionsAreRefused)
   planner->SetErrorTarget(NAN);
   EXPECT_DOUBLE_EQ(planner->GetLambda(), 0.25);
   EXPECT_DOUBLE_EQ(planner->GetAlpha(), 3.0);
-  EXPECT_DOUBLE_EQ(planner->GetErrorTarget(), 1.0);
+  EXPECT_DOUBLE_EQ(planner->GetErrorTarget(), 0.7); // the default stays
   EXPECT_EQ(errors.Count, 4);
   EXPECT_EQ(planner->GetMTime(), time);
   planner->SetLambda(7.0); // finite values are still clamped, without a message
