@@ -635,6 +635,8 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   this->LastCombineSeconds = 0.0;
   this->LastPlanSeconds = 0.0;
   this->LastMapSeconds = 0.0;
+  this->LastClearSeconds = 0.0;
+  std::fill(this->LastCascadeSeconds, this->LastCascadeSeconds + kMaxCascades, 0.0);
   this->LastCascadeRenders = 0;
   this->LastCascadesKept = 0;
   this->LastPropsDrawn = 0;
@@ -1416,7 +1418,20 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
     ostate->vtkglEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(static_cast<GLfloat>(this->PolygonOffsetFactor),
       static_cast<GLfloat>(this->PolygonOffsetUnits));
+    using Clock = std::chrono::steady_clock;
+    auto since = Clock::now();
+    // (MeasureTimes: each step's time up to its glFinish.)
+    auto lap = [&](double& seconds) {
+      glFinish();
+      const auto now = Clock::now();
+      seconds = std::chrono::duration<double>(now - since).count();
+      since = now;
+    };
     this->ClearTiles(ostate, maps, renderCascade);
+    if (this->MeasureTimes && slot == 0)
+    {
+      lap(this->LastClearSeconds);
+    }
     ostate->vtkglEnable(GL_SCISSOR_TEST);
     glEnable(GL_PROGRAM_POINT_SIZE); // points sized as the main view draws them
     for (int c = 0; c < maps.NumberOfCascades; ++c)
@@ -1428,6 +1443,10 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
         // Hand the map to the GL while the next one is set up: a software rasterizer fills
         // this one on its threads while this thread transforms and bins the next one's casters.
         glFlush();
+        if (this->MeasureTimes && slot == 0)
+        {
+          lap(this->LastCascadeSeconds[c]);
+        }
       }
     }
     glDisable(GL_PROGRAM_POINT_SIZE);

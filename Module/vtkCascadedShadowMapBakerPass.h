@@ -378,12 +378,21 @@ public:
   /**
    * For benchmarks: with MeasureTimes on, the last Render() measures the seconds spent planning
    * (all lights) and rendering the maps, the GPU work included (glFinish around each; this slows
-   * rendering down, so it is off by default).
+   * rendering down, so it is off by default); for the first shadowed light also the clear of
+   * its tiles and each re-rendered cascade's map (0 for a kept one or an index out of range).
    */
   vtkSetMacro(MeasureTimes, bool);
   vtkGetMacro(MeasureTimes, bool);
+  vtkBooleanMacro(MeasureTimes, bool);
   vtkGetMacro(LastPlanSeconds, double);
   vtkGetMacro(LastMapSeconds, double);
+  vtkGetMacro(LastClearSeconds, double);
+  double GetLastCascadeSeconds(int cascade) const
+  {
+    return cascade >= 0 && cascade < vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES
+      ? this->LastCascadeSeconds[cascade]
+      : 0.0;
+  }
   ///@}
 
 protected:
@@ -531,6 +540,8 @@ protected:
   double LastCombineSeconds = 0.0;
   double LastPlanSeconds = 0.0;
   double LastMapSeconds = 0.0;
+  double LastClearSeconds = 0.0;
+  double LastCascadeSeconds[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
   int BakeCount = 0;
   int LastCascadeRenders = 0;
   int LastCascadesKept = 0;

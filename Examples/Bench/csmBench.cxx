@@ -613,8 +613,9 @@ Options Parse(int argc, char** argv)
                   "640x480, 6 frames a path, budget 2048, VTK's pass and ours with the defaults.\n"
                   "Timed paths: coarse orbit + fly-through (interleaved), an interactive orbit of\n"
                   "2 degrees a frame and a still camera. --breakdown: per frame, the planning and\n"
-                  "map times (glFinish around them) and the maps rendered / kept, and each path\n"
-                  "frame printed.\n"
+                  "map times (glFinish around them) and the maps rendered / kept; each path\n"
+                  "frame printed with its clear, each map's size and time, and the rest (the\n"
+                  "main view with the lookup).\n"
                   "--labels a,b,...: only these techniques (their labels as in the CSV).\n"
                   "--error-images DIR: per measured view and technique, DIR/scene-label-view.png:\n"
                   "false shadow red, false light blue, right light / dark grey, not compared dark.\n");
@@ -808,12 +809,20 @@ int main(int argc, char** argv)
                 b->GetLastCascadeRenders(), b->GetLastCascadesKept(),
                 b->GetLightMaps().empty() ? 0 : b->GetLightMaps()[0].NumberOfCascades,
                 1e-6 * b->GetLastTexelsRendered(), b->GetLastBlocksDrawn());
+              // The rest of the frame: the main view with the lookup.
+              std::printf("  rest %.1f ms  clear %.1f ms",
+                t.Times.back() - 1000.0 * (b->GetLastPlanSeconds() + b->GetLastMapSeconds()),
+                1000.0 * b->GetLastClearSeconds());
               if (!b->GetLightMaps().empty())
               {
                 const auto& maps = b->GetLightMaps()[0];
                 for (int c = 0; c < maps.NumberOfCascades; ++c)
+                {
                   std::printf(" %dx%d%s", maps.CascadeResolution[c][0],
                     maps.CascadeResolution[c][1], maps.SceneFitted[c] ? "f" : "");
+                  if (b->GetLastCascadeSeconds(c) > 0.0)
+                    std::printf(" %.1fms", 1000.0 * b->GetLastCascadeSeconds(c));
+                }
               }
             }
             std::printf("\n");

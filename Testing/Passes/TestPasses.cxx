@@ -107,6 +107,45 @@ TEST(Passes, MapsAreRebakedOnlyWhenSomethingChanged)
   EXPECT_EQ(baker->GetBakeCount(), first + 4); // a lookup option needs no new maps
 }
 
+// For benchmarks (csm-bench --breakdown): with MeasureTimes the planning, the maps, the clear
+// and each re-rendered cascade's map are timed, and the parts fit in the whole; kept maps take
+// no time; off, nothing is measured.
+TEST(Passes, MeasuredTimesAddUp)
+{
+  BoxOverPlane scene;
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->MeasureTimesOn();
+  scene.Window->Render();
+  const int n = baker->GetLightMaps().at(0).NumberOfCascades;
+  ASSERT_GE(n, 1);
+  EXPECT_EQ(baker->GetLastCascadeRenders(), n);
+  EXPECT_GT(baker->GetLastPlanSeconds(), 0.0);
+  double parts = baker->GetLastClearSeconds();
+  for (int c = 0; c < n; ++c)
+  {
+    EXPECT_GT(baker->GetLastCascadeSeconds(c), 0.0) << c;
+    parts += baker->GetLastCascadeSeconds(c);
+  }
+  EXPECT_EQ(baker->GetLastCascadeSeconds(n), 0.0);
+  EXPECT_EQ(baker->GetLastCascadeSeconds(-1), 0.0);
+  EXPECT_EQ(baker->GetLastCascadeSeconds(1000), 0.0);
+  EXPECT_LE(parts, baker->GetLastMapSeconds());
+  EXPECT_GT(parts, 0.5 * baker->GetLastMapSeconds());
+  scene.Window->Render(); // nothing changed: every map kept
+  EXPECT_EQ(baker->GetLastCascadeRenders(), 0);
+  for (int c = 0; c < n; ++c)
+  {
+    EXPECT_EQ(baker->GetLastCascadeSeconds(c), 0.0) << c;
+  }
+  baker->MeasureTimesOff();
+  scene.Box->SetPosition(0.25, 0, 0); // a prop moved: every map again, not timed
+  scene.Window->Render();
+  EXPECT_EQ(baker->GetLastCascadeRenders(), baker->GetLightMaps().at(0).NumberOfCascades);
+  EXPECT_EQ(baker->GetLastMapSeconds(), 0.0);
+  EXPECT_EQ(baker->GetLastCascadeSeconds(0), 0.0);
+}
+
 // The atlas holds the texels of four maps of Resolution² in 2 x 2 tiles, one texture for every
 // count of cascades (a new one would cost its allocation and every map's render); one
 // scene-fitted cascade (drawn once) gets all its texels, while maps that follow the view stay at
