@@ -104,7 +104,7 @@ public:
   /**
    * Choose the number of cascades per frame from the error model: of the numbers up to
    * NumberOfCascades whose predicted worst error at the largest maps that count can have
-   * (csm::resolutionCeilingForCount: fewer cascades get larger maps of the same atlas) meets
+   * (csm::ceilingsForCount: one scene-fitted cascade gets the whole atlas, others a tile) meets
    * ErrorTarget, the smallest, or with caster loads (AddCasterLoad()) the one that costs least
    * to render (passes and texels); when none does, more cascades only
    * while each cuts the predicted error to csm::kCountHysteresis; changed with hysteresis from the last

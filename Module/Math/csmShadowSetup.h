@@ -139,9 +139,8 @@ struct ShadowSetup
 /// The largest maps count cascades can have: a scene-fitted cascade (drawn once while the scene
 /// and the light stay) its whole tile of the atlas, resolutionCeilingForCount; a cascade that
 /// follows the view (drawn again as the view moves) at most resolution texels a side of that
-/// tile, so that the larger tiles of fewer cascades do not make its map cost more per frame nor
-/// outgrow the map a moving view keeps (Documentation/Results.md, fifteenth session). One size
-/// for both converts to this.
+/// tile, so that the whole atlas a single cascade gets does not make its map cost more at every
+/// re-render (Documentation/Results.md, fifteenth session). One size for both converts to this.
 struct CascadeCeilings
 {
   MapSize sceneFitted;
