@@ -1264,8 +1264,7 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
     {
       int* resolution = maps.CascadeResolution[c];
       maps.SceneFitted[c] = this->Planner->GetCascadeSceneFitted(c);
-      const csm::MapSize& most = maps.SceneFitted[c] ? countCeilings.sceneFitted
-        : countCeilings.following;
+      const csm::MapSize& most = countCeilings.of(maps.SceneFitted[c]);
       const int countCeiling[2] = { most.width, most.height };
       this->Planner->GetCascadeResolution(c, imageHeight, RESOLUTION_STEP, countCeiling, resolution);
       maps.MapTurned[c] = this->Planner->GetCascadeMapTurned(c);

@@ -154,10 +154,8 @@ struct CascadeCeilings
     : CascadeCeilings(MapSize(side))
   {
   }
-  const MapSize& of(const Cascade& cascade) const
-  {
-    return cascade.sceneFitted ? sceneFitted : following;
-  }
+  const MapSize& of(bool isSceneFitted) const { return isSceneFitted ? sceneFitted : following; }
+  const MapSize& of(const Cascade& cascade) const { return of(cascade.sceneFitted); }
 };
 
 /// A caster as the cascade count and the scene-fitted map are judged by: its world box, the cells
