@@ -4,12 +4,12 @@
 #include "csmCasterBlocks.h"
 #include "csmClosedSurface.h"
 #include "csmShadowSetup.h" // the atlas layout
-#include "csmCaster.h"       // the GLSL of Module/glsl/csmCaster.glsl
-#include "csmCasterLineGS.h" // the GLSL of Module/glsl/csmCasterLineGS.glsl
+#include "csmVisibleDepth.h"
 
 #include "vtkActor.h"
 #include "vtkCellArray.h"
 #include "vtkCamera.h"
+#include "vtkCascadedShadowCasterPass.h"
 #include "vtkCascadedShadowMapPlanner.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
@@ -151,6 +151,49 @@ void toColumnMajor(const double m[16], float out[16])
   }
 }
 
+/// The caster uniforms for a cascade, from its CasterView and its tile.
+vtkCascadedShadowCasterPass::CasterUniforms casterUniformsFor(
+  const vtkCascadedShadowMapBakerPass::LightMaps& maps, int c, int x, int y, int w, int h)
+{
+  const double* key = maps.CasterView[c]; // RenderCascade set it for this view
+  vtkNew<vtkMatrix4x4> worldToView, viewToWorld, worldToMap, mapToWorld;
+  worldToView->DeepCopy(key);
+  vtkMatrix4x4::Invert(worldToView, viewToWorld);
+  worldToMap->DeepCopy(maps.WorldToMap[c]);
+  vtkMatrix4x4::Invert(worldToMap, mapToWorld);
+  double mapToView[16], viewToMap[16];
+  vtkMatrix4x4::Multiply4x4(key, mapToWorld->GetData(), mapToView);
+  vtkMatrix4x4::Multiply4x4(maps.WorldToMap[c], viewToWorld->GetData(), viewToMap);
+  vtkCascadedShadowCasterPass::CasterUniforms u;
+  toColumnMajor(mapToView, u.MapToView);
+  toColumnMajor(viewToMap, u.ViewToMap);
+  const double* position = maps.LightGeometry;
+  const double* focal = maps.LightGeometry + 3;
+  double light[4];
+  if (maps.LightGeometry[6] < 0.0)
+  {
+    const double toward[4] = { position[0] - focal[0], position[1] - focal[1],
+      position[2] - focal[2], 0.0 };
+    worldToView->MultiplyPoint(toward, light);
+  }
+  else
+  {
+    const double at[4] = { position[0], position[1], position[2], 1.0 };
+    worldToView->MultiplyPoint(at, light);
+  }
+  for (int i = 0; i < 4; ++i)
+  {
+    u.LightView[i] = static_cast<float>(light[i]);
+  }
+  u.PixelWorld[0] = static_cast<float>(key[16]);
+  u.PixelWorld[1] = static_cast<float>(key[17]);
+  u.Viewport[0] = static_cast<float>(x);
+  u.Viewport[1] = static_cast<float>(y);
+  u.Viewport[2] = static_cast<float>(w);
+  u.Viewport[3] = static_cast<float>(h);
+  return u;
+}
+
 }
 
 vtkCascadedShadowMapBakerPass::vtkCascadedShadowMapBakerPass()
@@ -158,6 +201,7 @@ vtkCascadedShadowMapBakerPass::vtkCascadedShadowMapBakerPass()
   this->Planner = vtkSmartPointer<vtkCascadedShadowMapPlanner>::New();
   this->LightCamera = vtkSmartPointer<vtkCamera>::New();
   this->Projection = vtkSmartPointer<vtkMatrix4x4>::New();
+  this->CasterPass = vtkSmartPointer<vtkCascadedShadowCasterPass>::New();
   // Identity view: the cascade matrix (world -> light clip) is the whole projection.
   this->LightCamera->SetPosition(0.0, 0.0, 0.0);
   this->LightCamera->SetFocalPoint(0.0, 0.0, -1.0);
@@ -225,67 +269,6 @@ vtkCascadedShadowMapBakerPass::RendererMaps& vtkCascadedShadowMapBakerPass::Maps
   state.Window = window;
   this->Renderers.push_back(std::move(state));
   return this->Renderers.back();
-}
-
-bool vtkCascadedShadowMapBakerPass::CheckVisibleDepths(
-  vtkRenderer* renderer, double windowMin, double windowMax)
-{
-  RendererMaps* state = nullptr;
-  for (RendererMaps& r : this->Renderers)
-  {
-    state = renderer && r.Renderer == renderer ? &r : state;
-  }
-  vtkCamera* camera = renderer ? renderer->GetActiveCamera() : nullptr;
-  if (!state || !camera)
-  {
-    return false;
-  }
-  // Did every sample fall in the depths each directional light's cascades cover? (A spot
-  // light's map covers only its cone, and is not fitted to the visible depths.)
-  const double aspect = renderer->GetTiledAspectRatio();
-  bool held = true;
-  for (const LightMaps& maps : state->Maps)
-  {
-    if (maps.NumberOfCascades > 0 && maps.LightGeometry[6] < 0.0)
-    {
-      held = held &&
-        vtkCascadedShadowMapPlanner::DepthsHeld(camera, aspect, maps.SplitNear,
-          maps.SplitFar[maps.NumberOfCascades - 1], windowMin, windowMax);
-    }
-  }
-  const bool refit = !held && state->VisibleDepthsUsed;
-  state->VisibleDepthsUsed = false;
-  if (held && this->VisibleDepthFit)
-  {
-    // Kept for the next frame. (Where even the boxes' fit misses samples, say a prop with no
-    // bounds, the visible depths are not kept: the next frame is fitted to the boxes again.)
-    if (!state->VisibleCamera)
-    {
-      state->VisibleCamera = vtkSmartPointer<vtkCamera>::New();
-    }
-    state->VisibleCamera->DeepCopy(camera);
-    state->VisibleAspect = aspect;
-    state->VisibleWindow[0] = windowMin;
-    state->VisibleWindow[1] = windowMax;
-  }
-  else
-  {
-    state->VisibleCamera = nullptr;
-  }
-  this->VisibleDepthRefits += refit ? 1 : 0;
-  return refit;
-}
-
-void vtkCascadedShadowMapBakerPass::ClearVisibleDepths(vtkRenderer* renderer)
-{
-  for (RendererMaps& r : this->Renderers)
-  {
-    if (renderer && r.Renderer == renderer)
-    {
-      r.VisibleCamera = nullptr;
-      r.VisibleDepthsUsed = false;
-    }
-  }
 }
 
 const std::vector<vtkCascadedShadowMapBakerPass::LightMaps>&
@@ -493,8 +476,7 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   // face to cull (the one turned toward the light). VTK's projections turn a counter-clockwise
   // face toward the eye into a front face when their determinant is negative (as glFrustum's and
   // glOrtho's are); a positive one swaps the sides.
-  this->CullFaces.clear();
-  this->CullState = ostate;
+  std::map<vtkProp*, unsigned int> cullFaces;
   const double mapDeterminant = vtkMatrix4x4::Determinant(maps.WorldToMap[c]);
   std::vector<vtkProp*> drawn;
   for (const FrameProps::Caster& caster : props.Casters)
@@ -515,7 +497,7 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
       std::isfinite(mapDeterminant) ? caster.Closure * (mapDeterminant < 0.0 ? 1 : -1) : 0;
     if (outward != 0)
     {
-      this->CullFaces[caster.Prop] = outward > 0 ? GL_FRONT : GL_BACK;
+      cullFaces[caster.Prop] = outward > 0 ? GL_FRONT : GL_BACK;
     }
   }
   ++this->LastCascadeRenders;
@@ -527,19 +509,11 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   }
   vtkSmartPointer<vtkCamera> realCamera = renderer->GetActiveCamera();
   this->SetUpLightCamera(maps, c);
-  this->SetUpCasterUniforms(maps, c, x, y, w, h);
+  this->CasterPass->BeginCascade(
+    ostate, casterUniformsFor(maps, c, x, y, w, h), std::move(cullFaces));
   renderer->SetActiveCamera(this->LightCamera);
-  vtkRenderState casterState(renderer);
-  casterState.SetPropArrayAndCount(drawn.data(), static_cast<int>(drawn.size()));
-  casterState.SetFrameBuffer(frameBuffer);
-  this->PreRender(&casterState);
-  for (vtkProp* prop : drawn)
-  {
-    this->NumberOfRenderedProps += prop->RenderOpaqueGeometry(renderer);
-  }
-  this->PostRender(&casterState);
-  this->CullFaces.clear();
-  this->CullState = nullptr;
+  this->NumberOfRenderedProps += this->CasterPass->DrawCasters(renderer, frameBuffer, drawn);
+  this->CasterPass->EndCascade();
   renderer->SetActiveCamera(realCamera);
 }
 
@@ -572,47 +546,6 @@ void vtkCascadedShadowMapBakerPass::SetUpLightCamera(const LightMaps& maps, int 
   this->LightCamera->Modified();
 }
 
-void vtkCascadedShadowMapBakerPass::SetUpCasterUniforms(
-  const LightMaps& maps, int c, int x, int y, int w, int h)
-{
-  const double* key = maps.CasterView[c]; // RenderCascade set it for this view
-  vtkNew<vtkMatrix4x4> worldToView, viewToWorld, worldToMap, mapToWorld;
-  worldToView->DeepCopy(key);
-  vtkMatrix4x4::Invert(worldToView, viewToWorld);
-  worldToMap->DeepCopy(maps.WorldToMap[c]);
-  vtkMatrix4x4::Invert(worldToMap, mapToWorld);
-  double mapToView[16], viewToMap[16];
-  vtkMatrix4x4::Multiply4x4(key, mapToWorld->GetData(), mapToView);
-  vtkMatrix4x4::Multiply4x4(maps.WorldToMap[c], viewToWorld->GetData(), viewToMap);
-  CasterUniforms& u = this->Caster;
-  toColumnMajor(mapToView, u.MapToView);
-  toColumnMajor(viewToMap, u.ViewToMap);
-  const double* position = maps.LightGeometry;
-  const double* focal = maps.LightGeometry + 3;
-  double light[4];
-  if (maps.LightGeometry[6] < 0.0)
-  {
-    const double toward[4] = { position[0] - focal[0], position[1] - focal[1],
-      position[2] - focal[2], 0.0 };
-    worldToView->MultiplyPoint(toward, light);
-  }
-  else
-  {
-    const double at[4] = { position[0], position[1], position[2], 1.0 };
-    worldToView->MultiplyPoint(at, light);
-  }
-  for (int i = 0; i < 4; ++i)
-  {
-    u.LightView[i] = static_cast<float>(light[i]);
-  }
-  u.PixelWorld[0] = static_cast<float>(key[16]);
-  u.PixelWorld[1] = static_cast<float>(key[17]);
-  u.Viewport[0] = static_cast<float>(x);
-  u.Viewport[1] = static_cast<float>(y);
-  u.Viewport[2] = static_cast<float>(w);
-  u.Viewport[3] = static_cast<float>(h);
-}
-
 void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
 {
   vtkOpenGLClearErrorMacro();
@@ -628,6 +561,9 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   {
     return;
   }
+  // Camera lights and headlights follow this frame's camera before they are planned for (the
+  // renderer would move them only when the lights pass after this one runs).
+  this->UpdateLightGeometry(renderer);
   using Clock = std::chrono::steady_clock;
   const auto planStart = Clock::now();
   this->LastRenderer = renderer;
@@ -654,6 +590,8 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   {
     this->GatherAcrossProcesses(props);
   }
+  // The nearest and farthest visible depth of this very view (VisibleDepthFit).
+  this->MeasureVisibleDepths(renderer, s, state, props);
   // 2. Plan every shadowed light, and choose the cascades to re-render.
   std::vector<LightMaps> planned;
   std::vector<int> render; // per light slot and cascade: 1 render, 0 keep
@@ -686,6 +624,159 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   }
   state.Maps = planned;
   vtkOpenGLCheckErrorMacro("failed after rendering the cascaded shadow maps");
+}
+
+namespace
+{
+/// The nearest and farthest sample of the renderer's viewport in the framebuffer being drawn
+/// (window depths); false when they cannot be read (a multisampled framebuffer, a GL error).
+bool readWindowDepths(vtkRenderer* renderer, double range[2])
+{
+  vtkOpenGLRenderWindow* window =
+    vtkOpenGLRenderWindow::SafeDownCast(renderer ? renderer->GetRenderWindow() : nullptr);
+  if (!window)
+  {
+    return false;
+  }
+  int width = 0, height = 0, x = 0, y = 0;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  if (width < 1 || height < 1)
+  {
+    return false;
+  }
+  vtkOpenGLState* state = window->GetState();
+  GLint sampleBuffers = 0;
+  glGetIntegerv(GL_SAMPLE_BUFFERS, &sampleBuffers);
+  if (sampleBuffers > 0)
+  {
+    return false; // a multisampled framebuffer's depth cannot be read directly
+  }
+  vtkOpenGLClearErrorMacro();
+  // Read from the framebuffer being drawn (the window's, or the one a pass around us set).
+  unsigned int drawBinding = 0, drawBuffer = 0;
+  state->GetCurrentDrawFramebufferState(drawBinding, drawBuffer);
+  state->PushReadFramebufferBinding();
+  state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, drawBinding);
+  std::vector<float> depths(static_cast<size_t>(width) * static_cast<size_t>(height));
+  state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(x, y, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
+  const bool ok = glGetError() == GL_NO_ERROR;
+  state->PopReadFramebufferBinding();
+  if (!ok)
+  {
+    return false;
+  }
+  const csm::WindowDepthRange samples = csm::windowDepthRange(depths.data(), depths.size());
+  range[0] = samples.min;
+  range[1] = samples.max;
+  return true;
+}
+
+/// Does a camera see exactly as another did (view and projection at this aspect)?
+bool sameView(vtkCamera* a, vtkCamera* b, double aspect)
+{
+  vtkMatrix4x4* viewA = a->GetModelViewTransformMatrix();
+  vtkMatrix4x4* viewB = b->GetModelViewTransformMatrix();
+  if (!std::equal(viewA->GetData(), viewA->GetData() + 16, viewB->GetData()))
+  {
+    return false;
+  }
+  double projectionA[16];
+  std::copy(a->GetProjectionTransformMatrix(aspect, -1, 1)->GetData(),
+    a->GetProjectionTransformMatrix(aspect, -1, 1)->GetData() + 16, projectionA);
+  vtkMatrix4x4* projectionB = b->GetProjectionTransformMatrix(aspect, -1, 1);
+  return std::equal(projectionA, projectionA + 16, projectionB->GetData());
+}
+}
+
+void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(
+  vtkOpenGLRenderer* renderer, const vtkRenderState* s, RendererMaps& state, const FrameProps& props)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const double aspect = renderer->GetTiledAspectRatio();
+  state.VisibleDepthsMeasured = false;
+  // (Only directional lights' cascades are fitted to the view's depths.)
+  bool directional = false;
+  vtkCollectionSimpleIterator lit;
+  renderer->GetLights()->InitTraversal(lit);
+  while (vtkLight* light = renderer->GetLights()->GetNextLight(lit))
+  {
+    directional = directional ||
+      (vtkCascadedShadowMapBakerPass::LightCastsShadows(light) && !light->GetPositional());
+  }
+  if (!this->VisibleDepthFit || this->Distributed() || props.Casters.empty() || !directional)
+  {
+    state.VisibleCamera = nullptr; // each process sees only its own; nothing to see
+    return;
+  }
+  if (!props.Changed && state.VisibleCamera && state.VisibleAspect == aspect &&
+    sameView(state.VisibleCamera, camera, aspect))
+  {
+    return; // measured for this very view of this scene
+  }
+  state.VisibleCamera = nullptr;
+  vtkOpenGLRenderWindow* window = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
+  GLint sampleBuffers = 0;
+  glGetIntegerv(GL_SAMPLE_BUFFERS, &sampleBuffers);
+  if (sampleBuffers > 0)
+  {
+    return; // a multisampled depth buffer cannot be read directly: fitted to the boxes
+  }
+  // The casters the view can see, their depth only, into the frame's own depth buffer (the
+  // camera pass set its viewport and scissor and cleared it), which is cleared again after.
+  int width = 0, height = 0, x = 0, y = 0;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  vtkMatrix4x4* worldToClip = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+  std::vector<vtkProp*> drawn;
+  for (const FrameProps::Caster& caster : props.Casters)
+  {
+    if (vtkCascadedShadowMapPlanner::CascadeReachesBox(
+          worldToClip->GetData(), caster.Bounds.data(), false))
+    {
+      drawn.push_back(caster.Prop);
+    }
+  }
+  vtkOpenGLState* ostate = window->GetState();
+  vtkOpenGLState::ScopedglDepthMask savedDepthMask(ostate);
+  vtkOpenGLState::ScopedglColorMask savedColorMask(ostate);
+  vtkOpenGLState::ScopedglEnableDisable savedDepthTest(ostate, GL_DEPTH_TEST);
+  ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  // Screen-sized casters as wide as this view draws them: the "map" is the view itself.
+  double key[18];
+  casterView(renderer, camera, key);
+  vtkNew<vtkMatrix4x4> viewToClip, clipToView;
+  viewToClip->DeepCopy(camera->GetProjectionTransformMatrix(aspect, -1, 1));
+  vtkMatrix4x4::Invert(viewToClip, clipToView);
+  vtkCascadedShadowCasterPass::CasterUniforms u;
+  toColumnMajor(clipToView->GetData(), u.MapToView);
+  toColumnMajor(viewToClip->GetData(), u.ViewToMap);
+  const bool parallel = camera->GetParallelProjection() != 0;
+  u.LightView[2] = parallel ? 1.0f : 0.0f; // toward the eye
+  u.LightView[3] = parallel ? 0.0f : 1.0f;
+  u.PixelWorld[0] = static_cast<float>(key[16]);
+  u.PixelWorld[1] = static_cast<float>(key[17]);
+  u.Viewport[0] = static_cast<float>(x);
+  u.Viewport[1] = static_cast<float>(y);
+  u.Viewport[2] = static_cast<float>(width);
+  u.Viewport[3] = static_cast<float>(height);
+  this->CasterPass->BeginCascade(ostate, u, {});
+  this->CasterPass->DrawCasters(renderer, s->GetFrameBuffer(), drawn);
+  this->CasterPass->EndCascade();
+  double samples[2] = { 1.0, 0.0 };
+  const bool read = readWindowDepths(renderer, samples);
+  ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+  ++this->VisibleDepthMeasures;
+  if (read && samples[0] <= samples[1])
+  {
+    state.VisibleCamera = vtkSmartPointer<vtkCamera>::New();
+    state.VisibleCamera->DeepCopy(camera);
+    state.VisibleAspect = aspect;
+    state.VisibleWindow[0] = samples[0];
+    state.VisibleWindow[1] = samples[1];
+    state.VisibleDepthsMeasured = true;
+  }
 }
 
 namespace
@@ -1200,7 +1291,7 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
   // caster pass; they refine the error where four full maps cannot reach ErrorTarget).
   const int mostCascades = interacting ? csm::kAtlasFullMaps : 0;
   const int imageHeight = renderer->GetSize()[1];
-  // The visible depths of the last frame (VisibleDepthFit; each process sees only its own).
+  // The visible depths of this view (VisibleDepthFit; MeasureVisibleDepths).
   if (this->VisibleDepthFit && !this->Distributed() && state.VisibleCamera)
   {
     this->Planner->SetVisibleDepths(
@@ -1460,100 +1551,6 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
   renderer->SetAutomaticLightCreation(automaticLights);
 }
 
-namespace
-{
-/// Does the mapper draw nothing but lines for the prop, wider than one pixel (a polydata of
-/// lines, or any surface as wireframe; no vertices or points)? The GL draws such lines itself
-/// (in texels of the map); the map pass widens them in its geometry shader instead.
-bool drawsOnlyWideLines(vtkAbstractMapper* mapper, vtkProp* prop)
-{
-  vtkActor* actor = vtkActor::SafeDownCast(prop);
-  vtkProperty* property = actor ? actor->GetProperty() : nullptr;
-  vtkPolyDataMapper* polyMapper = vtkPolyDataMapper::SafeDownCast(mapper);
-  vtkPolyData* data = polyMapper ? polyMapper->GetInput() : nullptr;
-  float sizes[2];
-  vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, sizes);
-  if (!property || !data || sizes[0] <= 1.0f ||
-    property->GetRepresentation() == VTK_POINTS || property->GetVertexVisibility() ||
-    data->GetNumberOfVerts() > 0)
-  {
-    return false;
-  }
-  return property->GetRepresentation() == VTK_WIREFRAME ||
-    (data->GetNumberOfLines() > 0 && data->GetNumberOfPolys() == 0 &&
-      data->GetNumberOfStrips() == 0);
-}
-}
-
-bool vtkCascadedShadowMapBakerPass::PreReplaceShaderValues(std::string&,
-  std::string& geometryShader, std::string& fragmentShader, vtkAbstractMapper* mapper,
-  vtkProp* prop)
-{
-  // Depth only: no lighting in the maps' fragment shader (the mapper finds no tag to expand).
-  // This also keeps the depth program apart from the main pass's in the shader cache.
-  vtkShaderProgram::Substitute(fragmentShader, "//VTK::Light::Impl",
-    "gl_FragData[0] = vec4(1.0); // cascaded shadow map: depth pass\n", false);
-  // Lines VTK widens in a geometry shader (tubes; wide lines the GL cannot draw), and wide lines
-  // the GL would draw: our template, which widens them as the main view does (wide lines as
-  // tubes of their width), with the same tags for the mapper to fill.
-  if (geometryShader.find("uniform vec2 lineWidthNVC") != std::string::npos ||
-    (geometryShader.empty() && drawsOnlyWideLines(mapper, prop)))
-  {
-    geometryShader = csmCasterLineGS;
-    if (!vtkShaderProgram::Substitute(geometryShader, "//CSM::Caster::Dec", csmCaster, false))
-    {
-      this->ReportOnce(true, "the caster line template lost its declaration tag");
-      return false;
-    }
-  }
-  return true;
-}
-
-bool vtkCascadedShadowMapBakerPass::PostReplaceShaderValues(std::string& vertexShader,
-  std::string&, std::string& fragmentShader, vtkAbstractMapper*, vtkProp* prop)
-{
-  // Points: sized per vertex as the main view draws them (gl_PointSize, GL_PROGRAM_POINT_SIZE
-  // is on while the maps render); spheres keep only their silhouette; impostors (tubes,
-  // spheres) write the depth of their centre, not the one VTK computes for a view camera.
-  const size_t vertexMain = vertexShader.find("void main");
-  const size_t vertexEnd = vertexShader.rfind('}');
-  const size_t fragmentMain = fragmentShader.find("void main");
-  const size_t fragmentEnd = fragmentShader.rfind('}');
-  if (vertexMain == std::string::npos || vertexEnd == std::string::npos || vertexEnd < vertexMain ||
-    fragmentMain == std::string::npos || fragmentEnd == std::string::npos ||
-    fragmentEnd < fragmentMain)
-  {
-    this->ReportOnce(false,
-      "a mapper's shaders have no main(): its lines and points cast shadows one texel wide");
-    return true;
-  }
-  // Only props whose points are drawn bigger than a pixel pay for the sizing: a software
-  // rasterizer runs both sides of its branch for every vertex (a changed point size changes
-  // the property, and VTK then builds the shaders again).
-  float sizes[2];
-  vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, sizes);
-  vertexShader.insert(vertexEnd,
-    sizes[1] > 1.0f ? "  csmSizePoint(gl_Position);\n" : "  csmSphereView = vec4(0.0);\n");
-  vertexShader.insert(vertexMain, std::string("#define CSM_CASTER_VERTEX\n") + csmCaster + "\n");
-  std::string fragmentEndCode;
-  const bool sphere = fragmentShader.find("gl_PointCoord") != std::string::npos;
-  if (sphere)
-  {
-    fragmentEndCode += "  if (csmOutsideSphere()) { discard; }\n";
-  }
-  if (fragmentShader.find("ZCalcR") != std::string::npos)
-  {
-    fragmentEndCode += "  gl_FragDepth = gl_FragCoord.z;\n";
-  }
-  fragmentShader.insert(fragmentEnd, fragmentEndCode);
-  if (sphere)
-  {
-    fragmentShader.insert(
-      fragmentMain, std::string("#define CSM_CASTER_SPHERE_FRAGMENT\n") + csmCaster + "\n");
-  }
-  return true;
-}
-
 bool vtkCascadedShadowMapBakerPass::IsInteracting(vtkRenderWindow* window)
 {
   return window && window->GetDesiredUpdateRate() >= kInteractiveUpdateRate;
@@ -1570,32 +1567,6 @@ void vtkCascadedShadowMapBakerPass::GetScreenSizes(vtkProp* prop, float sizes[2]
     // vtkProperty's clamped setters let NaN through: such a prop is drawn one pixel wide here.
     sizes[i] = std::isfinite(sizes[i]) && sizes[i] >= 1.0f ? sizes[i] : 1.0f;
   }
-}
-
-bool vtkCascadedShadowMapBakerPass::SetShaderParameters(
-  vtkShaderProgram* program, vtkAbstractMapper*, vtkProp* prop, vtkOpenGLVertexArrayObject*)
-{
-  // Closed casters: only their exit layer (the property has just set its own culling).
-  const auto cull = this->CullState ? this->CullFaces.find(prop) : this->CullFaces.end();
-  if (cull != this->CullFaces.end())
-  {
-    this->CullState->vtkglCullFace(cull->second);
-    this->CullState->vtkglEnable(GL_CULL_FACE);
-  }
-  if (!program->IsUniformUsed("csmCasterWidth"))
-  {
-    return true;
-  }
-  float width[2];
-  vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, width);
-  CasterUniforms& u = this->Caster;
-  program->SetUniform2f("csmCasterWidth", width);
-  program->SetUniformMatrix4x4("csmMapToView", u.MapToView);
-  program->SetUniformMatrix4x4("csmViewToMap", u.ViewToMap);
-  program->SetUniform4f("csmLightView", u.LightView);
-  program->SetUniform2f("csmPixelWorld", u.PixelWorld);
-  program->SetUniform4f("csmMapViewport", u.Viewport);
-  return true;
 }
 
 void vtkCascadedShadowMapBakerPass::ReleaseGraphicsResources(vtkWindow* w)

@@ -46,6 +46,7 @@
 
 class vtkActor;
 class vtkCamera;
+class vtkCascadedShadowCasterPass;
 class vtkLight;
 class vtkMatrix4x4;
 class vtkMultiProcessController;
@@ -239,38 +240,28 @@ public:
 
   ///@{
   /**
-   * Cascades fitted to the depths the view really has samples at. The shadow pass reads each
-   * shadowed frame's depth buffer once it is drawn (its nearest and farthest sample); the next
-   * frame's directional cascades cover only that depth range, carried to the new camera and
-   * widened by how far it moved and turned (vtkCascadedShadowMapPlanner::SetVisibleDepths).
-   * The scene's boxes often reach far nearer and farther than anything the view shows (a
-   * camera among tall structures: a near plane at 0.25 with the nearest sample at 15), and the
-   * split scheme spends its resolution on that range. When a frame's samples fall outside the
-   * range its cascades covered (something came into view nearer or farther), the shadow pass
-   * plans and draws that frame again fitted to the scene's boxes (CheckVisibleDepths()); a
-   * camera that turned too far, or a scene whose samples lie outside its own boxes, gets the
-   * boxes' fit. Off with several processes (each sees only its own samples). Default on.
+   * Cascades fitted to the depths the view really has samples at. Before it plans a frame
+   * whose view or scene changed, the baker draws the depth of the casters the view can see
+   * (depth only, the frame's own depth buffer, cleared again after) and reads its nearest and
+   * farthest sample; the directional cascades then cover only that depth range
+   * (vtkCascadedShadowMapPlanner::SetVisibleDepths). The scene's boxes often reach far nearer
+   * and farther than anything the view shows (a camera among tall structures: a near plane at
+   * 0.25 with the nearest sample at 15), and the split scheme spends its resolution on that
+   * range. The range is measured in the frame it serves, so a frame's maps depend only on its
+   * view and scene: a single render (a screenshot) gets what a second render would. It costs
+   * one depth-only pass of the visible casters in each frame whose view moved (Results.md,
+   * "Visible depths"). Off with several processes (each sees only its own samples), and with
+   * a multisampled framebuffer (its depth cannot be read directly). Default on.
    */
   vtkSetMacro(VisibleDepthFit, bool);
   vtkGetMacro(VisibleDepthFit, bool);
   vtkBooleanMacro(VisibleDepthFit, bool);
   ///@}
 
-  /**
-   * For the shadow pass, once a shadowed frame of the renderer is drawn: its visible samples lie
-   * at window depths windowMin .. windowMax (min > max: none; GL's default depth range). Returns
-   * true when that frame's cascades were fitted to carried visible depths and some sample falls
-   * outside the depths they cover: then the frame must be baked (Render()) and drawn again,
-   * which fits it to the scene's boxes. Otherwise keeps the range for the next frame's plan
-   * (when every sample lies in the covered depths) and returns false.
-   */
-  bool CheckVisibleDepths(vtkRenderer* renderer, double windowMin, double windowMax);
-  /// Forget the renderer's visible depths (its next frame is fitted to the scene's boxes).
-  void ClearVisibleDepths(vtkRenderer* renderer);
   /// For tests and benchmarks: did the last Render() fit its cascades to visible depths, and
-  /// how many frames CheckVisibleDepths() sent back to be drawn again.
+  /// how many depth-only passes measured them (VisibleDepthFit).
   vtkGetMacro(LastVisibleDepthsUsed, bool);
-  vtkGetMacro(VisibleDepthRefits, int);
+  vtkGetMacro(VisibleDepthMeasures, int);
 
   /// The planner that holds the options above and computes the cascades.
   vtkCascadedShadowMapPlanner* GetPlanner();
@@ -399,25 +390,6 @@ protected:
   vtkCascadedShadowMapBakerPass();
   ~vtkCascadedShadowMapBakerPass() override;
 
-  bool PreReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
-    std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
-  bool PostReplaceShaderValues(std::string& vertexShader, std::string& geometryShader,
-    std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop) override;
-  bool SetShaderParameters(vtkShaderProgram* program, vtkAbstractMapper* mapper, vtkProp* prop,
-    vtkOpenGLVertexArrayObject* vao) override;
-
-  /// What the map pass's shaders need to draw screen-sized casters with the main view's size
-  /// (Module/glsl/csmCaster.glsl), for the cascade being rendered; float, as uploaded.
-  struct CasterUniforms
-  {
-    float MapToView[16] = {}; ///< light clip -> main view, column-major
-    float ViewToMap[16] = {}; ///< main view -> light clip, column-major
-    float LightView[4] = {};  ///< toward a directional light (w = 0) or its position (w = 1)
-    float PixelWorld[2] = {}; ///< world size of a main-view pixel at view depth d: [0] + [1] d
-    float Viewport[4] = {};   ///< the cascade's tile, in texels
-  };
-  CasterUniforms Caster;
-
   /// The maps of one renderer and the GL objects (of its window's context) that hold them.
   struct RendererMaps
   {
@@ -428,11 +400,13 @@ protected:
     vtkSmartPointer<vtkOpenGLFramebufferObject> FrameBuffer;
     vtkMTimeType LastInputTime = 0;
     int LastSize[2] = { 0, 0 };
-    /// The visible depths of the last frame checked (VisibleDepthFit): the camera that drew
-    /// it (null: none kept), its aspect and window depths; and whether the last plan used them.
+    /// The visible depths last measured (VisibleDepthFit): the camera that measured them
+    /// (null: none), its aspect and window depths; whether this frame measured them, and
+    /// whether the last plan used them.
     vtkSmartPointer<vtkCamera> VisibleCamera;
     double VisibleAspect = 1.0;
     double VisibleWindow[2] = { 1.0, 0.0 };
+    bool VisibleDepthsMeasured = false;
     bool VisibleDepthsUsed = false;
   };
 
@@ -473,6 +447,9 @@ protected:
   /// (and choose the cascades to re-render: 1 in render per light slot and cascade), render the
   /// chosen cascades into the atlases.
   void CollectProps(vtkRenderer* renderer, RendererMaps& state, FrameProps& props);
+  /// The window depths of the casters this view sees, unless measured for this view and scene.
+  void MeasureVisibleDepths(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
+    RendererMaps& state, const FrameProps& props);
   void GatherAcrossProcesses(FrameProps& props);
   void PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window, RendererMaps& state,
     const FrameProps& props, std::vector<LightMaps>& planned, std::vector<int>& render);
@@ -511,8 +488,6 @@ protected:
   void ReportOnce(bool error, const std::string& message);
   /// The light camera for a cascade: the light's rotation as view, the rest as projection.
   void SetUpLightCamera(const LightMaps& maps, int cascade);
-  /// The caster uniforms for a cascade, from its CasterView and its tile.
-  void SetUpCasterUniforms(const LightMaps& maps, int cascade, int x, int y, int width, int height);
   /// Lights that can get maps in this context: a texture unit each, leaving units and uniforms
   /// for the mapper's own.
   int MaximumShadowedLights(vtkOpenGLRenderWindow* window);
@@ -529,13 +504,16 @@ protected:
   bool CullCastersWithoutReceivers = true;
   bool VisibleDepthFit = true;
   bool LastVisibleDepthsUsed = false;
-  int VisibleDepthRefits = 0;
+  int VisibleDepthMeasures = 0;
 
   std::vector<RendererMaps> Renderers;
   vtkWeakPointer<vtkRenderer> LastRenderer;
   vtkSmartPointer<vtkCascadedShadowMapPlanner> Planner;
   vtkSmartPointer<vtkCamera> LightCamera;
   vtkSmartPointer<vtkMatrix4x4> Projection;
+  /// The pass in the casters' keys while the maps render (their shader hooks); not the baker
+  /// itself, which owns mappers (vtkCascadedShadowCasterPass says why).
+  vtkSmartPointer<vtkCascadedShadowCasterPass> CasterPass;
   vtkMultiProcessController* Controller = nullptr;
   double LastCombineSeconds = 0.0;
   double LastPlanSeconds = 0.0;
@@ -584,10 +562,6 @@ protected:
   };
   std::map<std::pair<vtkWindow*, vtkProp*>, CasterProxy> Proxies;
   int BlockBuilds = 0;
-  /// While a cascade renders: the face (GL_FRONT / GL_BACK) to cull per closed caster, and the
-  /// state to cull it with (SetShaderParameters runs after the property set its own culling).
-  std::map<vtkProp*, unsigned int> CullFaces;
-  vtkOpenGLState* CullState = nullptr;
   int WarnedShadowingLights = 0; // lights over the limit last warned about: warn once
   std::set<std::string> Reported; // messages said already (ReportOnce)
 

@@ -25,7 +25,6 @@
 
 #include "csmShadowFS.h" // the GLSL of Module/glsl/csmShadowFS.glsl
 #include "csmShadowVS.h" // the GLSL of Module/glsl/csmShadowVS.glsl
-#include "csmVisibleDepth.h"
 
 #include <algorithm>
 #include <sstream>
@@ -88,76 +87,6 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
     return;
   }
   this->DrawShadowed(s);
-  if (!baker->GetVisibleDepthFit())
-  {
-    return;
-  }
-  // The samples this frame has: kept for the next frame's cascades (the baker's
-  // VisibleDepthFit). When this frame's cascades were fitted to the last frame's samples and
-  // some of its own fall outside them (something came into view), it is baked and drawn again
-  // fitted to the scene's boxes: no region is shown unshadowed.
-  double window[2];
-  if (!vtkCascadedShadowMapPass::ReadWindowDepths(renderer, window))
-  {
-    baker->ClearVisibleDepths(renderer);
-    return;
-  }
-  if (baker->CheckVisibleDepths(renderer, window[0], window[1]))
-  {
-    baker->Render(s);
-    renderer->Clear();
-    if (baker->GetHasShadows(renderer))
-    {
-      this->DrawShadowed(s);
-    }
-    else
-    {
-      this->UpdateGeometry(renderer, s->GetFrameBuffer());
-    }
-    baker->CheckVisibleDepths(renderer, window[0], window[1]); // the same samples, box-fitted
-  }
-}
-
-bool vtkCascadedShadowMapPass::ReadWindowDepths(vtkRenderer* renderer, double range[2])
-{
-  vtkOpenGLRenderWindow* window =
-    vtkOpenGLRenderWindow::SafeDownCast(renderer ? renderer->GetRenderWindow() : nullptr);
-  if (!window)
-  {
-    return false;
-  }
-  int width = 0, height = 0, x = 0, y = 0;
-  renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
-  if (width < 1 || height < 1)
-  {
-    return false;
-  }
-  vtkOpenGLState* state = window->GetState();
-  GLint sampleBuffers = 0;
-  glGetIntegerv(GL_SAMPLE_BUFFERS, &sampleBuffers);
-  if (sampleBuffers > 0)
-  {
-    return false; // a multisampled framebuffer's depth cannot be read directly
-  }
-  vtkOpenGLClearErrorMacro();
-  // Read from the framebuffer being drawn (the window's, or the one a pass around us set).
-  unsigned int drawBinding = 0, drawBuffer = 0;
-  state->GetCurrentDrawFramebufferState(drawBinding, drawBuffer);
-  state->PushReadFramebufferBinding();
-  state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, drawBinding);
-  std::vector<float> depths(static_cast<size_t>(width) * static_cast<size_t>(height));
-  state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(x, y, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
-  const bool ok = glGetError() == GL_NO_ERROR;
-  state->PopReadFramebufferBinding();
-  if (!ok)
-  {
-    return false;
-  }
-  const csm::WindowDepthRange samples = csm::windowDepthRange(depths.data(), depths.size());
-  range[0] = samples.min;
-  range[1] = samples.max;
-  return true;
 }
 
 void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)

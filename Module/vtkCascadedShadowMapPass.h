@@ -214,9 +214,6 @@ protected:
   ShaderUniforms Uniforms;
   /// Render() with the baker's maps: the uniforms, then the renderer's geometry.
   void DrawShadowed(const vtkRenderState* s);
-  /// The nearest and farthest sample of the renderer's viewport in the framebuffer being drawn
-  /// (window depths); false when they cannot be read (a multisampled framebuffer, a GL error).
-  static bool ReadWindowDepths(vtkRenderer* renderer, double range[2]);
   std::string ShaderSignature; // what the injected code is compiled for (lights, kernel, debug)
   std::set<std::string> Reported; // warnings said already: once each
   void ReportOnce(const std::string& message);

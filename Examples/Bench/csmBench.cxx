@@ -95,8 +95,8 @@ struct Technique
   std::vector<double> PlanMs, MapMs;    // --breakdown: per timed frame
   double TexelsRendered = 0.0;          // map texels rendered over the timed frames
   long long MapsRendered = 0, MapsKept = 0;
-  long long Refits = 0;     // timed frames drawn twice (VisibleDepthFit missed a sample)
-  int RefitsSeen = 0;       // the baker's count at the last timed frame
+  long long DepthPasses = 0; // depth-only passes that measured the visible depths (VisibleDepthFit)
+  int DepthPassesSeen = 0;  // the baker's count at the last timed frame
   long long CascadesPlanned = 0, FramesPlanned = 0; // k_used: cascades of the first light a frame
   csmTruth::Classification Errors;
   std::vector<double> M;
@@ -441,8 +441,8 @@ void Account(Technique& t, vtkRenderer* renderer)
   vtkCascadedShadowMapBakerPass* baker = t.Passes.Cascaded->GetShadowMapBakerPass();
   t.MapsRendered += baker->GetLastCascadeRenders();
   t.MapsKept += baker->GetLastCascadesKept();
-  t.Refits += baker->GetVisibleDepthRefits() - t.RefitsSeen;
-  t.RefitsSeen = baker->GetVisibleDepthRefits();
+  t.DepthPasses += baker->GetVisibleDepthMeasures() - t.DepthPassesSeen;
+  t.DepthPassesSeen = baker->GetVisibleDepthMeasures();
   t.TexelsRendered += baker->GetLastTexelsRendered();
   if (!baker->GetLightMaps().empty())
   {
@@ -712,7 +712,7 @@ int main(int argc, char** argv)
          "p10_ms,p90_ms,math_us,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m,"
          "storage,frames,measured_pixels,interactive_ms,still_ms,plan_ms,map_ms,map_ms_per_map,"
          "texels_per_map,flicker_pct,k_used,near_fit,storage_over_optimal,"
-         "maps_rendered_per_frame,maps_kept_per_frame,refits_per_frame\n";
+         "maps_rendered_per_frame,maps_kept_per_frame,depth_passes_per_frame\n";
   detail << "scene,label,view,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m\n";
   std::vector<std::pair<std::string, std::vector<Technique>>> results;
 
@@ -1039,7 +1039,7 @@ int main(int argc, char** argv)
           << Median(t.NearFit) << "," << Median(t.StorageOverOptimal) << ","
           << (csm ? double(t.MapsRendered) / timedFrames(t) : NAN) << ","
           << (csm ? double(t.MapsKept) / timedFrames(t) : NAN) << ","
-          << (csm ? double(t.Refits) / timedFrames(t) : NAN) << "\n";
+          << (csm ? double(t.DepthPasses) / timedFrames(t) : NAN) << "\n";
       std::printf("  %-16s %8.1f ms  mismatch %6.3f%% (shadow %6.3f%%, light %6.3f%%)  max m %8.2f"
                   "  p95 m %6.2f  flicker %5.2f%%\n",
         t.Label.c_str(), Median(t.Times), t.Errors.MismatchPct(), t.Errors.FalseShadowPct(),
@@ -1051,10 +1051,10 @@ int main(int argc, char** argv)
           Median(t.Times) / Median(vtk.Times), Median(t.InteractiveTimes) / Median(vtk.InteractiveTimes),
           Median(t.StillTimes) / Median(vtk.StillTimes));
         if (csm)
-          std::printf("  k %.2f  maps rendered %.2f kept %.2f per frame, %.2f frames drawn twice",
+          std::printf("  k %.2f  maps rendered %.2f kept %.2f per frame, %.2f visible-depth passes",
             t.FramesPlanned ? double(t.CascadesPlanned) / t.FramesPlanned : 0.0,
             double(t.MapsRendered) / timedFrames(t), double(t.MapsKept) / timedFrames(t),
-            double(t.Refits) / timedFrames(t));
+            double(t.DepthPasses) / timedFrames(t));
         if (!t.PlanMs.empty())
           std::printf("  plan %.3f ms  maps %.1f ms a frame, %.1f ms a map of %.0f^2 texels",
             Median(t.PlanMs), Mean(t.MapMs), PerMap(t),

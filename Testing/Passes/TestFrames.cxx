@@ -1,0 +1,171 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// What a frame draws and how long a pass chain lives: a frame's shadows depend only on its view,
+// lights and scene (a frame equals its repeat and a fresh chain's frame, camera lights
+// included), and a dropped chain frees itself and its maps.
+#include "vtkActor.h"
+#include "vtkAppendPolyData.h"
+#include "vtkCamera.h"
+#include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkCascadedShadowMapPass.h"
+#include "vtkCubeSource.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkWeakPointer.h"
+
+#include "csmTestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <vector>
+#include <string>
+
+namespace
+{
+using csmTest::BoxOverPlane;
+using csmTest::BoxOverPlaneSettings;
+using csmTest::DarkenedPixels;
+using csmTest::DifferingValues;
+
+/// The box scene lit by a camera light (as ParaView's light kit key light is): above and to the
+/// left of the camera, so the shadow falls in view.
+void UseCameraLight(BoxOverPlane& scene)
+{
+  scene.Light->SetLightTypeToCameraLight();
+  scene.Light->SetPositional(false);
+  scene.Light->SetPosition(-0.4, 1.0, 0.3); // camera coordinates: up, left, in front
+  scene.Light->SetFocalPoint(0.0, 0.0, 0.0);
+}
+
+void CopyCamera(BoxOverPlane& from, BoxOverPlane& to)
+{
+  to.Renderer->GetActiveCamera()->DeepCopy(from.Renderer->GetActiveCamera());
+}
+
+/// The resident set size of this process, in MB (0 where /proc cannot be read).
+double ResidentMB()
+{
+  std::ifstream status("/proc/self/status");
+  std::string word;
+  while (status >> word)
+  {
+    if (word == "VmRSS:")
+    {
+      double kB = 0.0;
+      status >> kB;
+      return kB / 1024.0;
+    }
+  }
+  return 0.0;
+}
+} // namespace
+
+// A camera light moves with the camera: each frame's maps are those of that frame's light, so a
+// frame equals its repeat and a fresh chain's frame of the same view, after every camera move.
+TEST(Frames, CameraLightIsShadowedFromThisFramesDirection)
+{
+  BoxOverPlane scene;
+  UseCameraLight(scene);
+  auto plain = scene.Frame();
+  vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  auto first = scene.Frame();
+  EXPECT_GT(DarkenedPixels(first, plain), 500);
+  EXPECT_EQ(DifferingValues(scene.Frame(), first), 0);
+  for (int step = 0; step < 3; ++step)
+  {
+    scene.Renderer->GetActiveCamera()->Azimuth(25);
+    auto moved = scene.Frame();
+    auto repeat = scene.Frame();
+    EXPECT_EQ(DifferingValues(moved, repeat), 0) << step;
+    BoxOverPlane fresh;
+    UseCameraLight(fresh);
+    CopyCamera(scene, fresh);
+    vtkCascadedShadowMapPass::UseShadowsOn(fresh.Renderer);
+    EXPECT_EQ(DifferingValues(fresh.Frame(), moved), 0) << step;
+  }
+}
+
+// A single render (a screenshot, a batch frame, an image test) gets the maps a second render of
+// the same view gets: the visible depths are measured in the frame they serve. The part's box
+// holds the camera (a block behind it and the box in front are one polydata), so the visible
+// depths begin far beyond where the boxes meet the view.
+TEST(Frames, TheFirstRenderIsTheFittedOne)
+{
+  BoxOverPlane scene;
+  vtkNew<vtkCubeSource> behind, front;
+  behind->SetBounds(-1, 1, 13, 15, 18, 20); // behind the camera at (0, 14, 16)
+  front->SetBounds(-1, 1, 2, 4, -1, 1);
+  vtkNew<vtkAppendPolyData> both;
+  both->AddInputConnection(behind->GetOutputPort());
+  both->AddInputConnection(front->GetOutputPort());
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(both->GetOutputPort());
+  scene.Box->SetMapper(mapper);
+  scene.Renderer->ResetCameraClippingRange();
+  auto plain = scene.Frame();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->SceneFittedCascadesOff(); // (the cascades that follow the view)
+  auto first = scene.Frame();
+  EXPECT_TRUE(baker->GetLastVisibleDepthsUsed());
+  EXPECT_GT(DarkenedPixels(first, plain), 800);
+  const double firstNear = baker->GetLightMaps().at(0).SplitNear;
+  auto second = scene.Frame();
+  EXPECT_EQ(DifferingValues(first, second), 0);
+  EXPECT_EQ(baker->GetLightMaps().at(0).SplitNear, firstNear);
+  // Without the visible depths, the cascades begin where the boxes meet the view: nearer.
+  baker->VisibleDepthFitOff();
+  scene.Frame();
+  EXPECT_LT(baker->GetLightMaps().at(0).SplitNear, 0.5 * firstNear);
+}
+
+// A chain that has rendered frees itself, its maps and its caster blocks once it is dropped (the
+// mappers it drew keep only the passes of their last frame): no reference cycle.
+TEST(Frames, ADroppedChainIsFreed)
+{
+  BoxOverPlane scene;
+  vtkWeakPointer<vtkCascadedShadowMapPass> pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkWeakPointer<vtkCascadedShadowMapBakerPass> baker = pass->GetShadowMapBakerPass();
+  scene.Frame();
+  ASSERT_TRUE(baker->GetHasShadows());
+  EXPECT_GT(baker->GetLastCompactCasters(), 0); // the baker's own mappers were drawn
+  vtkCascadedShadowMapPass::UseShadowsOff(scene.Renderer);
+  scene.Frame(); // the props' mappers forget the chain's passes
+  EXPECT_EQ(pass.GetPointer(), nullptr);
+  EXPECT_EQ(baker.GetPointer(), nullptr);
+}
+
+// Switching shadows on and off many times keeps the memory flat: every chain but the one the
+// props drew last is gone, with its 64 MB atlas. (Resident memory is compared by the lowest of
+// ten readings: the system may get a freed atlas back a cycle late.)
+TEST(Frames, SwitchingShadowsOnAndOffKeepsMemoryFlat)
+{
+  BoxOverPlane scene;
+  std::vector<vtkWeakPointer<vtkCascadedShadowMapBakerPass>> bakers;
+  std::vector<double> resident;
+  for (int i = 0; i < 110; ++i)
+  {
+    vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+    bakers.push_back(pass->GetShadowMapBakerPass());
+    scene.Frame();
+    vtkCascadedShadowMapPass::UseShadowsOff(scene.Renderer);
+    resident.push_back(ResidentMB());
+  }
+  int alive = 0;
+  for (const auto& baker : bakers)
+  {
+    alive += baker ? 1 : 0;
+  }
+  EXPECT_LE(alive, 1); // the last chain lives until the props draw without it
+  // Cycles 10-19 (the driver's own caches settled) against the last ten.
+  const double early = *std::min_element(resident.begin() + 10, resident.begin() + 20);
+  const double late = *std::min_element(resident.end() - 10, resident.end());
+  ASSERT_GT(early, 0.0);
+  EXPECT_LT(late - early, 20.0);
+}
