@@ -17,6 +17,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,12 @@ struct vtkCascadedShadowMapPlanner::Internals
 
   /// CameraSpace: the smallest w of each of the last plan's maps (empty: not camera space maps).
   std::vector<double> DepthW;
+  /// CameraSpace: why the last plan's map is not focused at CameraSpaceFocus (empty: it is, or
+  /// the focus is automatic), and the focus last warned about (warned once per focus).
+  std::string FocusClamped;
+  double WarnedFocus = 0.0;
+  /// The message for a camera space map whose focus was clamped (csm::CameraSpaceMap).
+  void NoteFocus(const csm::CameraSpaceMap& map, double focus, const csm::Camera& fitted);
 
   /// Setup (and DepthW, and Planes for the dueling case) for CameraSpace: the camera space
   /// maps of the fitted frustum; false (Setup untouched) where neither case applies.
@@ -194,6 +201,7 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   this->Internal->Directional = true;
   this->Internal->Planes.clear();
   this->Internal->DepthW.clear();
+  this->Internal->FocusClamped.clear();
   // The comparison techniques (perspective views only), else the cascades.
   const csm::Bounds* sceneOrNull = bounds ? &scene : nullptr;
   bool planned = false;
@@ -233,6 +241,32 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
     this->Internal->LastCount.clear(); // lights come and go: keep the memory bounded
   }
   this->Internal->LastCount[lightKey] = static_cast<int>(this->Internal->Setup.cascades.size());
+  this->WarnFocusClamped();
+}
+
+void vtkCascadedShadowMapPlanner::Internals::NoteFocus(
+  const csm::CameraSpaceMap& map, double focus, const csm::Camera& fitted)
+{
+  if (map.status != csm::Status::Ok || !map.focusClamped || !(focus > 0.0))
+  {
+    return;
+  }
+  std::ostringstream message;
+  message << "CameraSpaceFocus " << focus
+          << " lies beyond the farthest view depth a camera space map can focus on in this view ("
+          << map.vsFocus << "; the depth range fitted to the scene is " << fitted.vsNear << " to "
+          << fitted.vsFar << "): the map is focused there";
+  this->FocusClamped = message.str();
+}
+
+void vtkCascadedShadowMapPlanner::WarnFocusClamped()
+{
+  // Once per focus: the view depth it can reach changes with every camera move.
+  if (!this->Internal->FocusClamped.empty() && this->CameraSpaceFocus != this->Internal->WarnedFocus)
+  {
+    this->Internal->WarnedFocus = this->CameraSpaceFocus;
+    vtkWarningMacro(<< this->Internal->FocusClamped);
+  }
 }
 
 namespace
@@ -309,6 +343,7 @@ bool vtkCascadedShadowMapPlanner::Internals::PlanCameraSpace(const csm::Camera& 
   if (general.status == csm::Status::Ok)
   {
     maps.push_back({ general.wsToClip, {}, general.wMin });
+    this->NoteFocus(general, focus, fitted);
   }
   else
   {
@@ -386,6 +421,7 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
   this->Internal->VisibleUsed = false;
   this->Internal->Planes.clear();
   this->Internal->DepthW.clear();
+  this->Internal->FocusClamped.clear();
   csm::Camera cam;
   toCamera(camera, aspect, cam);
   const csm::Bounds scene = toBounds(bounds);
@@ -419,9 +455,11 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
       if (map.status == csm::Status::Ok)
       {
         setup.cascades[0].wsToClip = map.wsToClip;
+        this->Internal->NoteFocus(map, this->CameraSpaceFocus, fitted);
       }
     }
   }
+  this->WarnFocusClamped();
   return this->Report(light, light->GetMTime());
 }
 

@@ -170,7 +170,10 @@ public:
    * leaves it to the application (10-20 m for a first-person game, 500 m and more for flight).
    * A focus below about twice the fitted near depth keeps the capture at the eye (half the map
    * for the first near distances): on the directional bench scenes that misclassified slightly
-   * fewer pixels, but a spot light's map captured from the eye streaks (Results.md).
+   * fewer pixels, but a spot light's map captured from the eye streaks (Results.md). Even a
+   * capture from afar holds on the middle row a depth short of the fitted far depth (about the
+   * middle of the range): a focus beyond the farthest one the map can have in a view (or
+   * beyond the fitted range) is clamped to it (csm::kMostPushBack), with one warning per focus.
    */
   vtkSetFiniteClampMacro(CameraSpaceFocus, double, 0.0, 1.0e300);
   vtkGetMacro(CameraSpaceFocus, double);
@@ -396,6 +399,9 @@ private:
     int mostCascades = 0);
   /// Reports an invalid plan once per light (null: a direction) until the light or message changes.
   int Report(const void* light, vtkMTimeType lightTime);
+  /// Warns, once per CameraSpaceFocus, that the last plan's camera space map could not be
+  /// focused there (csm::CameraSpaceMap::focusClamped).
+  void WarnFocusClamped();
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

@@ -205,15 +205,36 @@ CornerFit fitCorners(const glm::dmat4& projected, const GeneralFrame& g, const g
   return f;
 }
 
+/// The view depth whose points of P (one t per depth: P holds the right axis) land on the
+/// middle row of the map f fitted for a camera pushed back by pushBack: for q = view d + up u(d)
+/// on P, u(d) = u0 + u1 d, the capture gives t = u(d) / (d + pushBack), so the middle row's
+/// t_m = (t_min + t_max) / 2 holds d = (t_m pushBack - u0) / (u1 - t_m). 0 where it does not
+/// exist (P parallel to the up axis, or to the middle row's ray).
+double focusOfFit(const GeneralFrame& g, const CornerFit& f, double pushBack)
+{
+  const double across = glm::dot(g.normal, g.up);
+  if (!(std::abs(across) > kParallelToPlane))
+  {
+    return 0.0;
+  }
+  const double u0 = -g.offset / across;
+  const double u1 = -glm::dot(g.normal, g.view) / across;
+  const double middle = 0.5 * (f.t.x + f.t.y);
+  const double depth = (middle * pushBack - u0) / (u1 - middle);
+  return std::isfinite(depth) && depth > 0.0 ? depth : 0.0;
+}
+
 /// The focus range (Kolić & Mihajlović §3.1, Fig. 3): the push back of the capturing camera at
 /// which P's points at view depth vsFocus (one t per depth: P holds the right axis) land on the
 /// map's middle row, by bisection; fit(pushBack) fits the corners. Pushing back moves the middle
 /// away from the eye, monotonically: from about 2 n (captured from the eye, most of the map for
 /// the first near distances) toward the middle of P's depth range (captured from afar, t linear
-/// in depth). 0 where vsFocus is not positive or the eye's middle is already beyond it.
+/// in depth). 0 where vsFocus is not positive or the eye's middle is already beyond it;
+/// kMostPushBack vsFar, and clamped set, where the focus lies beyond what that push reaches.
 double focusPushBack(const Camera& camera, const GeneralFrame& g, double vsFocus,
-  const std::function<CornerFit(double)>& fit)
+  const std::function<CornerFit(double)>& fit, bool& clamped)
 {
+  clamped = false;
   if (!(vsFocus > 0.0) || !(std::abs(glm::dot(g.normal, g.up)) > kParallelToPlane))
   {
     return 0.0;
@@ -233,10 +254,16 @@ double focusPushBack(const Camera& camera, const GeneralFrame& g, double vsFocus
   {
     return 0.0;
   }
-  double lo = 0.0, hi = camera.vsFar;
-  for (int i = 0; i < 40 && share(fit(hi)) > 0.5; ++i)
+  double lo = 0.0, hi = kMostPushBack * camera.vsFar;
+  const CornerFit farthest = fit(hi);
+  if (!farthest.ok)
   {
-    hi *= 4.0; // a focus beyond what any push reaches: as far as the loop goes
+    return 0.0;
+  }
+  if (share(farthest) > 0.5)
+  {
+    clamped = true; // beyond what the farthest push reaches: focused as far as it goes
+    return hi;
   }
   for (int i = 0; i < 60; ++i)
   {
@@ -288,8 +315,9 @@ CameraSpaceMap computeCameraSpaceMap(
   auto fit = [&](double pushBack) {
     return fitCorners(capture(g.right, g.up, g.view, pushBack) * toPlane, g, L, 1e-9 * camera.vsNear);
   };
-  map.pushBack = focusPushBack(camera, g, vsFocus, fit);
+  map.pushBack = focusPushBack(camera, g, vsFocus, fit, map.focusClamped);
   const CornerFit f = fit(map.pushBack);
+  map.vsFocus = f.ok ? focusOfFit(g, f, map.pushBack) : 0.0;
   if (!f.ok)
   {
     map.message = "the light's rays leave the projection plane behind the camera (the dueling "
@@ -355,8 +383,9 @@ CameraSpaceMap computeCameraSpaceSpot(
   auto fit = [&](double pushBack) {
     return fitCorners(capture(g.right, g.up, g.view, pushBack) * toPlane, g, none, 0.0);
   };
-  map.pushBack = focusPushBack(camera, g, vsFocus, fit);
+  map.pushBack = focusPushBack(camera, g, vsFocus, fit, map.focusClamped);
   const CornerFit f = fit(map.pushBack);
+  map.vsFocus = f.ok ? focusOfFit(g, f, map.pushBack) : 0.0;
   if (!f.ok || !(f.w.y > f.w.x))
   {
     map.message = "the light's rays meet the projection plane behind the camera: a standard map";

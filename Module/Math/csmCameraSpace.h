@@ -42,7 +42,19 @@ struct CameraSpaceMap
   /// How far behind the eye, along the view, the capturing camera stands (the focus range; 0:
   /// at the eye).
   double pushBack = 0.0;
+  /// The view depth whose points of P the map's middle row holds (the focus it has).
+  double vsFocus = 0.0;
+  /// The focus asked for lies beyond the farthest one the map can have (see
+  /// computeCameraSpaceMap): the map is focused at vsFocus, that farthest one, instead.
+  bool focusClamped = false;
 };
+
+/// The farthest the capturing camera is pushed back for the focus range, in view depths of the
+/// far plane. Pushed back that far the capture is orthographic to within 1 % (its w varies by
+/// 1 % over the view), so it reaches within about 1 % of the depth range the farthest focus
+/// any push reaches; farther pushes only grow the map's s and t rows (with the square of the
+/// push), which beyond float's range leave the lookup infinities and no shadow.
+constexpr double kMostPushBack = 100.0;
 
 /// The general-case CSSM map of the camera's view frustum [vsNear, vsFar] for a directional
 /// light travelling along wsLightDirection. InvalidInput, with a message, for an invalid or
@@ -53,8 +65,11 @@ struct CameraSpaceMap
 /// The focus range (Kolić & Mihajlović §3.1, Fig. 3): with vsFocus > 0 the capturing camera is
 /// pushed back along the view (and the map fitted anew) so that the part of P in front of the
 /// view depth vsFocus takes half of the map's t axis, where the capture from the eye gives
-/// half of it to about the first 2 vsNear. A focus nearer than that keeps the eye; one farther
-/// than any push reaches takes the farthest push tried. 0: captured from the eye.
+/// half of it to about the first 2 vsNear. A focus nearer than that keeps the eye. Captured
+/// from afar, the middle row holds P's points at a depth short of vsFar (about the middle of the
+/// range, where t is linear in depth): a focus beyond what kMostPushBack vsFar of push reaches
+/// (or beyond vsFar) is clamped to that farthest focus (focusClamped, vsFocus). 0: captured
+/// from the eye.
 CameraSpaceMap computeCameraSpaceMap(
   const Camera& camera, const glm::dvec3& wsLightDirection, double vsFocus = 0.0);
 

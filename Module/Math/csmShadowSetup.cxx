@@ -393,6 +393,30 @@ std::vector<glm::dvec3> lightSpacePoints(const std::vector<glm::dvec3>& cwsBody,
   return lsPoints;
 }
 
+/// The points of an orthographic map (light space, camera-centred: x, z across the light, y
+/// along it) with the depth range orthographicDepthFloor gives at least: two points about the
+/// middle of the depth range where it is thinner.
+void keepOrthographicDepthRange(std::vector<glm::dvec3>& lsPoints, bool eyeAtOrigin)
+{
+  glm::dvec3 lo(kInf), hi(-kInf);
+  double eyeDistance = 0.0;
+  for (const glm::dvec3& p : lsPoints)
+  {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+    eyeDistance = std::max(eyeDistance, glm::length(p));
+  }
+  const double floor = orthographicDepthFloor(
+    std::max(hi.x - lo.x, hi.z - lo.z), eyeAtOrigin ? eyeDistance : 0.0);
+  if (lsPoints.empty() || !(hi.y - lo.y < floor))
+  {
+    return;
+  }
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  lsPoints.push_back(centre - glm::dvec3(0.0, 0.5 * floor, 0.0));
+  lsPoints.push_back(centre + glm::dvec3(0.0, 0.5 * floor, 0.0));
+}
+
 /// Lloyd et al. 2006, §4.4: maxima of the beam-width ratios over the body's vertices, and
 /// Eq. 12's storage factor.
 void cascadeError(Cascade& cascade, const Camera& camera, const glm::dvec3& wsLightDirection)
@@ -406,6 +430,12 @@ void cascadeError(Cascade& cascade, const Camera& camera, const glm::dvec3& wsLi
   cascade.storage = cascade.Mx * cascade.Mz / camera.aspect;
 }
 } // namespace
+
+double orthographicDepthFloor(double lsAcross, double eyeDistance)
+{
+  const double scale = std::max(lsAcross, eyeDistance);
+  return std::isfinite(scale) && scale > 0.0 ? kOrthographicDepthShare * scale : 0.0;
+}
 
 glm::dmat4 warpMatrix(double nPrime, double lsZMin)
 {
@@ -561,7 +591,7 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
     {
       cascade.wsBody.push_back(p + camera.wsPosition);
     }
-    const std::vector<glm::dvec3> lsPoints =
+    std::vector<glm::dvec3> lsPoints =
       lightSpacePoints(cwsBody, ls, camera, sceneBounds, settings.depthClamp);
     double lsZMin = kInf, lsZMax = -kInf;
     for (const glm::dvec3& p : lsPoints)
@@ -578,6 +608,10 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
       warp = kInf;
     }
     warp = std::max(warp, 1e-9 * lsDepth);
+    if (std::isinf(warp))
+    {
+      keepOrthographicDepthRange(lsPoints, true); // (a warped map's depth varies across it)
+    }
     cascade.nPrime = warp;
     const glm::dmat4 lsToWarped = warpMatrix(warp, lsZMin);
     // Orthographic maps of WarpMode::None keep their texel size while the camera moves a little
@@ -721,7 +755,8 @@ bool sceneFit(const glm::dvec3& wsLightDirection, const Bounds& sceneBounds,
     lsLo[axis] -= grow;
     lsHi[axis] += grow;
   }
-  const std::vector<glm::dvec3> lsPoints{ lsLo, lsHi };
+  std::vector<glm::dvec3> lsPoints{ lsLo, lsHi };
+  keepOrthographicDepthRange(lsPoints, false); // (no eye: about the scene's middle)
   const glm::dmat4 wsToLs = fromRows({ ls.x, -glm::dot(ls.x, wsOrigin) },
     { ls.y, -glm::dot(ls.y, wsOrigin) }, { ls.z, -glm::dot(ls.z, wsOrigin) }, { 0, 0, 0, 1 });
   const glm::dmat4 lsToMap = warpMatrix(kInf, 0.0);

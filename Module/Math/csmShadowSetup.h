@@ -402,6 +402,23 @@ glm::dmat4 warpMatrix(double nPrime, double lsZMin);
 glm::dmat4 focusMatrix(const std::vector<glm::dvec3>& lsPoints, const glm::dmat4& lsToWarped,
   bool quantizeExtent = false);
 
+/// Share of an orthographic map's scale that its depth range (along the light) keeps at least:
+/// the larger of its body's extent across the light and the distance of its farthest point from
+/// the eye. Depth clamping fits the range to the receivers (Lloyd et al. 2006, §6.4), and a
+/// flat receiver perpendicular to the light (a ground under an overhead light, alone in a far
+/// cascade) has one depth: fitted to it, the map's depth scale would magnify the float rounding
+/// of the lookup's and the rasterizer's positions (a few 1e-7 of the distance from the eye)
+/// beyond the constant depth bias, which is a share of the range (0.002 by default), and the
+/// ground would shadow itself in stripes. At 1/50 the default bias is 4e-5 of that distance,
+/// about a hundred times the rounding and still a small part of a texel (the passes' box over a
+/// ground, llvmpipe: clean at 1/2000, striped at 1/50000).
+constexpr double kOrthographicDepthShare = 1.0 / 50.0;
+
+/// The least depth range of an orthographic map whose body spans lsAcross across the light and
+/// whose farthest point lies eyeDistance from the eye (0 where no eye applies):
+/// kOrthographicDepthShare of the larger; 0 for values that are not finite.
+double orthographicDepthFloor(double lsAcross, double eyeDistance);
+
 /// An orthographic (affine) world -> clip matrix moved by less than half a texel of a map of
 /// the given resolution so that its texel grid is fixed in the world: the texel edges of two
 /// frames of a translating camera coincide, and shadow edges do not crawl (the cascaded-maps

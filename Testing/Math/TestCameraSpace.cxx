@@ -244,3 +244,72 @@ TEST(CameraSpace, DuelingFacesCoverTheFrustumAndRaysKeepTheirOrder)
   // A light perpendicular to the view has no t.
   EXPECT_TRUE(csm::computeCameraSpaceDueling(camera(1.0, 100.0, 60.0), lightAt(90.0)).empty());
 }
+
+// A focus beyond what any push reaches (past about the middle of the depth range, beyond the
+// far plane, or absurdly far) is clamped to the farthest focus the map can have: the push of
+// csm::kMostPushBack far depths, focusClamped set, vsFocus on the map's middle row and inside
+// the view; every matrix entry stays within float's range and the map a valid shadow map. A
+// focus it reaches is not clamped and is the one on the middle row.
+TEST(CameraSpace, AFocusBeyondReachIsClampedToTheFarthestFocus)
+{
+  csm::Camera moved = camera(0.5, 300.0, 50.0, 1.5);
+  moved.wsPosition = { 40.0, -7.0, 1200.0 };
+  auto floatSafe = [](const glm::dmat4& m) {
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r)
+        if (!(std::abs(m[c][r]) < 1e30))
+          return false;
+    return true;
+  };
+  for (const csm::Camera& cam : { camera(1.0, 1000.0, 60.0), moved })
+  {
+    const glm::dvec3 view = glm::normalize(cam.wsDirection);
+    for (double gamma : { 60.0, 90.0, 125.0 })
+    {
+      for (double sideways : { 0.0, 0.5 })
+      {
+        const glm::dvec3 L = lightAt(gamma, sideways);
+        auto tAt = [&](const csm::CameraSpaceMap& map, double d) {
+          const glm::dvec3 n(map.wsPlane);
+          const glm::dvec3 across = glm::normalize(n - glm::dot(n, view) * view);
+          const glm::dvec3 onAxis = cam.wsPosition + view * d;
+          const glm::dvec3 q =
+            onAxis - across * ((glm::dot(n, onAxis) + map.wsPlane.w) / glm::dot(n, across));
+          const glm::dvec4 h = map.wsToClip * glm::dvec4(q, 1.0);
+          return h.y / h.w;
+        };
+        const double reachable = std::sqrt(cam.vsNear * cam.vsFar);
+        const csm::CameraSpaceMap within = csm::computeCameraSpaceMap(cam, L, reachable);
+        ASSERT_EQ(within.status, csm::Status::Ok) << within.message;
+        EXPECT_FALSE(within.focusClamped);
+        EXPECT_NEAR(within.vsFocus, reachable, 1e-6 * reachable) << "gamma " << gamma;
+        for (double focus : { 0.9 * cam.vsFar, cam.vsFar, 1e6, 1e300 })
+        {
+          const csm::CameraSpaceMap map = csm::computeCameraSpaceMap(cam, L, focus);
+          ASSERT_EQ(map.status, csm::Status::Ok) << map.message;
+          EXPECT_TRUE(map.focusClamped) << "gamma " << gamma << " focus " << focus;
+          EXPECT_DOUBLE_EQ(map.pushBack, csm::kMostPushBack * cam.vsFar);
+          EXPECT_GT(map.vsFocus, reachable) << "gamma " << gamma;
+          EXPECT_LT(map.vsFocus, 0.9 * cam.vsFar) << "gamma " << gamma;
+          EXPECT_NEAR(tAt(map, map.vsFocus), 0.0, 1e-6) << "gamma " << gamma;
+          EXPECT_TRUE(floatSafe(map.wsToClip)) << "gamma " << gamma << " focus " << focus;
+          const RayCheck check = checkRays(
+            cam, L, 1e-9, [&](const glm::dvec3&) -> const glm::dmat4& { return map.wsToClip; });
+          EXPECT_EQ(check.outside, 0) << "gamma " << gamma << " focus " << focus;
+          EXPECT_EQ(check.moving, 0) << "gamma " << gamma << " focus " << focus;
+          EXPECT_EQ(check.unordered, 0) << "gamma " << gamma << " focus " << focus;
+        }
+      }
+    }
+    // A spot light (above and behind the eye) the same way.
+    const glm::dvec3 light = cam.wsPosition + glm::dvec3(0.0, 40.0, 30.0);
+    const csm::CameraSpaceMap spot = csm::computeCameraSpaceSpot(cam, light, 1e6);
+    ASSERT_EQ(spot.status, csm::Status::Ok) << spot.message;
+    EXPECT_TRUE(spot.focusClamped);
+    EXPECT_GT(spot.vsFocus, cam.vsNear);
+    EXPECT_LT(spot.vsFocus, cam.vsFar);
+    EXPECT_TRUE(floatSafe(spot.wsToClip));
+    EXPECT_FALSE(csm::computeCameraSpaceSpot(cam, light, std::sqrt(cam.vsNear * cam.vsFar))
+                   .focusClamped);
+  }
+}

@@ -1350,3 +1350,56 @@ TEST(Reuse, ABorderedMapCoversTheBodyOfACameraThatTurnedALittle)
     EXPECT_GT(reuse.errorRatio, 0.6) << "frame " << frame;
   }
 }
+
+TEST(ShadowSetup, OrthographicMapsOfAFlatGroundKeepADepthRangeAboveTheRounding)
+{
+  // The passes' box over a ground, light straight down, unwarped cascades: the far cascades hold
+  // only the ground (one light depth). Each map's depth range (2 over its depth row's length)
+  // is at least kOrthographicDepthShare of the farthest body point's distance from the eye,
+  // so that the default constant bias (0.002 of the range, in [0, 1]) is a hundred times the
+  // float rounding of a position at that distance (6e-8 of it); the body stays in the map.
+  csm::Camera cam = camera(4.0, 40.0, 30.0, 4.0 / 3.0);
+  cam.wsPosition = { 0.0, 14.0, 16.0 };
+  cam.wsDirection = -cam.wsPosition;
+  csm::Bounds scene, ground, box;
+  ground.wsMin = { -10.0, 0.0, -10.0 };
+  ground.wsMax = { 10.0, 0.0, 10.0 };
+  box.wsMin = { -1.0, 2.0, -1.0 };
+  box.wsMax = { 1.0, 4.0, 1.0 };
+  scene.wsMin = ground.wsMin;
+  scene.wsMax = { 10.0, 4.0, 10.0 };
+  const std::vector<csm::Bounds> parts{ ground, box };
+  for (int k : { 2, 4, 8 })
+  {
+    auto s = settings(csm::WarpMode::None, csm::SplitScheme::Log, k);
+    s.stableOrthographic = true;
+    const csm::ShadowSetup setup =
+      csm::computeShadowSetup(cam, glm::dvec3(0.0, -1.0, 0.0), &scene, s, &parts);
+    ASSERT_EQ(setup.status, csm::Status::Ok);
+    ASSERT_GE(setup.cascades.size(), 2u);
+    expectBodyInUnitCube(setup);
+    for (const csm::Cascade& c : setup.cascades)
+    {
+      ASSERT_TRUE(std::isinf(c.nPrime));
+      double eyeDistance = 0.0;
+      for (const glm::dvec3& p : c.wsBody)
+        eyeDistance = std::max(eyeDistance, glm::length(p - cam.wsPosition));
+      const glm::dvec3 depthRow(c.wsToClip[0][2], c.wsToClip[1][2], c.wsToClip[2][2]);
+      const double range = 2.0 / glm::length(depthRow);
+      EXPECT_GE(range, csm::kOrthographicDepthShare * eyeDistance) << k;
+      EXPECT_GT(0.002 * range, 100.0 * 6e-8 * eyeDistance) << k;
+    }
+  }
+  // The floor: the larger scale, none for values that are not finite.
+  EXPECT_DOUBLE_EQ(csm::orthographicDepthFloor(10.0, 50.0), csm::kOrthographicDepthShare * 50.0);
+  EXPECT_DOUBLE_EQ(csm::orthographicDepthFloor(10.0, 0.0), csm::kOrthographicDepthShare * 10.0);
+  EXPECT_EQ(csm::orthographicDepthFloor(std::nan(""), 1.0), 0.0);
+  // A map whose depth range is wider keeps it: the box over the ground seen straight from above
+  // in one cascade spans the box's height, more than the floor.
+  const csm::ShadowSetup one = csm::computeShadowSetup(cam, glm::dvec3(0.0, -1.0, 0.0), &scene,
+    settings(csm::WarpMode::None, csm::SplitScheme::Single, 1), nullptr);
+  ASSERT_EQ(one.cascades.size(), 1u);
+  const glm::dvec3 depthRow(
+    one.cascades[0].wsToClip[0][2], one.cascades[0].wsToClip[1][2], one.cascades[0].wsToClip[2][2]);
+  EXPECT_NEAR(2.0 / glm::length(depthRow), 4.0 * 1.02, 1e-3); // 1 % of room each side
+}
