@@ -10,7 +10,8 @@ source "$ROOT/scripts/common.sh"
 BUILD="${CSM_BUILD_DIR:-$ROOT/build}"
 LOGS="$BUILD/logs"
 PACKAGES=(cmake g++ make pkg-config libvtk9-dev libglm-dev libgtest-dev libbenchmark-dev
-  xvfb xauth libgl1-mesa-dri libosmesa6-dev assimp-testmodels libembree-dev openmpi-bin)
+  xvfb xauth libgl1-mesa-dri libosmesa6-dev assimp-testmodels libembree-dev openmpi-bin
+  python3-vtk9 python3-numpy)
 
 configure_and_build() {
   mkdir -p "$LOGS"

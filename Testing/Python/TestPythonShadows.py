@@ -1,0 +1,115 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The Python package in a plain VTK script: a box over a ground plane, a scene light.
+
+The ground's pixels are compared with the ground rendered alone (no box, no pass): with
+vtkCascadedShadowMapPass.UseShadowsOn(renderer) at least MIN_SHADOWED of them are darker (the
+box's shadow), without the pass none. The box's own pixels are left out (a mask drawn with the
+box alone). Also checks that the module's classes are there, that the internal caster pass is
+not, and that options set from Python reach the passes. Prints "FAIL: ..." and exits 1 on a
+failure.
+"""
+import sys
+
+import numpy
+
+from cascadedshadows import (vtkCascadedShadowMapBakerPass, vtkCascadedShadowMapPass,
+                             vtkCascadedShadowMapPlanner)
+import cascadedshadows
+from vtkmodules.vtkFiltersSources import vtkCubeSource, vtkPlaneSource
+from vtkmodules.vtkRenderingCore import (vtkActor, vtkLight, vtkPolyDataMapper, vtkRenderer,
+                                         vtkRenderWindow)
+
+from csmPythonTesting import darkened, grab
+
+MIN_SHADOWED = 1000  # the box's shadow darkens about 1600 ground pixels of the 320x240 picture
+failures = []
+
+
+def check(condition, message):
+    if not condition:
+        print("FAIL: " + message)
+        failures.append(message)
+
+
+# The wrapped classes, and only those: the casters' pass is internal.
+check(not hasattr(cascadedshadows, "vtkCascadedShadowCasterPass"),
+      "vtkCascadedShadowCasterPass is wrapped")
+check(not hasattr(cascadedshadows.vtkRenderingCascadedShadows, "vtkCascadedShadowCasterPass"),
+      "vtkCascadedShadowCasterPass is in the extension module")
+planner = vtkCascadedShadowMapPlanner()
+planner.SetWarpMode(vtkCascadedShadowMapPlanner.WARP_LISPSM)
+check(planner.GetWarpMode() == vtkCascadedShadowMapPlanner.WARP_LISPSM, "planner warp mode")
+
+ground = vtkPlaneSource()
+ground.SetOrigin(-10, 0, -10)
+ground.SetPoint1(10, 0, -10)
+ground.SetPoint2(-10, 0, 10)
+box = vtkCubeSource()
+box.SetBounds(-1, 1, 2, 4, -1, 1)
+actors = []
+renderer = vtkRenderer()
+for source in (ground, box):
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputConnection(source.GetOutputPort())
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    renderer.AddActor(actor)
+    actors.append(actor)
+ground_actor, box_actor = actors
+sun = vtkLight()
+sun.SetLightTypeToSceneLight()
+sun.SetPositional(False)
+sun.SetPosition(3, 10, 2)
+sun.SetFocalPoint(0, 0, 0)
+renderer.AddLight(sun)
+
+window = vtkRenderWindow()
+window.SetOffScreenRendering(1)
+window.SetMultiSamples(0)
+window.SetSize(320, 240)
+window.AddRenderer(renderer)
+camera = renderer.GetActiveCamera()
+camera.SetPosition(0, 14, 16)  # looking down at the ground
+camera.SetFocalPoint(0, 0, 0)
+renderer.ResetCameraClippingRange()
+
+# Reference: the ground alone; the mask: the box alone, unlit white on black.
+box_actor.VisibilityOff()
+ground_only = grab(window)
+box_actor.VisibilityOn()
+ground_actor.VisibilityOff()
+box_actor.GetProperty().SetLighting(False)
+mask = grab(window).sum(axis=2) > 0
+box_actor.GetProperty().SetLighting(True)
+ground_actor.VisibilityOn()
+check(mask.sum() > 100, "the box covers %d pixels" % mask.sum())
+
+without = darkened(grab(window), ground_only, mask)
+print("shadowed_pixels_without_pass: %d" % without)
+check(without == 0, "%d ground pixels darkened without the pass" % without)
+
+shadows = vtkCascadedShadowMapPass.UseShadowsOn(renderer)
+check(isinstance(shadows, vtkCascadedShadowMapPass), "UseShadowsOn returns the pass")
+baker = shadows.GetShadowMapBakerPass()
+check(isinstance(baker, vtkCascadedShadowMapBakerPass), "the pass has its baker")
+baker.SetNumberOfCascades(3)
+baker.SetErrorTarget(1.0)
+shadows.SetPCFSize(5)
+shadows.SetPCFKernel(vtkCascadedShadowMapPass.KERNEL_GRID)
+check(baker.GetNumberOfCascades() == 3 and shadows.GetPCFSize() == 5, "options from Python")
+check(baker.GetPlanner().GetErrorTarget() == 1.0, "the baker's options reach its planner")
+
+with_pass = darkened(grab(window), ground_only, mask)
+print("shadowed_pixels_with_pass: %d" % with_pass)
+check(with_pass >= MIN_SHADOWED, "%d shadowed pixels with the pass (at least %d expected)"
+      % (with_pass, MIN_SHADOWED))
+check(baker.GetHasShadows(), "the baker made maps")
+
+vtkCascadedShadowMapPass.UseShadowsOff(renderer)
+after = darkened(grab(window), ground_only, mask)
+print("shadowed_pixels_after_UseShadowsOff: %d" % after)
+check(after == 0, "%d ground pixels darkened after UseShadowsOff" % after)
+
+if failures:
+    sys.exit(1)
+print("PASS")
