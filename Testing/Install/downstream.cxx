@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A box over a ground plane, rendered offscreen without and with the installed module's
-// shadows; prints the pixels the shadow darkened and fails below a floor.
+// shadows; prints the pixels the shadow darkened and fails below a floor. With an argument,
+// writes the shadowed picture there (PNG).
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapPass.h"
@@ -8,6 +9,7 @@
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
+#include "vtkPNGWriter.h"
 #include "vtkPlaneSource.h"
 #include "vtkPointData.h"
 #include "vtkPolyDataMapper.h"
@@ -33,7 +35,7 @@ vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
 }
 }
 
-int main()
+int main(int argc, char* argv[])
 {
   vtkNew<vtkPlaneSource> ground;
   ground->SetOrigin(-10, 0, -10);
@@ -84,5 +86,12 @@ int main()
     darkened += la < 0.85 * lb - 6.0;
   }
   std::printf("shadowed_pixels: %ld\n", darkened);
+  if (argc > 1)
+  {
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetFileName(argv[1]);
+    writer->SetInputData(shadowed);
+    writer->Write();
+  }
   return darkened >= 1000 ? 0 : 1;
 }
