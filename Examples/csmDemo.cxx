@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // csm-demo: renders a scene with cascaded generalized-LiSPSM shadows (or VTK's own shadow pass,
 // or none), interactively or offscreen to a PNG, and times orbiting frames.
+#include "csmFileChecks.h"
 #include "csmHeadless.h"
 #include "csmScenes.h"
 #include "csmTechnique.h"
@@ -15,6 +16,7 @@
 #include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
+#include "vtkRenderPass.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
@@ -57,6 +59,7 @@ struct Options
   double Orbit = 360.0; // degrees the camera turns over --frames
   bool Interactive = false; // --frames as a user dragging the camera (desired update rate 15)
   bool Breakdown = false;   // --frames: also the median planning and map times (glFinish-bracketed)
+  std::string Keys;         // keys of the window pressed in turn before the image or frames
   bool HaveLight = false;
   double Light[3] = { -0.45, -1.0, -0.35 };
   bool HaveGamma = false;
@@ -72,10 +75,19 @@ struct Options
 
 /// VTK here renders through GLX: without an X display it crashes (SIGSEGV or an abort inside
 /// VTK). Say so before VTK touches X. Built with the OSMesa window (CSM_OSMESA), --offscreen
-/// renders through OSMesa and needs no display; the interactive window still does.
-void requireDisplay()
+/// renders through OSMesa and needs no display (unless CSM_HEADLESS=x turned it off); the
+/// interactive window still does.
+void requireDisplay(bool offscreen)
 {
   const char* display = std::getenv("DISPLAY");
+  const char* headless = std::getenv("CSM_HEADLESS");
+  if ((!display || !*display) && csmHeadless::Available() && offscreen)
+    fail(std::string("no X display (DISPLAY is not set), and CSM_HEADLESS=") +
+        (headless ? headless : "") +
+        " in the environment turned the OSMesa window off, so --offscreen renders through X "
+        "too: unset CSM_HEADLESS to render with no X server, or set DISPLAY or run csm-demo "
+        "under xvfb-run -a",
+      false);
   if (!display || !*display)
     fail(csmHeadless::Available()
         ? "no X display (DISPLAY is not set; the interactive window needs one): set DISPLAY, run "
@@ -107,7 +119,8 @@ void usage()
     "usage: csm-demo [options]        (defaults in [])\n"
     "  --scene S          platform | platform-beams (its bars as lines drawn as tubes) |\n"
     "                     towers | FILE (.vtp .vtk .stl .ply .obj .glb .gltf) [%s]\n"
-    "  --triangles N      platform size in triangles, 1000..~11.8 M [%lld]\n"
+    "  --triangles N      platform size in triangles, 1000..%lld (its finest\n"
+    "                     tessellation) [%lld]\n"
     "  --technique T      csm (ours) | vtk (vtkShadowMapPass) | none [%s]\n"
     "  --warp W           none | psm | lispsm | generalized [%s]\n"
     "  --partition P      single | uniform | log | practical | adaptive [%s] |\n"
@@ -147,9 +160,11 @@ void usage()
     "  --interactive      render --frames as while the user drags the camera (the window's\n"
     "                     desired update rate at the interactor's 15 fps)\n"
     "  --breakdown        with --frames: also print the median planning and map times\n"
+    "  --keys K           press the window's keys K in turn (each one renders a frame, with\n"
+    "                     the window's text), then render the image or --frames; e.g. tt\n"
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
     "  t technique, l light angle +15 deg\n",
-    o.Scene.c_str(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
+    o.Scene.c_str(), csmScenes::PlatformMaxTriangles(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
     d.CameraSpaceFocus, vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
     d.CompactCasters ? "on" : "off", d.CullCastersWithoutReceivers ? "on" : "off",
     d.VisibleDepthFit ? "on" : "off", d.SceneFittedCascades ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
@@ -206,6 +221,13 @@ Options parse(int argc, char** argv)
       if (!v)
         fail("--scene needs a value");
       o.Scene = v;
+      next();
+    }
+    else if (f == "--keys")
+    {
+      if (!v || !*v || std::strspn(v, "wpcfkdtl") != std::strlen(v))
+        fail("--keys needs keys of the window: w p c f k d t l");
+      o.Keys = v;
       next();
     }
     else if (f == "--out")
@@ -390,6 +412,12 @@ Options parse(int argc, char** argv)
   }
   if (o.Offscreen && o.Out.empty() && o.Frames == 0)
     fail("--offscreen needs --out FILE.png or --frames N");
+  if (!o.Out.empty())
+  {
+    const std::string error = csmScenes::CheckOutputFile(o.Out); // before the scene and render
+    if (!error.empty())
+      fail("--out: " + error, false);
+  }
   return o;
 }
 
@@ -400,6 +428,7 @@ struct App
   vtkRenderWindow* Window = nullptr;
   vtkLight* Key = nullptr;
   vtkTextActor* Text = nullptr;
+  vtkCommand* KeyCommand = nullptr; // set to abort once the demo has used a key
   csmScenes::Installed Passes;
   double LastFrameMs = 0.0;
 
@@ -424,9 +453,25 @@ struct App
     this->Key->SetPosition(focal[0] - d[0], focal[1] - d[1], focal[2] - d[2]);
   }
 
+  /// Installs the technique's pass chain; the chain it replaces frees its maps, textures and
+  /// shaders now, not when the window goes.
   void Apply()
   {
+    if (vtkRenderPass* dropped = this->Renderer->GetPass())
+      dropped->ReleaseGraphicsResources(this->Window);
     this->Passes = csmScenes::InstallTechnique(this->Renderer, this->Opt.Shadow);
+  }
+
+  /// The window's text: technique, options, last frame time.
+  void AddText()
+  {
+    vtkNew<vtkTextActor> text;
+    text->GetTextProperty()->SetFontSize(14);
+    text->GetTextProperty()->SetColor(0.05, 0.05, 0.1);
+    text->SetDisplayPosition(8, 8);
+    this->Renderer->AddActor2D(text);
+    this->Text = text;
+    this->UpdateText();
   }
 
   void UpdateText()
@@ -446,12 +491,11 @@ struct App
     this->Text->SetInput(t.str().c_str());
   }
 
-  static void OnKey(vtkObject* caller, unsigned long, void* data, void*)
+  /// A key of the window (w p c f k d t l): changes the option, renders a frame. False for any
+  /// other key.
+  bool Press(const std::string& key)
   {
-    App* app = static_cast<App*>(data);
-    auto* interactor = static_cast<vtkRenderWindowInteractor*>(caller);
-    const std::string key = interactor->GetKeySym() ? interactor->GetKeySym() : "";
-    auto& s = app->Opt.Shadow;
+    auto& s = this->Opt.Shadow;
     if (key == "w")
       s.Warp = (s.Warp + 1) % 4;
     else if (key == "p")
@@ -468,18 +512,44 @@ struct App
       s.Technique = s.Technique == "csm" ? "vtk" : s.Technique == "vtk" ? "none" : "csm";
     else if (key == "l")
     {
-      app->Opt.HaveGamma = true;
-      app->Opt.Gamma = std::fmod(app->Opt.Gamma + 15.0, 195.0);
-      app->PlaceLight();
+      this->Opt.HaveGamma = true;
+      this->Opt.Gamma = std::fmod(this->Opt.Gamma + 15.0, 195.0);
+      this->PlaceLight();
     }
     else
-      return;
-    if (app->Passes.Cascaded && key != "t")
-      csmScenes::Configure(app->Passes.Cascaded, s);
+      return false;
+    if (this->Passes.Cascaded && key != "t")
+      csmScenes::Configure(this->Passes.Cascaded, s);
     else
-      app->Apply();
-    app->UpdateText();
-    app->Window->Render();
+      this->Apply();
+    this->UpdateText();
+    this->Window->Render();
+    return true;
+  }
+
+  /// The demo's keys are its own: the interactor style does not see them too (its w, p and f
+  /// would make every actor wireframe, add a pick outline, which VTK's shadow pass cannot
+  /// shade, and fly the camera).
+  static void OnKey(vtkObject* caller, unsigned long, void* data, void*)
+  {
+    App* app = static_cast<App*>(data);
+    auto* interactor = static_cast<vtkRenderWindowInteractor*>(caller);
+    if (app->Press(interactor->GetKeySym() ? interactor->GetKeySym() : "") && app->KeyCommand)
+      app->KeyCommand->SetAbortFlag(1);
+  }
+
+  /// The window's text and keys on the interactor, ahead of its style's own keys.
+  void Connect(vtkRenderWindowInteractor* interactor, vtkInteractorObserver* style,
+    vtkCallbackCommand* onKey)
+  {
+    if (!this->Text)
+      this->AddText();
+    interactor->SetInteractorStyle(style);
+    interactor->SetRenderWindow(this->Window);
+    onKey->SetCallback(App::OnKey);
+    onKey->SetClientData(this);
+    interactor->AddObserver(vtkCommand::CharEvent, onKey, 1.0); // the style's: priority 0
+    this->KeyCommand = onKey;
   }
 
   static void OnEndRender(vtkObject*, unsigned long, void* data, void*)
@@ -516,7 +586,7 @@ int main(int argc, char** argv)
   if (!app.Opt.Offscreen)
     csmHeadless::UseOSMesa(false);
   if (!csmHeadless::UsingOSMesa())
-    requireDisplay();
+    requireDisplay(app.Opt.Offscreen);
 
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
@@ -548,6 +618,27 @@ int main(int argc, char** argv)
   if (scene.Lines > 0)
     std::printf("%lld lines, ", scene.Lines);
   std::printf("%zu actors\n", scene.Actors.size());
+
+  vtkNew<vtkRenderWindowInteractor> interactor;
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
+  vtkNew<vtkCallbackCommand> onKey;
+  if (!app.Opt.Keys.empty())
+  {
+    // As typed in the window after a click at its centre.
+    app.Connect(interactor, style, onKey);
+    interactor->Initialize();
+    interactor->SetEventPosition(app.Opt.Width / 2, app.Opt.Height / 2);
+    interactor->LeftButtonPressEvent();
+    interactor->LeftButtonReleaseEvent();
+    for (const char key : app.Opt.Keys)
+    {
+      const char sym[2] = { key, '\0' };
+      interactor->SetKeyEventInformation(0, 0, key, 1, sym);
+      interactor->KeyPressEvent();
+      interactor->CharEvent();
+      std::printf("key %c: technique %s\n", key, app.Opt.Shadow.Technique.c_str());
+    }
+  }
 
   if (app.Opt.Frames > 0)
   {
@@ -630,21 +721,8 @@ int main(int argc, char** argv)
       return 0;
   }
 
-  vtkNew<vtkTextActor> text;
-  text->GetTextProperty()->SetFontSize(14);
-  text->GetTextProperty()->SetColor(0.05, 0.05, 0.1);
-  text->SetDisplayPosition(8, 8);
-  renderer->AddActor2D(text);
-  app.Text = text;
-  app.UpdateText();
-  vtkNew<vtkRenderWindowInteractor> interactor;
-  vtkNew<vtkInteractorStyleTrackballCamera> style;
-  interactor->SetInteractorStyle(style);
-  interactor->SetRenderWindow(window);
-  vtkNew<vtkCallbackCommand> onKey;
-  onKey->SetCallback(App::OnKey);
-  onKey->SetClientData(&app);
-  interactor->AddObserver(vtkCommand::KeyPressEvent, onKey);
+  if (!app.KeyCommand)
+    app.Connect(interactor, style, onKey);
   vtkNew<vtkCallbackCommand> onEnd;
   onEnd->SetCallback(App::OnEndRender);
   onEnd->SetClientData(&app);

@@ -11,6 +11,9 @@
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
 
+#include <cstdio>
+#include <cstdlib>
+
 int main()
 {
   vtkNew<vtkPlaneSource> ground;
@@ -41,6 +44,13 @@ int main()
   shadows->GetShadowMapBakerPass()->SetNumberOfCascades(3);
 
   vtkNew<vtkRenderWindow> window;
+  // VTK's X window crashes when there is no X display: say so instead.
+  const char* display = std::getenv("DISPLAY");
+  if (window->IsA("vtkXOpenGLRenderWindow") && !(display && *display))
+  {
+    std::fprintf(stderr, "csm-minimal: no X display (DISPLAY is not set): run it under xvfb-run -a\n");
+    return EXIT_FAILURE;
+  }
   window->AddRenderer(renderer);
   vtkNew<vtkRenderWindowInteractor> interactor;
   interactor->SetRenderWindow(window);

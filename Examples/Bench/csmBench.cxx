@@ -3,6 +3,7 @@
 // shadow pass and with cascaded variants at equal total shadow-map texels, measures frame time
 // (median, interleaved, glFinish in each frame), misclassified pixels against Embree ground
 // truth and the perspective aliasing m, and writes a CSV and a plot (vtkChartXY).
+#include "csmFileChecks.h"
 #include "csmScenes.h"
 #include "csmTechnique.h"
 #include "csmTruth.h"
@@ -697,6 +698,19 @@ Options Parse(int argc, char** argv)
     o.DollyFrames = 6;
   }
   Techniques(o); // fails here on a label the mode does not have
+  // Where the results go, checked before any scene is built or rendered.
+  if (!o.ErrorImages.empty())
+  {
+    const std::string error = csmScenes::CheckOutputFolder(o.ErrorImages);
+    if (!error.empty())
+      fail("--error-images: " + error);
+  }
+  if (!o.Plot.empty())
+  {
+    const std::string error = csmScenes::CheckOutputFile(o.Plot);
+    if (!error.empty())
+      fail("--plot: " + error);
+  }
   return o;
 }
 } // namespace

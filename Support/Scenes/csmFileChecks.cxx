@@ -14,11 +14,13 @@
 
 #include <json/json.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <unistd.h>
 #include <vector>
 
 namespace csmScenes
@@ -166,10 +168,21 @@ std::string checkStl(const std::string& path)
     return "not an STL file: too short for a binary STL header";
   std::uint32_t triangles = 0;
   std::memcpy(&triangles, head + 80, 4); // little endian, as the format says
-  const Size needed = 84 + 50ull * triangles;
-  if (triangles == 0 || needed > size)
-    return tooShort("triangles", triangles, needed, size);
-  return {};
+  // A binary STL is an 84-byte header and 50 bytes a triangle: exactly 84 + 50 n bytes.
+  const Size expected = 84 + 50ull * triangles;
+  if (triangles > 0 && size == expected)
+    return {};
+  if (triangles == 0 && size == expected)
+    return "the header says 0 triangles: no surface in the file";
+  std::ostringstream os;
+  os << (size < expected ? "truncated" : "too long") << ": the header says " << triangles
+     << " triangles, so a binary STL of " << expected << " bytes (84 + 50 * " << triangles
+     << ") was expected, but the file has " << size;
+  if (size < expected)
+    os << " (" << (size - 84) / 50 << " whole triangles)";
+  else
+    os << " (" << size - expected << " more)";
+  return os.str();
 }
 
 std::string checkGltf(const std::string& path)
@@ -239,6 +252,31 @@ std::string CheckFileStructure(const std::string& path, const std::string& exten
     return checkStl(path);
   if (extension == ".gltf")
     return checkGltf(path);
+  return {};
+}
+
+std::string CheckOutputFile(const std::string& path)
+{
+  if (path.empty())
+    return "no file name";
+  if (vtksys::SystemTools::FileIsDirectory(path))
+    return "'" + path + "' is a directory";
+  if (vtksys::SystemTools::FileExists(path))
+    return access(path.c_str(), W_OK) == 0 ? std::string()
+                                            : "cannot write '" + path + "': " + std::strerror(errno);
+  const std::string folder = vtksys::SystemTools::GetFilenamePath(path);
+  const std::string error = CheckOutputFolder(folder.empty() ? "." : folder);
+  return error.empty() ? error : "cannot write '" + path + "': " + error;
+}
+
+std::string CheckOutputFolder(const std::string& path)
+{
+  if (!vtksys::SystemTools::FileExists(path))
+    return "the folder '" + path + "' does not exist";
+  if (!vtksys::SystemTools::FileIsDirectory(path))
+    return "'" + path + "' is not a folder";
+  if (access(path.c_str(), W_OK | X_OK) != 0)
+    return "cannot write in the folder '" + path + "': " + std::strerror(errno);
   return {};
 }
 

@@ -36,6 +36,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -626,6 +627,17 @@ bool FromFile(const std::string& path, Scene& scene, std::string& error)
   if (!vtksys::SystemTools::FileExists(path, true))
   {
     error = "cannot read '" + path + "': no such file";
+    return false;
+  }
+  struct stat status;
+  if (stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode))
+  {
+    // A named pipe would block the checks and the reader; a device may never end.
+    error = "cannot read '" + path + "': it is " +
+      (S_ISFIFO(status.st_mode) ? "a named pipe"
+          : S_ISSOCK(status.st_mode) ? "a socket"
+                                     : "a device") +
+      ", not a regular file";
     return false;
   }
   const std::string ext = vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));

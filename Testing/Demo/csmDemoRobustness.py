@@ -6,7 +6,8 @@
 Each broken case writes its file into <temp dir>, runs csm-demo on it with a timeout and
 checks: exit status 2 (not a crash signal, not a timeout), exactly one line on stderr, starting
 with "csm-demo: error:" and naming what is wrong. The "tiny" case checks a model of half-size
-1e-6 is drawn. The last argument says how csm-demo renders --offscreen: "osmesa" (built with
+1e-6 is drawn; "keys_technique" presses the window's keys offscreen (VTK's shadow pass and
+back) and checks VTK reports nothing. The last argument says how csm-demo renders --offscreen: "osmesa" (built with
 the OSMesa window: no X display needed, only the interactive window needs one) or "glx" (the
 default: every run needs a display). Prints "FAIL: ..." and exits 1 on failure.
 """
@@ -106,6 +107,78 @@ def drawn_fraction(out):
     return drawn, len(pixels)
 
 
+def binary_stl(triangles):
+    body = b"".join(struct.pack("<12fH", 0, 0, 1, i, 0, 0, i + 1, 0, 0, i, 1, 0, 0)
+                    for i in range(triangles))
+    return b"binary".ljust(80, b"\0") + struct.pack("<I", triangles) + body
+
+
+def stl_too_long():
+    # 20 GB of zeros, sparse (no blocks written): a header of 0 triangles and far too many bytes.
+    f = path("too-long.stl")
+    with open(f, "wb") as out:
+        out.truncate(20 << 30)
+    try:
+        return expect_error(["--scene", f, "--offscreen", "--out", path("x.png")],
+                            ["too long", "84 bytes (84 + 50 * 0) was expected", "21474836480"])
+    finally:
+        os.remove(f)
+
+
+def fifo():
+    f = path("pipe.stl")
+    if not os.path.exists(f):
+        os.mkfifo(f)
+    return expect_error(["--scene", f, "--offscreen", "--out", path("x.png")],
+                        ["pipe.stl", "named pipe", "not a regular file"])
+
+
+def out_unwritable():
+    # Found before the scene is built, not after a render.
+    bad = os.path.join(tmp, "no-such-folder", "x.png")
+    problem = expect_error(["--offscreen", "--out", bad], ["--out", "no-such-folder", "does not exist"])
+    if problem:
+        return problem
+    _, out, _ = run(["--offscreen", "--out", bad])
+    if out.strip():
+        return "it did work before refusing the path: %s" % out[:300]
+    return expect_error(["--offscreen", "--out", tmp], ["is a directory"])
+
+
+def triangles_help():
+    # One limit: the one --help states is the one the check applies.
+    import re
+    _, out, _ = run(["--help"])
+    _, _, err = run(["--triangles", "1e9"])
+    said = re.search(r"--triangles N .*?1000\.\.(\d+)", out)
+    checked = re.search(r"--triangles must be in \[1000, (\d+)\]", err)
+    if not said or not checked:
+        return "no limit in --help or in the refusal: %s / %s" % (out[:200], err[:200])
+    if said.group(1) != checked.group(1):
+        return "--help says up to %s, the check allows %s" % (said.group(1), checked.group(1))
+    print("ok: --triangles up to %s in --help and in the check" % said.group(1))
+    return None
+
+
+def keys_technique():
+    # The window's keys, offscreen: p (partition; the interactor style must not also pick and
+    # add an outline VTK's pass cannot shade), t to VTK's pass, none, ours again. Dropped pass
+    # chains release their resources: VTK says nothing on stderr.
+    if not osmesa:
+        return "only for a build with the OSMesa window (csm-demo renders through GLX here)"
+    out = path("keys.png")
+    rc, stdout, err = run(["--offscreen", "--out", out, "--size", "200x150", "--triangles", "20000",
+                           "--keys", "pttt"], env=NO_DISPLAY)
+    if rc != 0:
+        return "--keys pttt: status %s: %s" % (rc, err[:500])
+    if err.strip():
+        return "--keys pttt: VTK reported: %s" % err[:800]
+    if "key t: technique vtk" not in stdout or "key t: technique csm" not in stdout:
+        return "--keys pttt did not switch technique: %s" % stdout[:300]
+    print("ok: --keys pttt: csm, vtk, none, csm with nothing on stderr")
+    return None
+
+
 def tiny():
     # A tetrahedron of half-size 5e-7 on the demo's ground slab: it was drawn blank.
     s = 1e-6
@@ -169,6 +242,19 @@ cases = {
                           "property float x\nproperty float y\nproperty float z\nelement face 1\n"
                           "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
                           "3 0 1 2\n"), "--offscreen", "--out", path("x.png")], ["2000000000 vertex"]),
+    "stl_truncated": lambda: expect_error(
+        ["--scene", write("half.stl", binary_stl(100)[:84 + 50 * 50 + 17]), "--offscreen",
+         "--out", path("x.png")], ["half.stl", "truncated", "100 triangles", "5084 bytes",
+                                   "has 2601", "50 whole triangles"]),
+    "stl_too_long": stl_too_long,
+    "fifo": fifo,
+    "out_unwritable": out_unwritable,
+    "triangles_help": triangles_help,
+    "keys_technique": keys_technique,
+    # CSM_HEADLESS=x turned the OSMesa window off: --offscreen then needs a display too.
+    "headless_x_offscreen": lambda: expect_error(
+        ["--offscreen", "--out", path("x.png")], ["CSM_HEADLESS=x", "OSMesa window off"],
+        env=dict(NO_DISPLAY, CSM_HEADLESS="x")),
     "stl_random": lambda: expect_error(
         ["--scene", write("random.stl", bytes((i * 7919 + 13) * 104729 % 251 for i in range(3000))),
          "--offscreen", "--out", path("x.png")], ["random.stl", "triangles"]),
