@@ -225,39 +225,7 @@ const std::pair<const char*, const char*> Overrides[] = {
   { "vtkRenderWindowInteractor", "vtkGenericRenderWindowInteractor" }
 };
 
-// Registered when libcsm_headless is loaded. The factories registered before it (VTK's OpenGL
-// one is registered here first) get their window and interactor overrides disabled; those
-// registered later come after it in VTK's lookup: the order of static initializers does not
-// matter.
-struct Registration
-{
-  Registration()
-  {
-    vtkRenderingOpenGL2_AutoInit_Construct();
-    const char* choice = std::getenv("CSM_HEADLESS");
-    const bool x = choice && (std::strcmp(choice, "x") == 0 || std::strcmp(choice, "glx") == 0);
-    csmHeadless::UseOSMesa(!x);
-  }
-  ~Registration()
-  {
-    if (Factory)
-    {
-      vtkObjectFactory::UnRegisterFactory(Factory);
-      Factory->Delete();
-      Factory = nullptr;
-    }
-  }
-} registration;
-}
-
-namespace csmHeadless
-{
-bool Available()
-{
-  return true;
-}
-
-bool UseOSMesa(bool use)
+bool UseOSMesaWindow(bool use)
 {
   if (use)
   {
@@ -281,11 +249,65 @@ bool UseOSMesa(bool use)
         Factory->SetEnableFlag(0, o.first, o.second);
     }
   }
-  return UsingOSMesa();
+  return Factory && Factory->GetEnableFlag("vtkRenderWindow", "vtkOSMesaHeadlessRenderWindow");
+}
+
+bool UsingOSMesaWindow()
+{
+  return Factory && Factory->GetEnableFlag("vtkRenderWindow", "vtkOSMesaHeadlessRenderWindow");
+}
+
+// Registered when libcsm_headless is loaded. The factories registered before it (VTK's OpenGL
+// one is registered here first) get their window and interactor overrides disabled; those
+// registered later come after it in VTK's lookup: the order of static initializers does not
+// matter.
+struct Registration
+{
+  Registration()
+  {
+    vtkRenderingOpenGL2_AutoInit_Construct();
+    const char* choice = std::getenv("CSM_HEADLESS");
+    const bool x = choice && (std::strcmp(choice, "x") == 0 || std::strcmp(choice, "glx") == 0);
+    UseOSMesaWindow(!x);
+  }
+  ~Registration()
+  {
+    if (Factory)
+    {
+      vtkObjectFactory::UnRegisterFactory(Factory);
+      Factory->Delete();
+      Factory = nullptr;
+    }
+  }
+} registration;
+}
+
+namespace csmHeadless
+{
+bool Available()
+{
+  return true;
+}
+
+bool UseOSMesa(bool use)
+{
+  return UseOSMesaWindow(use);
 }
 
 bool UsingOSMesa()
 {
-  return Factory && Factory->GetEnableFlag("vtkRenderWindow", "vtkOSMesaHeadlessRenderWindow");
+  return UsingOSMesaWindow();
 }
+}
+
+// The same for a program that does not link this library and finds it loaded (csmHeadless.h,
+// csmHeadlessPreload.cxx: the window programs, which get it through LD_PRELOAD).
+extern "C" __attribute__((visibility("default"))) int csmHeadlessUseOSMesa(int use)
+{
+  return UseOSMesaWindow(use != 0) ? 1 : 0;
+}
+
+extern "C" __attribute__((visibility("default"))) int csmHeadlessUsingOSMesa()
+{
+  return UsingOSMesaWindow() ? 1 : 0;
 }
