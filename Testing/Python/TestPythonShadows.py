@@ -4,13 +4,14 @@
 The ground's pixels are compared with the ground rendered alone (no box, no pass): with
 vtkCascadedShadowMapPass.UseShadowsOn(renderer) at least MIN_SHADOWED of them are darker (the
 box's shadow), without the pass none. The box's own pixels are left out (a mask drawn with the
-box alone). Also checks that the module's classes are there, that the internal caster pass is
-not, and that options set from Python reach the passes. Prints "FAIL: ..." and exits 1 on a
+box alone). Also checks that the module's classes are there with every public Set/Get/Use
+method of their headers (Module/*.h), that the internal caster pass is not, and that options
+set from Python reach the passes. Prints "FAIL: ..." and exits 1 on a
 failure.
 """
+import os
+import re
 import sys
-
-import numpy
 
 from cascadedshadows import (vtkCascadedShadowMapBakerPass, vtkCascadedShadowMapPass,
                              vtkCascadedShadowMapPlanner)
@@ -36,6 +37,21 @@ check(not hasattr(cascadedshadows, "vtkCascadedShadowCasterPass"),
       "vtkCascadedShadowCasterPass is wrapped")
 check(not hasattr(cascadedshadows.vtkRenderingCascadedShadows, "vtkCascadedShadowCasterPass"),
       "vtkCascadedShadowCasterPass is in the extension module")
+# Every option of the C++ headers (their public Set/Get methods and macros) is reachable.
+module_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Module")
+for cls in (vtkCascadedShadowMapPass, vtkCascadedShadowMapBakerPass, vtkCascadedShadowMapPlanner):
+    header = open(os.path.join(module_dir, cls.__name__ + ".h"), encoding="utf-8").read()
+    code = re.sub(r"//[^\n]*|/\*.*?\*/", "", header, flags=re.S)  # declarations, not comments
+    public = code.split("protected:")[0]
+    names = set()
+    for kind, name in re.findall(r"vtk(Set|Get|Boolean)\w*Macro\(\s*(\w+)", public):
+        names |= {name + "On", name + "Off"} if kind == "Boolean" else {kind + name}
+    names |= set(re.findall(r"\b((?:Set|Get|Use)[A-Z]\w*)\s*\(", public))
+    names -= {"GetLightMaps"}  # the baker's per-light map state for the shadow pass, not an option
+    missing = sorted(n for n in names if not hasattr(cls, n))
+    check(not missing, "%s lacks %s in Python" % (cls.__name__, ", ".join(missing)))
+    print("%s: %d options and methods reachable" % (cls.__name__, len(names)))
+
 planner = vtkCascadedShadowMapPlanner()
 planner.SetWarpMode(vtkCascadedShadowMapPlanner.WARP_LISPSM)
 check(planner.GetWarpMode() == vtkCascadedShadowMapPlanner.WARP_LISPSM, "planner warp mode")
