@@ -3,6 +3,7 @@
 
 #include "csmCasterBlocks.h"
 #include "csmClosedSurface.h"
+#include "csmReuse.h"
 #include "csmShadowSetup.h" // the atlas layout
 #include "csmVisibleDepth.h"
 
@@ -81,6 +82,10 @@ constexpr int kMapperTextureUnits = 8;
 constexpr int kUniformComponentsPerLight = kMaxCascades * (16 + 4 + 4 + 4) + 16;
 constexpr int kFacePlaneComponentsPerLight = kMaxCascades * 16;
 constexpr int kMapperUniformComponents = 1024;
+// The depth pre-pass's offset behind the surfaces (glPolygonOffset factor and units): enough
+// for the same triangle drawn by another shader to pass GL_LEQUAL.
+constexpr float kPrePassOffsetFactor = 1.0f;
+constexpr float kPrePassOffsetUnits = 4.0f;
 
 /// Bounds of a prop that draws 3D geometry, or false (2D actors, invisible, no bounds).
 bool propBounds(vtkProp* prop, double bounds[6])
@@ -137,6 +142,18 @@ bool hasScreenSizedCasters(const std::vector<Caster>& casters)
     }
   }
   return false;
+}
+
+/// Cells of an actor's input data (0 for other props or without data).
+double casterCells(vtkProp* prop)
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkMapper* mapper = actor ? actor->GetMapper() : nullptr;
+  vtkDataObject* data = mapper && mapper->GetNumberOfInputPorts() > 0 &&
+      mapper->GetNumberOfInputConnections(0) > 0
+    ? mapper->GetInputDataObject(0, 0)
+    : nullptr;
+  return data ? static_cast<double>(data->GetNumberOfElements(vtkDataObject::CELL)) : 0.0;
 }
 
 /// Row-major double -> column-major float (GLSL's mat4).
@@ -493,6 +510,7 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
     }
     drawn.push_back(caster.Prop);
     this->LastBlocksDrawn += caster.Block ? 1 : 0;
+    this->LastCellsDrawn += casterCells(caster.Prop);
     const int outward =
       std::isfinite(mapDeterminant) ? caster.Closure * (mapDeterminant < 0.0 ? 1 : -1) : 0;
     if (outward != 0)
@@ -580,6 +598,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   this->LastClosedCasters = 0;
   this->LastCompactCasters = 0;
   this->LastBlocksDrawn = 0;
+  this->LastCellsDrawn = 0.0;
   this->LastCastersWithoutReceivers = 0;
   this->LastVisibleDepthsUsed = false;
 
@@ -740,9 +759,19 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(
   vtkOpenGLState::ScopedglDepthMask savedDepthMask(ostate);
   vtkOpenGLState::ScopedglColorMask savedColorMask(ostate);
   vtkOpenGLState::ScopedglEnableDisable savedDepthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable savedOffsetFill(ostate, GL_POLYGON_OFFSET_FILL);
+  vtkOpenGLState::ScopedglEnableDisable savedOffsetLine(ostate, GL_POLYGON_OFFSET_LINE);
+  vtkOpenGLState::ScopedglEnableDisable savedOffsetPoint(ostate, GL_POLYGON_OFFSET_POINT);
   ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglEnable(GL_DEPTH_TEST);
+  // The depth stays for the frame's own geometry pass, which then shades only the fragments
+  // it keeps (the lookup is its costliest part): a little farther than the surfaces, so that
+  // the same surface drawn by other shaders passes the depth test (GL_LEQUAL).
+  ostate->vtkglEnable(GL_POLYGON_OFFSET_FILL);
+  ostate->vtkglEnable(GL_POLYGON_OFFSET_LINE);
+  ostate->vtkglEnable(GL_POLYGON_OFFSET_POINT);
+  glPolygonOffset(kPrePassOffsetFactor, kPrePassOffsetUnits);
   // Screen-sized casters as wide as this view draws them: the "map" is the view itself.
   double key[18];
   casterView(renderer, camera, key);
@@ -766,7 +795,10 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(
   this->CasterPass->EndCascade();
   double samples[2] = { 1.0, 0.0 };
   const bool read = readWindowDepths(renderer, samples);
-  ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+  if (!this->KeepPrePassDepth)
+  {
+    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+  }
   ++this->VisibleDepthMeasures;
   if (read && samples[0] <= samples[1])
   {
@@ -777,21 +809,6 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(
     state.VisibleWindow[1] = samples[1];
     state.VisibleDepthsMeasured = true;
   }
-}
-
-namespace
-{
-/// Cells of an actor's input data (0 for other props or without data).
-double casterCells(vtkProp* prop)
-{
-  vtkActor* actor = vtkActor::SafeDownCast(prop);
-  vtkMapper* mapper = actor ? actor->GetMapper() : nullptr;
-  vtkDataObject* data = mapper && mapper->GetNumberOfInputPorts() > 0 &&
-      mapper->GetNumberOfInputConnections(0) > 0
-    ? mapper->GetInputDataObject(0, 0)
-    : nullptr;
-  return data ? static_cast<double>(data->GetNumberOfElements(vtkDataObject::CELL)) : 0.0;
-}
 }
 
 void vtkCascadedShadowMapBakerPass::CollectProps(
@@ -1279,8 +1296,7 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
   const double border = interacting ? this->InteractiveMapBorder : 0.0;
   // (The tolerance is against a fresh map with the same border, whose error is 1 + 2 border
   // times a tight one's.)
-  const double tolerance =
-    interacting ? this->MapReuseTolerance * (1.0 + 2.0 * border) : 1.0 + 1e-9;
+  const double tolerance = this->MapReuseTolerance * (1.0 + 2.0 * border);
   // Tubes, spheres, wide lines and big points are drawn into the maps as wide as the main view
   // draws them: a still frame keeps such a map only for the view it was sized for.
   const bool screenSized = hasScreenSizedCasters(props.Casters);
@@ -1346,6 +1362,11 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
         state.Maps[slot].NumberOfCascades == maps.NumberOfCascades
       ? &state.Maps[slot]
       : nullptr;
+    // Slack pays only where the next frames can keep the map: a still frame of a camera on a
+    // smooth path, the light and scene unchanged (a camera light moves with the camera).
+    const bool smoothStep = !interacting && kept && maps.NumberOfCascades > 0 &&
+      vtkCascadedShadowMapPlanner::IsSmallCameraStep(
+        state.LastCamera, camera, aspect, this->Planner->GetCascadeNear(0));
     vtkNew<vtkMatrix4x4> m;
     // The largest maps this count of cascades has in the atlas (csm::ceilingsForCount: the
     // planner judged the count at the same).
@@ -1358,24 +1379,47 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       const csm::MapSize& most = countCeilings.of(maps.SceneFitted[c]);
       const int countCeiling[2] = { most.width, most.height };
       this->Planner->GetCascadeResolution(c, imageHeight, RESOLUTION_STEP, countCeiling, resolution);
+      const csm::MapSize need(resolution[0], resolution[1]);
+      // A still frame's map that follows the view gets slack (a border and more texels), so
+      // that the next frames of a camera that moves a little keep it while it meets what a
+      // fresh map would (csm::slackedMap, csm::keptMapServes). Not for screen-sized casters,
+      // whose maps serve only the view they were sized for.
+      double cascadeBorder = border;
+      if (smoothStep && !screenSized && !maps.SceneFitted[c])
+      {
+        const csm::SlackedMap slacked = csm::slackedMap(need, most, this->MapSlack);
+        cascadeBorder = slacked.border;
+        resolution[0] = slacked.size.width;
+        resolution[1] = slacked.size.height;
+      }
       maps.MapTurned[c] = this->Planner->GetCascadeMapTurned(c);
-      this->Planner->GetCascadeMatrix(c, m, border, resolution);
+      this->Planner->GetCascadeMatrix(c, m, cascadeBorder, resolution);
       std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
       maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
       this->Planner->GetCascadePlanes(c, maps.Planes[c]);
       maps.DepthW[c] = this->Planner->GetCascadeDepthW(c);
       // A kept map serves if it has the texels this view needs (or all its tile holds, where the
-      // GL's texture size limit made the tiles smaller than Resolution).
+      // GL's texture size limit made the tiles smaller than Resolution): while the user
+      // interacts, within MapReuseTolerance of a fresh map with the same border; in a still
+      // frame, where its error at this view meets what a fresh tight map meets.
       // (Turned the same way: the error ratio compares the maps at equal resolution.)
       const int* keptResolution = kept ? kept->CascadeResolution[c] : nullptr;
-      const bool keep = kept &&
+      bool keep = kept &&
         (interacting || !screenSized ||
           std::equal(viewKey, viewKey + 18, kept->CasterView[c])) &&
-        kept->MapTurned[c] == maps.MapTurned[c] &&
-        keptResolution[0] >= std::min(resolution[0], kept->Resolution[0]) &&
-        keptResolution[1] >= std::min(resolution[1], kept->Resolution[1]) &&
-        this->Planner->CompareKeptMap(c, kept->WorldToMap[c], kReuseMarginTexels,
-          std::min(keptResolution[0], keptResolution[1])) <= tolerance;
+        kept->MapTurned[c] == maps.MapTurned[c];
+      if (keep)
+      {
+        const double ratio = this->Planner->CompareKeptMap(c, kept->WorldToMap[c],
+          kReuseMarginTexels, std::min(keptResolution[0], keptResolution[1]));
+        // (Where the GL's texture size limit made the tile smaller than the need.)
+        const csm::MapSize fits(std::min(need.width, kept->Resolution[0]),
+          std::min(need.height, kept->Resolution[1]));
+        keep = interacting
+          ? keptResolution[0] >= std::min(resolution[0], kept->Resolution[0]) &&
+            keptResolution[1] >= std::min(resolution[1], kept->Resolution[1]) && ratio <= tolerance
+          : csm::keptMapServes(ratio, csm::MapSize(keptResolution[0], keptResolution[1]), fits);
+      }
       if (keep)
       {
         std::copy(kept->WorldToMap[c], kept->WorldToMap[c] + 16, maps.WorldToMap[c]);
@@ -1396,6 +1440,11 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
     maps.Atlas = state.AtlasPool[slot];
     planned.push_back(maps);
   }
+  if (!state.LastCamera)
+  {
+    state.LastCamera = vtkSmartPointer<vtkCamera>::New();
+  }
+  state.LastCamera->DeepCopy(camera);
   if (this->Distributed() && !render.empty())
   {
     // One process's "render" is every process's: the maps are combined across them.
@@ -1650,6 +1699,7 @@ void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PolygonOffsetUnits: " << this->PolygonOffsetUnits << "\n";
   os << indent << "MapReuseTolerance: " << this->MapReuseTolerance << "\n";
   os << indent << "InteractiveMapBorder: " << this->InteractiveMapBorder << "\n";
+  os << indent << "MapSlack: " << this->MapSlack << "\n";
   os << indent << "MeasureTimes: " << (this->MeasureTimes ? "on" : "off") << "\n";
   os << indent << "CullClosedCasters: " << (this->CullClosedCasters ? "on" : "off") << "\n";
   os << indent << "VisibleDepthFit: " << (this->VisibleDepthFit ? "on" : "off") << "\n";

@@ -176,6 +176,23 @@ public:
 
   ///@{
   /**
+   * Maps across still frames (a camera path rendered frame by frame, a script's animation): a
+   * map that follows the view is rendered with slack, at most 1 + MapSlack times the texels a
+   * side that its error target needs, half of the factor as a border around its part of the
+   * scene and half as finer texels (csm::slackedMap). The next frames keep it while it covers
+   * their part of the visible scene and its aliasing error there (Lloyd et al. 2006, Eq. 2-4,
+   * read by the error model at the current view) is at most what a fresh map of the needed
+   * texels would have (csm::keptMapServes): every frame meets ErrorTarget, and a small camera
+   * step re-renders only the maps it must. 0: maps exactly as planned, kept only for the view
+   * they were planned for. 0..3. Default 0.44 (a border of 0.1 and 1.2 times the texels a
+   * side).
+   */
+  vtkSetFiniteClampMacro(MapSlack, double, 0.0, 3.0);
+  vtkGetMacro(MapSlack, double);
+  ///@}
+
+  ///@{
+  /**
    * Closed casters drawn from behind. A prop whose polydata bounds solids (every edge, its
    * vertices welded by position, traversed as often in each direction: csm::classifySurface,
    * checked once per change of the data) is drawn into the maps with only its faces turned away
@@ -236,6 +253,8 @@ public:
   /// blocks drawn into its rendered cascades (all cascades together).
   vtkGetMacro(LastCompactCasters, int);
   vtkGetMacro(LastBlocksDrawn, int);
+  /// Cells of the casters' data drawn into the rendered cascades (all cascades together).
+  vtkGetMacro(LastCellsDrawn, double);
   ///@}
 
   ///@{
@@ -257,6 +276,11 @@ public:
   vtkGetMacro(VisibleDepthFit, bool);
   vtkBooleanMacro(VisibleDepthFit, bool);
   ///@}
+
+  /// For benchmarks: keep the depth the visible depths were measured with for the frame's
+  /// geometry pass (on, the default), or clear it.
+  vtkSetMacro(KeepPrePassDepth, bool);
+  vtkGetMacro(KeepPrePassDepth, bool);
 
   /// For tests and benchmarks: did the last Render() fit its cascades to visible depths, and
   /// how many depth-only passes measured them (VisibleDepthFit).
@@ -408,6 +432,8 @@ protected:
     double VisibleWindow[2] = { 1.0, 0.0 };
     bool VisibleDepthsMeasured = false;
     bool VisibleDepthsUsed = false;
+    /// The camera of the last plan (MapSlack: did this frame's camera take a small step?).
+    vtkSmartPointer<vtkCamera> LastCamera;
   };
 
   /// What a frame draws: the visible props' boxes and the opaque ones among them.
@@ -498,11 +524,13 @@ protected:
   double PolygonOffsetUnits = 2.0;
   double MapReuseTolerance = 1.25;
   double InteractiveMapBorder = 0.2;
+  double MapSlack = 0.44;
   bool MeasureTimes = false;
   bool CullClosedCasters = true;
   bool CompactCasters = true;
   bool CullCastersWithoutReceivers = true;
   bool VisibleDepthFit = true;
+  bool KeepPrePassDepth = true;
   bool LastVisibleDepthsUsed = false;
   int VisibleDepthMeasures = 0;
 
@@ -528,6 +556,7 @@ protected:
   int LastClosedCasters = 0;
   int LastCompactCasters = 0;
   int LastBlocksDrawn = 0;
+  double LastCellsDrawn = 0.0;
   int LastCastersWithoutReceivers = 0;
   /// csm::classifySurface's answer per polydata, kept while the data does not change.
   struct Closure

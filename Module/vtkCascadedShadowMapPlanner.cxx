@@ -692,6 +692,14 @@ double vtkCascadedShadowMapPlanner::CompareKeptMap(
   return reuse.covers ? reuse.errorRatio : std::numeric_limits<double>::infinity();
 }
 
+bool vtkCascadedShadowMapPlanner::IsSmallCameraStep(
+  vtkCamera* before, vtkCamera* now, double aspect, double nearestDepth)
+{
+  csm::Camera a, b;
+  return before && now && toCamera(before, aspect, a) && toCamera(now, aspect, b) &&
+    csm::smallCameraStep(a, b, nearestDepth);
+}
+
 bool vtkCascadedShadowMapPlanner::CascadeReachesBox(
   const double worldToClip[16], const double bounds[6], bool depthClamp)
 {

@@ -354,6 +354,11 @@ public:
   double CompareKeptMap(int i, const double keptWorldToClip[16], double marginTexels,
     int resolution) const;
 
+  /// Did the camera take a small step from `before` (a smooth path: csm::smallCameraStep),
+  /// measured against the nearest visible depth?
+  static bool IsSmallCameraStep(vtkCamera* before, vtkCamera* now, double aspect,
+    double nearestDepth);
+
   /// Does any part of a world box (xmin, xmax, ymin, ymax, zmin, zmax) reach the light volume of
   /// a cascade (row-major world -> light clip)? With depthClamp, what is nearer than the near
   /// plane counts (clamped onto it).

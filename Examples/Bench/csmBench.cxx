@@ -6,6 +6,7 @@
 #include "csmFileChecks.h"
 #include "csmScenes.h"
 #include "csmTechnique.h"
+#include "csmWalk.h"
 #include "csmTruth.h"
 
 #include "vtkAxis.h"
@@ -717,6 +718,13 @@ Options Parse(int argc, char** argv)
 
 int main(int argc, char** argv)
 {
+  for (int i = 1; i < argc; ++i)
+  {
+    if (std::string(argv[i]) == "--walk")
+    {
+      return csmWalk::Run(argc, argv, CSM_ENGINE_MODEL); // the path comes from CMake
+    }
+  }
   const Options o = Parse(argc, argv);
   std::ofstream csv(o.Out);
   if (!csv)

@@ -24,6 +24,58 @@ glm::dmat4 withBorder(const glm::dmat4& wsToClip, double border)
   return shrink * wsToClip;
 }
 
+SlackedMap slackedMap(const MapSize& need, const MapSize& most, double slack)
+{
+  SlackedMap slacked;
+  slacked.size = need;
+  if (need.width <= 0 || need.height <= 0 || !(slack > 0.0) || !std::isfinite(slack))
+  {
+    return slacked;
+  }
+  // The factor the tile leaves room for (1 where the tight map already fills it).
+  const double factor = std::max(1.0,
+    std::min({ 1.0 + slack, double(most.width) / need.width, double(most.height) / need.height }));
+  slacked.border = 0.5 * (std::sqrt(factor) - 1.0);
+  slacked.size.width = std::min(most.width, static_cast<int>(std::ceil(factor * need.width)));
+  slacked.size.height = std::min(most.height, static_cast<int>(std::ceil(factor * need.height)));
+  slacked.size.width = std::max(slacked.size.width, need.width);
+  slacked.size.height = std::max(slacked.size.height, need.height);
+  return slacked;
+}
+
+bool smallCameraStep(const Camera& before, const Camera& now, double vsNearest)
+{
+  const double lengths = glm::length(before.wsDirection) * glm::length(now.wsDirection);
+  if (!(lengths > 0.0) || !std::isfinite(lengths) || !(vsNearest > 0.0) ||
+    !std::isfinite(vsNearest))
+  {
+    return false;
+  }
+  const double cosTurn = glm::dot(before.wsDirection, now.wsDirection) / lengths;
+  const double moved = glm::length(now.wsPosition - before.wsPosition);
+  const bool turned = cosTurn < 1.0;
+  if (!std::isfinite(moved) || (moved == 0.0 && !turned))
+  {
+    return false;
+  }
+  constexpr double kPi = 3.14159265358979323846;
+  return cosTurn >= std::cos(kSmallStepTurnDeg * kPi / 180.0) && moved <= kSmallStepShare * vsNearest;
+}
+
+bool keptMapServes(double errorRatio, const MapSize& keptSize, const MapSize& need)
+{
+  if (!std::isfinite(errorRatio) || errorRatio < 0.0 || keptSize.width <= 0 ||
+    keptSize.height <= 0 || need.width <= 0 || need.height <= 0)
+  {
+    return false;
+  }
+  // (Rounding: a map kept for the very view it was planned for has a ratio of 1.)
+  constexpr double kRounding = 1e-9;
+  const double room = std::min(
+    double(keptSize.width) / need.width, double(keptSize.height) / need.height);
+  return errorRatio <= room * (1.0 + kRounding);
+}
+
 MapReuse compareKeptMap(const glm::dmat4& wsKeptToClip, const Cascade& fresh,
   const Camera& camera, const glm::dvec3& wsLightDirection, bool directional, double marginNdc)
 {

@@ -26,6 +26,33 @@ struct MapReuse
 /// stays covered.
 glm::dmat4 withBorder(const glm::dmat4& wsToClip, double border);
 
+/// A map rendered with slack, so that a camera that moves a little can keep it: a border around
+/// its body and more texels, together at most 1 + slack times the texels a side of the tight
+/// map that meets the error target (need), and at most `most` (the atlas tile). Half the factor
+/// (in ratio) goes to the border, half to the texel size: a fresh slacked map meets the target
+/// with room for its error to grow by the same factor again before keptMapServes() fails.
+struct SlackedMap
+{
+  double border = 0.0; ///< withBorder()'s share of the body's width on each side
+  MapSize size;        ///< texels along s and t
+};
+SlackedMap slackedMap(const MapSize& need, const MapSize& most, double slack);
+
+/// Did the camera take a small step since the last frame (a smooth path, whose next frames a
+/// slacked map may serve)? Turned by at most kSmallStepTurnDeg and moved by at most
+/// kSmallStepShare of the nearest visible depth; a camera that did not move took no step, and
+/// an invalid one none either.
+constexpr double kSmallStepTurnDeg = 5.0;
+constexpr double kSmallStepShare = 0.25;
+bool smallCameraStep(const Camera& before, const Camera& now, double vsNearest);
+
+/// Does a kept map of keptSize texels serve where a tight fresh map needs `need` texels to meet
+/// the error target? Its error over the fresh map's at equal resolution is errorRatio
+/// (compareKeptMap; +infinity where it does not cover); at its own resolution its error is that
+/// ratio times need / keptSize (aliasing falls with the texel size, Lloyd et al. 2006, Eq. 1),
+/// which must be at most the fresh map's.
+bool keptMapServes(double errorRatio, const MapSize& keptSize, const MapSize& need);
+
 /// Compare a kept world -> light clip matrix with the freshly planned cascade of the same light
 /// for the current camera. marginNdc: the band along the map's border that the lookup's filter
 /// reaches (PCF radius plus one texel, in NDC units: 2 (r + 1) / resolution).

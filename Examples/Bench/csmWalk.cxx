@@ -1,0 +1,459 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// csm-bench --walk: the camera paths a user takes through a structure, every frame a normal
+// (not interactive) render: a close orbit of 2 degrees a frame and a dolly of 1 % of the model a
+// frame, at 640x480 with a 60 degree view. Ours at its defaults against VTK's pass as it comes
+// (its default 1024^2 map) and the unshadowed frame, interleaved in rounds in one process;
+// medians of the frame times, and per frame what our maps cost: maps rendered and kept, texels
+// and caster cells drawn.
+#include "csmWalk.h"
+
+#include "csmFileChecks.h"
+#include "csmScenes.h"
+#include "csmTechnique.h"
+
+#include "vtkActor.h"
+#include "vtkAppendPolyData.h"
+#include "vtkCamera.h"
+#include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkCascadedShadowMapPass.h"
+#include "vtkCubeSource.h"
+#include "vtkLight.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+struct WalkOptions
+{
+  std::vector<std::string> Scenes = { "engine", "towers", "lattice" };
+  int Frames = 20;
+  int Rounds = 3;
+  int Size[2] = { 640, 480 };
+  bool CameraLight = false;
+  bool PerFrame = false;
+  bool Variants = false; ///< also ours with the cascades fitted to the boxes
+  std::vector<double> Slacks; ///< also ours with these MapSlack values
+  bool Interactive = false; ///< frames as while the user drags (the interactor's update rate)
+  std::string Out = "walk.csv";
+  std::string Engine;
+};
+
+[[noreturn]] void walkFail(const std::string& message)
+{
+  std::fprintf(stderr, "csm-bench --walk: error: %s (see --help)\n", message.c_str());
+  std::exit(2);
+}
+
+/// A cubic lattice of thin square bars (n nodes a side, spacing 1, bars 4 % of it thick) on a
+/// ground plate: a structure full of thin bars whose shadows fall on each other.
+csmScenes::Scene Lattice(int n)
+{
+  vtkNew<vtkAppendPolyData> bars;
+  const double t = 0.02;
+  for (int i = 0; i < n; ++i)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      for (int k = 0; k < n; ++k)
+      {
+        const double p[3] = { double(i), double(j) + 0.2, double(k) };
+        for (int axis = 0; axis < 3; ++axis)
+        {
+          if ((axis == 0 ? i : axis == 1 ? j : k) == n - 1)
+          {
+            continue;
+          }
+          vtkNew<vtkCubeSource> bar;
+          double b[6] = { p[0] - t, p[0] + t, p[1] - t, p[1] + t, p[2] - t, p[2] + t };
+          b[2 * axis + 1] += 1.0;
+          bar->SetBounds(b);
+          bar->Update();
+          bars->AddInputData(bar->GetOutput());
+        }
+      }
+    }
+  }
+  vtkNew<vtkCubeSource> plate;
+  plate->SetBounds(-2.0, n + 1.0, -0.05, 0.0, -2.0, n + 1.0);
+  plate->Update();
+  bars->Update();
+  csmScenes::Scene scene;
+  scene.Name = "lattice";
+  for (vtkPolyData* data : { bars->GetOutput(), plate->GetOutput() })
+  {
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(data);
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(mapper);
+    actor->GetProperty()->SetColor(0.8, 0.8, 0.75);
+    scene.Actors.push_back(actor);
+    scene.Triangles += csmScenes::CountTriangles(data);
+  }
+  const double c = 0.5 * (n - 1);
+  const double bounds[6] = { -2.0, n + 1.0, -0.05, n - 0.8, -2.0, n + 1.0 };
+  std::copy(bounds, bounds + 6, scene.Bounds);
+  scene.FocalPoint[0] = c, scene.FocalPoint[1] = 0.5 * c, scene.FocalPoint[2] = c;
+  scene.CameraPosition[0] = c + 1.6 * n, scene.CameraPosition[1] = 0.9 * n;
+  scene.CameraPosition[2] = c + 1.3 * n;
+  return scene;
+}
+
+struct Pose
+{
+  double Eye[3], Focal[3];
+};
+
+/// A path of frames: the close orbit (2 degrees a frame about the vertical through the focal
+/// point) or the dolly (toward the focal point, 1 % of the model's diagonal a frame).
+std::vector<Pose> Path(const csmScenes::Scene& scene, double closeness, bool orbit, int frames)
+{
+  const double* f = scene.FocalPoint;
+  double eye[3];
+  for (int c = 0; c < 3; ++c)
+  {
+    eye[c] = f[c] + closeness * (scene.CameraPosition[c] - f[c]);
+  }
+  const double* b = scene.Bounds;
+  const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
+    (b[5] - b[4]) * (b[5] - b[4]));
+  double toward[3] = { f[0] - eye[0], f[1] - eye[1], f[2] - eye[2] };
+  const double distance = std::sqrt(toward[0] * toward[0] + toward[1] * toward[1] + toward[2] * toward[2]);
+  // (A path that would pass the focal point takes smaller steps.)
+  const double step = std::min(0.01 * diagonal, 0.8 * distance / std::max(frames, 1));
+  std::vector<Pose> poses;
+  for (int i = 0; i < frames; ++i)
+  {
+    Pose p;
+    if (orbit)
+    {
+      const double a = i * 2.0 * M_PI / 180.0;
+      const double x = eye[0] - f[0], z = eye[2] - f[2];
+      p.Eye[0] = f[0] + std::cos(a) * x - std::sin(a) * z;
+      p.Eye[1] = eye[1];
+      p.Eye[2] = f[2] + std::sin(a) * x + std::cos(a) * z;
+      std::copy(f, f + 3, p.Focal);
+    }
+    else
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        p.Eye[c] = eye[c] + i * step * toward[c] / distance;
+        p.Focal[c] = p.Eye[c] + toward[c]; // looking ahead, as far as at the start
+      }
+    }
+    poses.push_back(p);
+  }
+  return poses;
+}
+
+struct Technique
+{
+  std::string Label;
+  csmScenes::ShadowOptions Shadow;
+  double Slack = -1.0; ///< MapSlack (-1: the default)
+  bool ClearPrePass = false;
+  std::vector<double> Ms;
+  double Texels = 0.0, Cells = 0.0;
+  long long MapsRendered = 0, MapsKept = 0, Frames = 0;
+};
+
+double median(std::vector<double> v)
+{
+  if (v.empty())
+  {
+    return NAN;
+  }
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+/// The light of a walk: the scene's key light (or at gammaDeg from the first view's direction),
+/// as a scene light or a camera light (then fixed to the camera, as ParaView's key light is).
+void SetLight(vtkLight* light, vtkCamera* camera, const Pose& first, double gammaDeg, bool cameraLight)
+{
+  double travel[3] = { -0.45, -1.0, -0.35 };
+  if (gammaDeg >= 0.0)
+  {
+    double dir[3] = { first.Focal[0] - first.Eye[0], first.Focal[1] - first.Eye[1],
+      first.Focal[2] - first.Eye[2] };
+    const double l = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    double up[3] = { 0, 1, 0 };
+    const double along = (up[1] * dir[1]) / l;
+    double upOrtho[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      dir[c] /= l;
+      upOrtho[c] = up[c] - along * dir[c];
+    }
+    const double lu = std::sqrt(upOrtho[0] * upOrtho[0] + upOrtho[1] * upOrtho[1] + upOrtho[2] * upOrtho[2]);
+    const double r = gammaDeg * M_PI / 180.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      travel[c] = std::cos(r) * dir[c] - std::sin(r) * upOrtho[c] / lu;
+    }
+  }
+  light->SetPositional(false);
+  light->SetFocalPoint(0, 0, 0);
+  if (!cameraLight)
+  {
+    light->SetLightTypeToSceneLight();
+    light->SetPosition(-travel[0], -travel[1], -travel[2]);
+    return;
+  }
+  // The same direction in the first view's camera coordinates.
+  camera->SetPosition(first.Eye);
+  camera->SetFocalPoint(first.Focal);
+  camera->SetViewUp(0, 1, 0);
+  camera->OrthogonalizeViewUp();
+  vtkMatrix4x4* view = camera->GetViewTransformMatrix();
+  double toward[4] = { -travel[0], -travel[1], -travel[2], 0.0 }, inCamera[4];
+  view->MultiplyPoint(toward, inCamera);
+  light->SetLightTypeToCameraLight();
+  light->SetPosition(inCamera[0], inCamera[1], inCamera[2]);
+}
+
+WalkOptions ParseWalk(int argc, char** argv)
+{
+  WalkOptions o;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string f = argv[i];
+    const bool hasValue = i + 1 < argc;
+    if (f == "--walk")
+      continue;
+    else if (f == "--camera-light")
+      o.CameraLight = true;
+    else if (f == "--per-frame")
+      o.PerFrame = true;
+    else if (f == "--variants")
+      o.Variants = true;
+    else if (f == "--interactive")
+      o.Interactive = true;
+    else if (f == "--slack" && hasValue)
+    {
+      std::stringstream list(argv[++i]);
+      std::string value;
+      while (std::getline(list, value, ','))
+        o.Slacks.push_back(std::atof(value.c_str()));
+    }
+    else if ((f == "--scenes" || f == "--frames" || f == "--rounds" || f == "--out" ||
+               f == "--size") && !hasValue)
+      walkFail(f + " needs a value");
+    else if (f == "--scenes")
+    {
+      o.Scenes.clear();
+      std::stringstream list(argv[++i]);
+      std::string name;
+      while (std::getline(list, name, ','))
+      {
+        if (name != "engine" && name != "towers" && name != "lattice" && name != "platform")
+          walkFail("unknown scene '" + name + "' (engine, towers, lattice, platform)");
+        o.Scenes.push_back(name);
+      }
+    }
+    else if (f == "--frames")
+    {
+      o.Frames = std::atoi(argv[++i]);
+      if (o.Frames < 3 || o.Frames > 1000)
+        walkFail("--frames must be in [3, 1000]");
+    }
+    else if (f == "--rounds")
+    {
+      o.Rounds = std::atoi(argv[++i]);
+      if (o.Rounds < 1 || o.Rounds > 20)
+        walkFail("--rounds must be in [1, 20]");
+    }
+    else if (f == "--size")
+    {
+      if (std::sscanf(argv[++i], "%dx%d", &o.Size[0], &o.Size[1]) != 2 || o.Size[0] < 64 ||
+        o.Size[1] < 64 || o.Size[0] > 4096 || o.Size[1] > 4096)
+        walkFail("--size needs WxH, 64..4096 each");
+    }
+    else if (f == "--out")
+      o.Out = argv[++i];
+    else
+      walkFail("unknown option '" + f + "' for --walk");
+  }
+  const std::string error = csmScenes::CheckOutputFile(o.Out);
+  if (!error.empty())
+    walkFail("--out: " + error);
+  return o;
+}
+} // namespace
+
+int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
+{
+  const WalkOptions o = ParseWalk(argc, argv);
+  std::ofstream csv(o.Out);
+  if (!csv)
+    walkFail("cannot write '" + o.Out + "'");
+  csv << "scene,path,light,label,median_ms,frames,maps_rendered_per_frame,maps_kept_per_frame,"
+         "texels_per_frame,caster_cells_per_frame\n";
+  std::printf("walk: %dx%d, 60 degree view, %d frames a path, %d rounds; %s light\n", o.Size[0],
+    o.Size[1], o.Frames, o.Rounds, o.CameraLight ? "camera" : "scene");
+  for (const std::string& name : o.Scenes)
+  {
+    csmScenes::Scene scene;
+    // How close the walk starts (a share of the default view's distance) and the light.
+    double closeness = 0.4, gamma = -1.0;
+    if (name == "towers")
+    {
+      scene = csmScenes::Towers();
+      closeness = 1.0;
+    }
+    else if (name == "lattice")
+    {
+      scene = Lattice(10);
+      closeness = 0.45;
+      gamma = 15.0;
+    }
+    else if (name == "platform")
+    {
+      scene = csmScenes::Platform(250000);
+    }
+    else
+    {
+      std::string error;
+      if (!csmScenes::FromFile(engineModel, scene, error))
+      {
+        std::fprintf(stderr, "csm-bench --walk: skipping scene engine: %s\n", error.c_str());
+        continue;
+      }
+    }
+    vtkNew<vtkRenderer> renderer;
+    vtkNew<vtkRenderWindow> window;
+    window->SetMultiSamples(0);
+    window->SetOffScreenRendering(1);
+    window->SetSize(o.Size[0], o.Size[1]);
+    window->AddRenderer(renderer);
+    window->SetDesiredUpdateRate(o.Interactive ? 15.0 : 0.0001);
+    csmScenes::Install(scene, renderer, double(o.Size[0]) / o.Size[1]);
+    renderer->AutomaticLightCreationOff();
+    renderer->RemoveAllLights();
+    vtkNew<vtkLight> light;
+    renderer->AddLight(light);
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->SetViewAngle(60.0);
+    std::printf("scene %s: %lld triangles\n", name.c_str(), scene.Triangles);
+    for (const bool orbit : { true, false })
+    {
+      const std::string pathName = orbit ? "orbit" : "dolly";
+      const std::vector<Pose> poses = Path(scene, closeness, orbit, o.Frames);
+      std::vector<Technique> techniques(3);
+      techniques[0].Label = "none";
+      techniques[0].Shadow.Technique = "none";
+      techniques[1].Label = "vtk default";
+      techniques[1].Shadow.Technique = "vtk";
+      techniques[1].Shadow.Resolution = 1024; // vtkShadowMapBakerPass's own default
+      techniques[2].Label = "default";
+      for (double slack : o.Slacks)
+      {
+        techniques.emplace_back();
+        techniques.back().Label = "slack " + std::to_string(slack).substr(0, 4);
+        techniques.back().Slack = slack;
+      }
+      if (o.Variants)
+      {
+        techniques.emplace_back();
+        techniques.back().Label = "depth cleared";
+        techniques.back().ClearPrePass = true;
+        techniques.emplace_back();
+        techniques.back().Label = "boxes fit";
+        techniques.back().Shadow.VisibleDepthFit = false;
+      }
+      for (int round = 0; round < o.Rounds; ++round)
+      {
+        for (Technique& t : techniques)
+        {
+          SetLight(light, camera, poses.front(), gamma, o.CameraLight);
+          const csmScenes::Installed passes = csmScenes::InstallTechnique(renderer, t.Shadow);
+          vtkCascadedShadowMapBakerPass* baker =
+            passes.Cascaded ? passes.Cascaded->GetShadowMapBakerPass() : nullptr;
+          if (baker && t.Slack >= 0.0)
+            baker->SetMapSlack(t.Slack);
+          if (baker)
+            baker->SetKeepPrePassDepth(!t.ClearPrePass);
+          for (int i = -1; i < static_cast<int>(poses.size()); ++i)
+          {
+            const Pose& p = poses[std::max(i, 0)]; // (-1: the first view, not timed)
+            camera->SetPosition(p.Eye);
+            camera->SetFocalPoint(p.Focal);
+            camera->SetViewUp(0, 1, 0);
+            camera->OrthogonalizeViewUp();
+            if (scene.ClippingRange[1] > 0)
+              camera->SetClippingRange(scene.ClippingRange);
+            else
+              renderer->ResetCameraClippingRange();
+            const auto start = std::chrono::steady_clock::now();
+            window->Render();
+            window->WaitForCompletion();
+            const double ms =
+              1000.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (i < 1)
+            {
+              continue; // the first frame of a path builds the shaders and the first maps
+            }
+            t.Ms.push_back(ms);
+            ++t.Frames;
+            if (baker)
+            {
+              t.MapsRendered += baker->GetLastCascadeRenders();
+              t.MapsKept += baker->GetLastCascadesKept();
+              t.Texels += baker->GetLastTexelsRendered();
+              t.Cells += baker->GetLastCellsDrawn();
+              if (o.PerFrame)
+                std::printf("    %s %s frame %d: %.1f ms, maps %d rendered %d kept, %.2f M texels, "
+                            "%.0f k cells, near %.3g\n",
+                  name.c_str(), pathName.c_str(), i, ms, baker->GetLastCascadeRenders(),
+                  baker->GetLastCascadesKept(), 1e-6 * baker->GetLastTexelsRendered(),
+                  1e-3 * baker->GetLastCellsDrawn(),
+                  baker->GetLightMaps().empty() ? 0.0 : baker->GetLightMaps()[0].SplitNear);
+              if (o.PerFrame && !baker->GetLightMaps().empty())
+              {
+                const auto& maps = baker->GetLightMaps()[0];
+                for (int c = 0; c < maps.NumberOfCascades; ++c)
+                  std::printf("      map %d: %dx%d of %dx%d, to depth %.3g%s\n", c,
+                    maps.CascadeResolution[c][0], maps.CascadeResolution[c][1],
+                    maps.Resolution[0], maps.Resolution[1], maps.SplitFar[c],
+                    maps.SceneFitted[c] ? " (scene-fitted)" : "");
+              }
+            }
+          }
+          renderer->SetPass(nullptr);
+        }
+      }
+      const double none = median(techniques[0].Ms), vtk = median(techniques[1].Ms);
+      for (const Technique& t : techniques)
+      {
+        const double frames = std::max<long long>(t.Frames, 1);
+        std::printf("  %-6s %-7s %-12s %7.1f ms  %5.2fx vtk default  %5.2fx unshadowed", name.c_str(),
+          pathName.c_str(), t.Label.c_str(), median(t.Ms), median(t.Ms) / vtk, median(t.Ms) / none);
+        if (t.Shadow.Technique == "csm")
+          std::printf("  maps %.2f rendered %.2f kept, %.2f M texels, %.0f k cells a frame",
+            t.MapsRendered / frames, t.MapsKept / frames, 1e-6 * t.Texels / frames,
+            1e-3 * t.Cells / frames);
+        std::printf("\n");
+        csv << name << "," << pathName << "," << (o.CameraLight ? "camera" : "scene") << ","
+            << t.Label << "," << median(t.Ms) << "," << t.Frames << ","
+            << t.MapsRendered / frames << "," << t.MapsKept / frames << "," << t.Texels / frames
+            << "," << t.Cells / frames << "\n";
+      }
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,12 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// csm-bench --walk: smooth camera paths close to the geometry, every frame a normal render.
+#pragma once
+
+#include <string>
+
+namespace csmWalk
+{
+/// Runs the walk benchmark with csm-bench's arguments (--walk and its options); the engine
+/// model's path comes from the build. Returns the exit status.
+int Run(int argc, char** argv, const std::string& engineModel);
+}
