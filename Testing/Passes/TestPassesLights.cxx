@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The lights: several shadowed lights, PBR, every lighting model VTK's mapper writes, more
+// lights than texture units, and lights with no direction.
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkCascadedShadowMapPass.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "csmTestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace
+{
+using csmTest::BoxOverPlane;
+using csmTest::DarkenedPixels;
+using csmTest::ErrorCounter;
+} // namespace
+
+TEST(Passes, FourDirectionalLightsAndPBR)
+{
+  BoxOverPlane scene;
+  scene.Box->GetProperty()->SetInterpolationToPBR();
+  scene.Ground->GetProperty()->SetInterpolationToPBR();
+  scene.Ground->GetProperty()->SetRoughness(0.6);
+  scene.Light->SetIntensity(0.4);
+  const double positions[3][3] = { { 6, 10, 0 }, { -6, 10, 0 }, { 0, 10, 6 } };
+  for (const auto& p : positions)
+  {
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    light->SetPositional(false);
+    light->SetPosition(p[0], p[1], p[2]);
+    light->SetFocalPoint(0, 0, 0);
+    light->SetIntensity(0.4);
+    scene.Renderer->AddLight(light);
+  }
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  auto shadowed = scene.Render();
+  ASSERT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps().size(), 4u);
+  for (const auto& maps : pass->GetShadowMapBakerPass()->GetLightMaps())
+    EXPECT_GT(maps.NumberOfCascades, 0);
+  // Four shadows of the box, each taking a quarter of the light: many pixels darker.
+  EXPECT_GT(DarkenedPixels(shadowed, plain), 600);
+  // A light whose shadow attenuation is 0 gets no maps.
+  scene.Light->SetShadowAttenuation(0.0f);
+  scene.Render();
+  EXPECT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps().size(), 3u);
+  scene.Light->SetShadowAttenuation(1.0f);
+  // Switching three lights off frees their maps.
+  int off = 0;
+  vtkCollectionSimpleIterator it;
+  scene.Renderer->GetLights()->InitTraversal(it);
+  while (vtkLight* light = scene.Renderer->GetLights()->GetNextLight(it))
+    if (light != scene.Light.Get() && off++ < 3)
+      light->SwitchOff();
+  scene.Render();
+  EXPECT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps().size(), 1u);
+}
+
+// Every lighting model VTK's mapper writes gets the shadow factor of the shadowed light (the
+// pass warns when it cannot find a light's shading lines; here it must not, and the shadow must
+// be there).
+TEST(Passes, EveryInterpolationGetsTheShadowFactor)
+{
+  const int models[] = { VTK_FLAT, VTK_GOURAUD, VTK_PHONG, VTK_PBR };
+  for (int model : models)
+  {
+    for (bool edges : { false, true })
+    {
+      BoxOverPlane scene;
+      scene.Ground->GetProperty()->SetInterpolation(model);
+      scene.Ground->GetProperty()->SetEdgeVisibility(edges);
+      auto plain = scene.Render();
+      vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+      vtkNew<vtkCallbackCommand> onWarning;
+      int warnings = 0;
+      onWarning->SetClientData(&warnings);
+      onWarning->SetCallback(
+        [](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
+      pass->AddObserver(vtkCommand::WarningEvent, onWarning);
+      auto shadowed = scene.Render();
+      EXPECT_EQ(warnings, 0) << "interpolation " << model << (edges ? " with edges" : "");
+      EXPECT_GT(DarkenedPixels(shadowed, plain), 800) // 1155-1158 measured
+        << "interpolation " << model << (edges ? " with edges" : "");
+    }
+  }
+}
+
+// More shadowed lights than the fragment shader has texture units (33 on llvmpipe's 32) would
+// fail to link the shader and every object would disappear. The first lights keep their
+// shadows, the rest are lit without, and one warning says so.
+TEST(Passes, MoreLightsThanTextureUnits)
+{
+  BoxOverPlane scene;
+  for (int i = 0; i < 32; ++i)
+  {
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    light->SetPositional(false);
+    light->SetPosition(0.1 * (i % 8) - 0.4, 10, 0.1 * (i / 8) - 0.2);
+    light->SetFocalPoint(0, 0, 0);
+    light->SetIntensity(0.01);
+    scene.Renderer->AddLight(light);
+  }
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->SetResolution(256);
+  vtkNew<vtkCallbackCommand> countWarnings;
+  int warnings = 0;
+  countWarnings->SetClientData(&warnings);
+  countWarnings->SetCallback([](vtkObject*, unsigned long, void* n, void*) { ++*static_cast<int*>(n); });
+  baker->AddObserver(vtkCommand::WarningEvent, countWarnings);
+  auto shadowed = scene.Render();
+  scene.Renderer->GetActiveCamera()->Azimuth(5);
+  scene.Render();
+  scene.Renderer->GetActiveCamera()->Azimuth(-5);
+  shadowed = scene.Render();
+  const size_t shadowedLights = baker->GetLightMaps().size();
+  EXPECT_GE(shadowedLights, 8u); // 16 units (the least GL 3.2 allows) - 8 for the mapper
+  EXPECT_LT(shadowedLights, 33u);
+  EXPECT_EQ(warnings, 1);
+  // Objects are drawn (box and ground differ from the background) ...
+  auto* scalars = vtkUnsignedCharArray::SafeDownCast(shadowed->GetPointData()->GetScalars());
+  long drawn = 0;
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+    drawn += std::abs(scalars->GetValue(3 * i) - 51) > 3;
+  EXPECT_GT(drawn, 30000);
+  // ... and the first light's shadow is there.
+  EXPECT_GT(DarkenedPixels(shadowed, plain), 800);
+}
+
+TEST(Passes, NaNLightDirectionGivesNoShadowsAndNoGarbage)
+{
+  BoxOverPlane scene;
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  ErrorCounter passErrors(pass), bakerErrors(baker), plannerErrors(baker->GetPlanner());
+  scene.Light->SetPosition(NAN, 10, 0);
+  // Two frames: the bad light is reported once, not on every frame, and gets no cascades.
+  scene.Frame();
+  auto image = scene.Frame();
+  EXPECT_EQ(passErrors.Count + bakerErrors.Count + plannerErrors.Count, 1);
+  EXPECT_EQ(plannerErrors.Count, 1);
+  int cascades = 0;
+  for (const auto& maps : baker->GetLightMaps())
+    cascades += maps.NumberOfCascades;
+  EXPECT_EQ(cascades, 0);
+  scene.Light->SetPosition(0, 10, 0);
+  // A light whose direction is NaN lights nothing the shader can trust; the frame must still be
+  // drawn: the box and the ground differ from the background.
+  auto* scalars = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+  long drawn = 0;
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+    drawn += std::abs(scalars->GetValue(3 * i) - 51) > 3;
+  EXPECT_GT(drawn, 10000);
+}
+
+// One degenerate light beside a good one is reported once, not on every frame.
+TEST(Passes, DegenerateLightIsReportedOnce)
+{
+  BoxOverPlane scene;
+  vtkNew<vtkLight> bad;
+  bad->SetLightTypeToSceneLight();
+  bad->SetPositional(false);
+  bad->SetPosition(1, 1, 1);
+  bad->SetFocalPoint(1, 1, 1); // no direction
+  scene.Renderer->AddLight(bad);
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  // (The cascades that follow the view: a scene-fitted map would serve every view here.)
+  pass->GetShadowMapBakerPass()->SceneFittedCascadesOff();
+  pass->GetShadowMapBakerPass()->SetMapSlack(0.0); // (no map kept across the steps)
+  ErrorCounter errors(pass->GetShadowMapBakerPass()->GetPlanner());
+  for (int frame = 0; frame < 20; ++frame)
+  {
+    scene.Renderer->GetActiveCamera()->Azimuth(2); // a new bake every frame
+    scene.Window->Render();
+  }
+  EXPECT_EQ(pass->GetShadowMapBakerPass()->GetBakeCount(), 20);
+  EXPECT_EQ(errors.Count, 1);
+  ASSERT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps().size(), 2u);
+  EXPECT_GT(pass->GetShadowMapBakerPass()->GetLightMaps()[0].NumberOfCascades, 0);
+}

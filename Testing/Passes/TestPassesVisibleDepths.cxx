@@ -1,0 +1,166 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Cascades fitted to the visible depths (VisibleDepthFit): they begin at the nearest sample of
+// the view, not where the scene's boxes meet it, and something nearer coming into view is
+// shadowed in the frame that first shows it.
+#include "vtkActor.h"
+#include "vtkAppendPolyData.h"
+#include "vtkCamera.h"
+#include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkCascadedShadowMapPass.h"
+#include "vtkCubeSource.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+
+#include "csmTestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace
+{
+using csmTest::BoxOverPlane;
+using csmTest::DarkenedPixels;
+using csmTest::DifferingValues;
+} // namespace
+
+namespace
+{
+/// An actor of a box with the given bounds, in grey.
+vtkSmartPointer<vtkActor> BoxActor(double xmin, double xmax, double ymin, double ymax,
+  double zmin, double zmax)
+{
+  vtkNew<vtkCubeSource> cube;
+  cube->SetBounds(xmin, xmax, ymin, ymax, zmin, zmax);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(cube->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.8, 0.8, 0.8);
+  return actor;
+}
+
+/// The view depths of the window's depth buffer (last frame), rows from the bottom.
+std::vector<double> ViewDepths(vtkRenderWindow* window, vtkCamera* camera)
+{
+  const int* size = window->GetSize();
+  std::vector<float> z(static_cast<size_t>(size[0]) * size[1]);
+  window->GetZbufferData(0, 0, size[0] - 1, size[1] - 1, z.data());
+  double range[2];
+  camera->GetClippingRange(range);
+  std::vector<double> depths;
+  for (float v : z)
+  {
+    const double ndc = 2.0 * v - 1.0;
+    depths.push_back(v < 1.0f
+        ? 2.0 * range[0] * range[1] / ((range[1] + range[0]) - ndc * (range[1] - range[0]))
+        : HUGE_VAL);
+  }
+  return depths;
+}
+
+double NearestSampleDepth(vtkRenderWindow* window, vtkCamera* camera)
+{
+  const std::vector<double> depths = ViewDepths(window, camera);
+  return *std::min_element(depths.begin(), depths.end());
+}
+
+/// The pixels whose sample is nearer than a view depth.
+std::vector<char> NearerThan(vtkRenderWindow* window, vtkCamera* camera, double depth)
+{
+  std::vector<char> mask;
+  for (double d : ViewDepths(window, camera))
+    mask.push_back(d < depth);
+  return mask;
+}
+} // namespace
+
+// The cascades begin at the nearest visible sample, not where the scene's
+// boxes meet the view (here one prop's box holds the camera: a block behind it and the box in
+// front of it are one polydata).
+TEST(Passes, VisibleDepthFitStartsTheCascadesAtTheNearestSample)
+{
+  BoxOverPlane scene;
+  vtkNew<vtkCubeSource> behind, front;
+  behind->SetBounds(-1, 1, 13, 15, 18, 20); // behind the camera at (0, 14, 16)
+  front->SetBounds(-1, 1, 2, 4, -1, 1);
+  vtkNew<vtkAppendPolyData> both;
+  both->AddInputConnection(behind->GetOutputPort());
+  both->AddInputConnection(front->GetOutputPort());
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(both->GetOutputPort());
+  scene.Box->SetMapper(mapper);
+  scene.Renderer->ResetCameraClippingRange();
+  auto plain = scene.Render();
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  const double cameraNear = camera->GetClippingRange()[0];
+
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->SceneFittedCascadesOff(); // (the cascades that follow the view)
+  baker->VisibleDepthFitOff();
+  auto boxes = scene.Frame();
+  const double boxesNear = baker->GetLightMaps()[0].SplitNear;
+  EXPECT_FALSE(baker->GetLastVisibleDepthsUsed());
+  EXPECT_LT(boxesNear, 1.01 * cameraNear); // the box around the two blocks holds the eye
+
+  baker->VisibleDepthFitOn();
+  const int measures = baker->GetVisibleDepthMeasures();
+  auto fitted = scene.Frame(); // measured in the frame it serves
+  EXPECT_TRUE(baker->GetLastVisibleDepthsUsed());
+  EXPECT_EQ(baker->GetVisibleDepthMeasures(), measures + 1);
+  const double nearest = NearestSampleDepth(scene.Window, camera);
+  EXPECT_GT(nearest, 10.0 * cameraNear);
+  EXPECT_NEAR(baker->GetLightMaps()[0].SplitNear, nearest, 0.01 * nearest);
+  EXPECT_LE(baker->GetLightMaps()[0].SplitNear, nearest);
+  // The same shadows (the fitted cascades are finer; a few edge pixels may differ).
+  const long shadowBoxes = DarkenedPixels(boxes, plain);
+  const long shadowFitted = DarkenedPixels(fitted, plain);
+  EXPECT_GT(shadowBoxes, 800);
+  EXPECT_NEAR(shadowFitted, shadowBoxes, 0.02 * shadowBoxes);
+  // The same view again: the depths measured for it serve, with no second depth pass.
+  EXPECT_EQ(DifferingValues(scene.Frame(), fitted), 0);
+  EXPECT_EQ(baker->GetVisibleDepthMeasures(), measures + 1);
+}
+
+// Something nearer put in front of a still camera (a shelf with a cube on it) is measured in the
+// frame that first shows it: the same image as a fresh pass's, the cube's shadow on the shelf
+// included.
+TEST(Passes, SomethingNearerComingIntoViewIsShadowedInThatFrame)
+{
+  BoxOverPlane scene, reference;
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  scene.Frame();
+  scene.Frame();
+  ASSERT_TRUE(baker->GetLastVisibleDepthsUsed());
+  const double fittedNear = baker->GetLightMaps()[0].SplitNear;
+  auto shelf = BoxActor(-2, 2, 7.8, 8, 4, 8);
+  auto cube = BoxActor(-0.5, 0.5, 9, 10, 5.5, 6.5);
+  auto shelfPlain = BoxActor(-2, 2, 7.8, 8, 4, 8);
+  auto cubePlain = BoxActor(-0.5, 0.5, 9, 10, 5.5, 6.5);
+  for (BoxOverPlane* s : { &scene, &reference })
+  {
+    s->Renderer->AddActor(s == &scene ? shelf : shelfPlain);
+    s->Renderer->AddActor(s == &scene ? cube : cubePlain);
+    s->Renderer->ResetCameraClippingRange();
+  }
+  auto plain = reference.Render();
+  vtkCascadedShadowMapPass::UseShadowsOn(reference.Renderer);
+  auto image = scene.Frame();
+  const std::vector<char> nearer = NearerThan(scene.Window, scene.Renderer->GetActiveCamera(), fittedNear);
+  EXPECT_TRUE(baker->GetLastVisibleDepthsUsed());
+  EXPECT_LT(baker->GetLightMaps()[0].SplitNear, 0.8 * fittedNear);
+  auto fresh = reference.Frame();
+  EXPECT_EQ(DifferingValues(image, fresh), 0);
+  // The cube's shadow on the shelf, nearer than the last frame's nearest sample.
+  long shelfPixels = 0;
+  EXPECT_GT(DarkenedPixels(image, plain, &nearer, &shelfPixels), 150);
+  EXPECT_GT(shelfPixels, 2000);
+}
