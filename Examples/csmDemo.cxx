@@ -136,7 +136,7 @@ void usage()
     "  --compact-casters on|off  casters drawn into the maps from compact spatial blocks [%s]\n"
     "  --cull-without-receivers on|off  casters that shadow nothing (a ground under\n"
     "                     everything) left out of the maps [%s]\n"
-    "  --visible-fit on|off  cascades begin at the nearest sample of the last frame [%s]\n"
+    "  --visible-fit on|off  cascades begin at the nearest sample the view shows [%s]\n"
     "  --scene-fitted on|off  the farthest cascade may be a map fixed in the world of what\n"
     "                     can be in shadow, kept while the scene and light stay [%s]\n"
     "  --alpha A          adaptive ratio > 1 [%g]\n"

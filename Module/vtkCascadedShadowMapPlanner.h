@@ -92,9 +92,9 @@ public:
    * pixel) the maps are sized for: each cascade's map gets the fewest texels at which its
    * predicted worst error is at most ErrorTarget (GetCascadeResolution()), and with
    * AdaptiveCascades the number of cascades is one that reaches it. 0: neither (every
-   * map at the ceiling, NumberOfCascades cascades). Default 0.7 (a texel at most 0.7 of a pixel
-   * where the error is largest; 1 until the fifteenth session, whose full bench run met issue
-   * 8's accuracy limits at 0.7 on every scene and VTK's frame time at both).
+   * map at the ceiling, NumberOfCascades cascades). 0..1e6. Default 0.7 (a texel at most 0.7 of
+   * a pixel where the error is largest: against 1, the engine's worst error 0.87 -> 0.69 for at
+   * most 5 % more frame time; Documentation/Results.md, "Error target").
    */
   vtkSetFiniteClampMacro(ErrorTarget, double, 0.0, 1.0e6);
   vtkGetMacro(ErrorTarget, double);
@@ -111,10 +111,8 @@ public:
    * frame's (csm::computeShadowSetupForError; with the adaptive split scheme each count takes
    * Eq. 19's splits or the log splits, whichever predicts the smaller worst error). Needs the
    * image height and the largest map
-   * resolution (see Plan()). Default on: in the seventh session's full `csm-bench` run
-   * (Documentation/Results.md) its path frames took 0.72-1.04x VTK's on every scene (two fixed
-   * cascades: 0.56-0.88x) and it is never less accurate (the platform's worst error 6.1 -> 1.0,
-   * the towers' 31 -> 13).
+   * resolution (see Plan()). Default on: against two fixed cascades, the towers' worst error
+   * 1.27 instead of 31 (Documentation/Results.md, "Cascade count").
    */
   vtkSetMacro(AdaptiveCascades, bool);
   vtkGetMacro(AdaptiveCascades, bool);
@@ -170,7 +168,8 @@ public:
    * leaves it to the application (10-20 m for a first-person game, 500 m and more for flight).
    * A focus below about twice the fitted near depth keeps the capture at the eye (half the map
    * for the first near distances): on the directional bench scenes that misclassified slightly
-   * fewer pixels, but a spot light's map captured from the eye streaks (Results.md). Even a
+   * fewer pixels, but a spot light's map captured from the eye streaks (Documentation/Results.md,
+   * "Face partitions and camera space maps"). Even a
    * capture from afar holds on the middle row a depth short of the fitted far depth (about the
    * middle of the range): a focus beyond the farthest one the map can have in a view (or
    * beyond the fitted range) is clamped to it (csm::kMostPushBack), with one warning per focus.

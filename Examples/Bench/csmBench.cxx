@@ -137,8 +137,7 @@ std::vector<Technique> Techniques(const Options& o)
   };
   add("vtk", "vtk", 0, 0, 1, 1);
   // The pass as a user gets it (every option at the pass's default: up to 8 cascades, as many
-  // as meet the error target), and the same with two fixed cascades (the default before the
-  // sixth session).
+  // as meet the error target), and the same with two fixed cascades.
   auto addDefaults = [&](const std::string& label, int fixedCascades, bool cullClosed = true,
                          bool visibleFit = true) {
     Technique t; // default-constructed ShadowOptions: the pass's defaults

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""csm-demo against damaged and hostile input (issue 9, items 8-11 and 14).
+"""csm-demo against damaged and hostile input.
 
     python3 csmDemoRobustness.py <csm-demo> <temp dir> <case> [osmesa|glx]
 

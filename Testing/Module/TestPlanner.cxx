@@ -132,7 +132,7 @@ TEST(Planner, BadInputGivesNoCascadesAndAMessage)
   vtkObject::GlobalWarningDisplayOn();
 }
 
-// Issue 9 (5): vtkSetClampMacro let NaN through; the planner's Lambda and Alpha took it.
+// vtkSetClampMacro lets NaN through: the planner refuses it for Lambda, Alpha and ErrorTarget.
 TEST(Planner, NonFiniteOptionsAreRefused)
 {
   vtkNew<vtkCascadedShadowMapPlanner> planner;
@@ -156,7 +156,7 @@ TEST(Planner, NonFiniteOptionsAreRefused)
   EXPECT_EQ(errors.Count, 4);
 }
 
-// Issue 9 (12): a degenerate light beside a good one was reported on every plan.
+// A degenerate light beside a good one is reported once, not on every plan.
 TEST(Planner, BadLightIsReportedOncePerChange)
 {
   vtkNew<vtkCamera> camera;
