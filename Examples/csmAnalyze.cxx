@@ -4,8 +4,10 @@
 // With --partition face it prints the face partitions (Lloyd et al. 2006, §5.1) instead: one warped
 // map per side face the light enters, z-partitioned along the face with --cascades K (FP+ZP+W).
 // With --table it prints a speed-against-error table for a CAD-like configuration.
+#include "csmAtlas.h"
+#include "csmCascadeCount.h"
 #include "csmFacePartition.h"
-#include "csmShadowSetup.h"
+#include "csmSetup.h"
 
 #include <glm/geometric.hpp>
 

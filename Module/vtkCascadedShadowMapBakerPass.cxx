@@ -4,7 +4,7 @@
 #include "csmCasterBlocks.h"
 #include "csmClosedSurface.h"
 #include "csmReuse.h"
-#include "csmShadowSetup.h" // the atlas layout
+#include "csmAtlas.h" // the atlas layout
 #include "csmVisibleDepth.h"
 
 #include "vtkActor.h"

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapPass.h"
 
-#include "csmShadowSetup.h" // csm::kAtlasFullMaps
+#include "csmAtlas.h" // csm::kAtlasFullMaps
 
 #include "vtkActor.h"
 #include "vtkAbstractMapper.h"

@@ -1,10 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapPlanner.h"
 
+#include "csmAliasing.h"
+#include "csmAtlas.h"
 #include "csmCameraSpace.h"
+#include "csmCascadeCount.h"
+#include "csmCulling.h"
 #include "csmFacePartition.h"
 #include "csmReuse.h"
-#include "csmShadowSetup.h"
+#include "csmSetup.h"
+#include "csmSpotSetup.h"
 #include "csmVisibleDepth.h"
 
 #include "vtkCamera.h"

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "csmCameraSpace.h"
 
+#include "csmGeometry.h"
+
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/trigonometric.hpp>
@@ -9,7 +11,6 @@
 #include <array>
 #include <cmath>
 #include <functional>
-#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,7 +19,6 @@ namespace csm
 {
 namespace
 {
-constexpr double kInf = std::numeric_limits<double>::infinity();
 /// Below this sine of the angle between the light and the view axis, the light's direction in
 /// the image is undefined: the dueling frustum case (or its mirror, light straight from behind).
 constexpr double kAlongView = 1e-3;

@@ -17,7 +17,7 @@
 // is 1 / w of that ray.
 #pragma once
 
-#include "csmShadowSetup.h"
+#include "csmTypes.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>

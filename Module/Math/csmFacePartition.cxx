@@ -1,22 +1,21 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "csmFacePartition.h"
 
+#include "csmAliasing.h"
 #include "csmConvexBody.h"
+#include "csmGeometry.h"
+#include "csmSetup.h"
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 
 namespace csm
 {
 namespace
 {
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kDegree = kPi / 180.0;
 /// As in computeShadowSetup: beyond n' = kOrthoRatio * (light-space depth of the body) the map
 /// is made orthographic (< 0.2 % in storage, and no cancellation in t = A - B/z').
 constexpr double kOrthoRatio = 1.0e3;

@@ -3,7 +3,7 @@
 // the frustum is split by the planes through the edges of its side faces and the light, each
 // side-face partition gets its own warped shadow map, and the partitions may be z-partitioned
 // along their face (FP+ZP+W, Lloyd et al. 2006, §5.2 "Combining with face partitioning").
-// Pure math (C++17, GLM, double precision): no VTK, no GL. Spaces as in csmShadowSetup.h.
+// Pure math (C++17, GLM, double precision): no VTK, no GL. Spaces as in csmTypes.h.
 //
 // The construction, for a perspective camera:
 //  - The light direction is folded so that it travels away from the viewer (dot with the view
@@ -27,7 +27,7 @@
 //    (ls z = n), or n' before the body where that would be inside it (the stretched near face).
 #pragma once
 
-#include "csmShadowSetup.h"
+#include "csmTypes.h"
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "csmReuse.h"
 
+#include "csmAliasing.h"
+
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 

@@ -3,7 +3,7 @@
 // (maps reused across frames: re-render only what the view needs). Pure math, no VTK, no GL.
 #pragma once
 
-#include "csmShadowSetup.h"
+#include "csmTypes.h"
 
 namespace csm
 {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "csmVisibleDepth.h"
 
+#include "csmGeometry.h"
+
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 

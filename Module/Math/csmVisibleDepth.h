@@ -5,7 +5,7 @@
 // checked against the range the cascades of that frame covered. Pure math, no VTK, no GL.
 #pragma once
 
-#include "csmShadowSetup.h"
+#include "csmTypes.h"
 
 #include <cstddef>
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The per-frame shadow math for one light: body, splits, warp, matrices and error of every
 // cascade. Run: build/Testing/csmMathBenchmark (see README).
-#include "csmShadowSetup.h"
+#include "csmSetup.h"
 
 #include <benchmark/benchmark.h>
 

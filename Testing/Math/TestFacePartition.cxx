@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Face partitioning (Lloyd et al. 2006, §5.1): the partitions tile the view frustum, their storage
 // factors are the maxima of Lloyd's m over them, and Fig. 12's comparison with one warped map.
+#include "csmAliasing.h"
 #include "csmFacePartition.h"
 #include "csmMathTestHelpers.h"
-#include "csmShadowSetup.h"
+#include "csmSetup.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

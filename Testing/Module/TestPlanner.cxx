@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkCascadedShadowMapPlanner: VTK camera and light in, the math's cascades out.
-#include "csmShadowSetup.h"   // csm::resolutionCeilingForCount
+#include "csmAtlas.h"        // csm::resolutionCeilingForCount
+#include "csmCascadeCount.h" // csm::computeShadowSetupForError
 #include "csmTestHelpers.h" // ErrorCounter
 #include "vtkCascadedShadowMapPlanner.h"
 
