@@ -664,16 +664,17 @@ int main(int argc, char** argv)
       times.push_back(1000.0 * timer->GetElapsedTime());
       if (app.Passes.Cascaded)
       {
-        cascadesRendered += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastCascadeRenders();
-        cascadesKept += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastCascadesKept();
-        closedCasters = app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastClosedCasters();
-        compactCasters = app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastCompactCasters();
-        blocksDrawn += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastBlocksDrawn();
+        const auto& stats = app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastFrameStatistics();
+        cascadesRendered += stats.CascadesRendered;
+        cascadesKept += stats.CascadesKept;
+        closedCasters = stats.ClosedCasters;
+        compactCasters = stats.CompactCasters;
+        blocksDrawn += stats.BlocksDrawn;
         withoutReceivers +=
-          app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastCastersWithoutReceivers();
-        texelsRendered += app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastTexelsRendered();
-        planTimes.push_back(1000.0 * app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastPlanSeconds());
-        mapTimes.push_back(1000.0 * app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastMapSeconds());
+          stats.CastersWithoutReceivers;
+        texelsRendered += stats.TexelsRendered;
+        planTimes.push_back(1000.0 * stats.PlanSeconds);
+        mapTimes.push_back(1000.0 * stats.MapSeconds);
       }
     }
     window->SetDesiredUpdateRate(0.0001); // the interactor's still rate

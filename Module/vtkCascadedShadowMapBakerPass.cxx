@@ -9,7 +9,9 @@
 
 #include "vtkActor.h"
 #include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
 #include "vtkCamera.h"
+#include "vtkCascadedShadowBlockMapper.h"
 #include "vtkCascadedShadowCasterPass.h"
 #include "vtkCascadedShadowMapPlanner.h"
 #include "vtkInformation.h"
@@ -43,6 +45,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <future>
+#include <limits>
+#include <memory>
 #include <sstream>
 
 vtkStandardNewMacro(vtkCascadedShadowMapBakerPass);
@@ -250,7 +255,7 @@ void vtkCascadedShadowMapBakerPass::CombineAcrossProcesses(vtkTextureObject* atl
   glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, static_cast<GLsizei>(atlas->GetWidth()),
     static_cast<GLsizei>(atlas->GetHeight()), GL_DEPTH_COMPONENT, GL_FLOAT, global.data());
   atlas->Deactivate();
-  this->LastCombineSeconds +=
+  this->Statistics.CombineSeconds +=
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -503,14 +508,45 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
     {
       continue;
     }
-    if (!this->CasterHasReceivers(props, caster, maps))
+    if (caster.Compact >= 0)
     {
-      ++this->LastCastersWithoutReceivers;
+      // Only its blocks that reach the cascade and may shadow something in it.
+      const FrameProps::Compact& compact = props.Compacts[static_cast<size_t>(caster.Compact)];
+      std::vector<size_t> blocks;
+      FrameProps::Caster block = caster;
+      for (size_t k = 0; k < compact.Bounds.size(); ++k)
+      {
+        block.Bounds = compact.Bounds[k];
+        if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
+              maps.WorldToMap[c], block.Bounds.data(), depthClamp))
+        {
+          continue;
+        }
+        if (!this->CasterHasReceivers(props, block, maps))
+        {
+          ++this->Statistics.CastersWithoutReceivers;
+          continue;
+        }
+        blocks.push_back(k);
+        this->Statistics.CellsDrawn += compact.Cells[k];
+      }
+      if (blocks.empty())
+      {
+        continue;
+      }
+      compact.Mapper->SetDrawnBlocks(blocks);
+      this->Statistics.BlocksDrawn += static_cast<int>(blocks.size());
+    }
+    else if (!this->CasterHasReceivers(props, caster, maps))
+    {
+      ++this->Statistics.CastersWithoutReceivers;
       continue;
     }
+    else
+    {
+      this->Statistics.CellsDrawn += casterCells(caster.Prop);
+    }
     drawn.push_back(caster.Prop);
-    this->LastBlocksDrawn += caster.Block ? 1 : 0;
-    this->LastCellsDrawn += casterCells(caster.Prop);
     const int outward =
       std::isfinite(mapDeterminant) ? caster.Closure * (mapDeterminant < 0.0 ? 1 : -1) : 0;
     if (outward != 0)
@@ -518,9 +554,9 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
       cullFaces[caster.Prop] = outward > 0 ? GL_FRONT : GL_BACK;
     }
   }
-  ++this->LastCascadeRenders;
-  this->LastTexelsRendered += double(w) * double(h);
-  this->LastPropsDrawn += static_cast<int>(drawn.size());
+  ++this->Statistics.CascadesRendered;
+  this->Statistics.TexelsRendered += double(w) * double(h);
+  this->Statistics.PropsDrawn += static_cast<int>(drawn.size());
   if (drawn.empty())
   {
     return;
@@ -586,21 +622,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   const auto planStart = Clock::now();
   this->LastRenderer = renderer;
   RendererMaps& state = this->MapsOf(renderer, window);
-  this->LastCombineSeconds = 0.0;
-  this->LastPlanSeconds = 0.0;
-  this->LastMapSeconds = 0.0;
-  this->LastClearSeconds = 0.0;
-  std::fill(this->LastCascadeSeconds, this->LastCascadeSeconds + kMaxCascades, 0.0);
-  this->LastCascadeRenders = 0;
-  this->LastCascadesKept = 0;
-  this->LastPropsDrawn = 0;
-  this->LastTexelsRendered = 0.0;
-  this->LastClosedCasters = 0;
-  this->LastCompactCasters = 0;
-  this->LastBlocksDrawn = 0;
-  this->LastCellsDrawn = 0.0;
-  this->LastCastersWithoutReceivers = 0;
-  this->LastVisibleDepthsUsed = false;
+  this->Statistics = FrameStatistics();
 
   // 1. The props: casters, receivers, scene bounds (across processes when distributed).
   FrameProps props;
@@ -615,10 +637,10 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   std::vector<LightMaps> planned;
   std::vector<int> render; // per light slot and cascade: 1 render, 0 keep
   this->PlanLights(renderer, window, state, props, planned, render);
-  this->LastVisibleDepthsUsed = state.VisibleDepthsUsed;
+  this->Statistics.VisibleDepthsUsed = state.VisibleDepthsUsed;
   if (this->MeasureTimes)
   {
-    this->LastPlanSeconds = std::chrono::duration<double>(Clock::now() - planStart).count();
+    this->Statistics.PlanSeconds = std::chrono::duration<double>(Clock::now() - planStart).count();
   }
   if (planned.empty())
   {
@@ -635,9 +657,9 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   if (this->MeasureTimes)
   {
     glFinish();
-    this->LastMapSeconds = std::chrono::duration<double>(Clock::now() - mapStart).count();
+    this->Statistics.MapSeconds = std::chrono::duration<double>(Clock::now() - mapStart).count();
   }
-  if (this->LastCascadeRenders > 0)
+  if (this->Statistics.CascadesRendered > 0)
   {
     ++this->BakeCount;
   }
@@ -749,11 +771,26 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(
   std::vector<vtkProp*> drawn;
   for (const FrameProps::Caster& caster : props.Casters)
   {
-    if (vtkCascadedShadowMapPlanner::CascadeReachesBox(
+    if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
           worldToClip->GetData(), caster.Bounds.data(), false))
     {
-      drawn.push_back(caster.Prop);
+      continue;
     }
+    if (caster.Compact >= 0)
+    {
+      const FrameProps::Compact& compact = props.Compacts[static_cast<size_t>(caster.Compact)];
+      std::vector<size_t> blocks;
+      for (size_t k = 0; k < compact.Bounds.size(); ++k)
+      {
+        if (vtkCascadedShadowMapPlanner::CascadeReachesBox(
+              worldToClip->GetData(), compact.Bounds[k].data(), false))
+        {
+          blocks.push_back(k);
+        }
+      }
+      compact.Mapper->SetDrawnBlocks(blocks);
+    }
+    drawn.push_back(caster.Prop);
   }
   vtkOpenGLState* ostate = window->GetState();
   vtkOpenGLState::ScopedglDepthMask savedDepthMask(ostate);
@@ -828,12 +865,9 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
   for (auto it = this->Blocks.begin(); it != this->Blocks.end();)
   {
     const bool gone = !it->second.Window || !it->second.Data;
-    if (gone && it->second.Window == window)
+    if (gone && it->second.Window == window && it->second.Mapper)
     {
-      for (auto& mapper : it->second.Mappers)
-      {
-        mapper->ReleaseGraphicsResources(window);
-      }
+      it->second.Mapper->ReleaseGraphicsResources(window);
     }
     it = gone ? this->Blocks.erase(it) : std::next(it);
   }
@@ -854,28 +888,43 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
       if (prop->HasOpaqueGeometry())
       {
         const int closure = this->ClosureOf(prop);
-        this->LastClosedCasters += closure != 0 ? 1 : 0;
+        this->Statistics.ClosedCasters += closure != 0 ? 1 : 0;
         const size_t first = props.Casters.size();
         if (this->CompactCasters &&
           this->AddCompactCaster(prop, closure,
             static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow()), props))
         {
-          ++this->LastCompactCasters;
+          ++this->Statistics.CompactCasters;
         }
         else
         {
-          props.Casters.push_back({ prop, b, closure, false });
+          FrameProps::Caster caster;
+          caster.Prop = prop;
+          caster.Bounds = b;
+          caster.Closure = closure;
+          props.Casters.push_back(caster);
         }
         const bool itself = this->ShadowsItself(prop);
         for (size_t i = first; i < props.Casters.size(); ++i)
         {
-          const FrameProps::Caster& caster = props.Casters[i];
-          props.Casters[i].ShadowsItself = itself;
-          props.Casters[i].Receiver = static_cast<int>(props.Receivers.size()) - 1;
+          FrameProps::Caster& caster = props.Casters[i];
+          caster.ShadowsItself = itself;
+          caster.Receiver = static_cast<int>(props.Receivers.size()) - 1;
           float sizes[2];
           vtkCascadedShadowMapBakerPass::GetScreenSizes(caster.Prop, sizes);
-          props.CasterLoads.push_back({ caster.Bounds, casterCells(caster.Prop),
-            caster.Receiver, itself, sizes[0] > 1.0f || sizes[1] > 1.0f });
+          const bool screenSized = sizes[0] > 1.0f || sizes[1] > 1.0f;
+          if (caster.Compact < 0)
+          {
+            props.CasterLoads.push_back(
+              { caster.Bounds, casterCells(caster.Prop), caster.Receiver, itself, screenSized });
+            continue;
+          }
+          const FrameProps::Compact& compact = props.Compacts[static_cast<size_t>(caster.Compact)];
+          for (size_t k = 0; k < compact.Bounds.size(); ++k)
+          {
+            props.CasterLoads.push_back(
+              { compact.Bounds[k], compact.Cells[k], caster.Receiver, itself, screenSized });
+          }
         }
       }
     }
@@ -885,9 +934,145 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
 namespace
 {
 /// The positions and the triangles of a polydata's polygons (fans) and strips (false: no points).
+/// Calls f(a, b, c) for every triangle of a polydata's polygons (fans) and strips, wound as
+/// drawn; safe beside the main thread's own reading (each traversal has its own iterator).
+template <typename F>
+void forEachTriangle(vtkPolyData* data, F&& f)
+{
+  vtkIdType n;
+  const vtkIdType* ids;
+  auto polys = vtk::TakeSmartPointer(data->GetPolys()->NewIterator());
+  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
+  {
+    polys->GetCurrentCell(n, ids);
+    for (vtkIdType k = 2; k < n; ++k)
+    {
+      f(ids[0], ids[k - 1], ids[k]);
+    }
+  }
+  auto strips = vtk::TakeSmartPointer(data->GetStrips()->NewIterator());
+  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
+  {
+    strips->GetCurrentCell(n, ids);
+    for (vtkIdType k = 2; k < n; ++k)
+    {
+      // Every other triangle of a strip is wound the other way round.
+      if (k % 2 == 0)
+      {
+        f(ids[k - 2], ids[k - 1], ids[k]);
+      }
+      else
+      {
+        f(ids[k - 1], ids[k - 2], ids[k]);
+      }
+    }
+  }
+}
+
+/// Triangles of a polydata (polygons as fans, strips) without traversing them.
+double triangleCount(vtkPolyData* data)
+{
+  const double polys = static_cast<double>(data->GetPolys()->GetNumberOfConnectivityIds()) -
+    2.0 * static_cast<double>(data->GetPolys()->GetNumberOfCells());
+  const double strips = static_cast<double>(data->GetStrips()->GetNumberOfConnectivityIds()) -
+    2.0 * static_cast<double>(data->GetStrips()->GetNumberOfCells());
+  return std::max(0.0, polys) + std::max(0.0, strips);
+}
+
+/// A big caster's triangles in compact blocks (csm::orderIntoBlocks), for
+/// vtkCascadedShadowBlockMapper: the corners block after block, each block's triangles and its
+/// box in the data's coordinates. Empty where the mesh has no usable triangle.
+} // namespace
+
+struct csmPreparedBlocks
+{
+  std::vector<std::uint32_t> Corners;
+  std::vector<std::pair<std::size_t, std::size_t>> Blocks;
+  std::vector<std::array<double, 6>> Bounds;
+};
+
+struct csmPreparedClosure
+{
+  csm::SurfaceClosure Closure;
+};
+
+namespace
+{
+std::shared_ptr<csmPreparedBlocks> prepareBlocks(vtkSmartPointer<vtkPolyData> data, std::size_t perBlock)
+{
+  auto result = std::make_shared<csmPreparedBlocks>();
+  vtkPoints* points = data->GetPoints();
+  const vtkIdType pointCount = points ? points->GetNumberOfPoints() : 0;
+  if (pointCount == 0 || pointCount > static_cast<vtkIdType>(std::numeric_limits<std::uint32_t>::max()))
+  {
+    return result;
+  }
+  std::vector<std::uint32_t> corners;
+  std::vector<glm::vec3> centroids;
+  corners.reserve(3 * static_cast<size_t>(triangleCount(data)));
+  centroids.reserve(static_cast<size_t>(triangleCount(data)));
+  bool valid = true;
+  forEachTriangle(data, [&](vtkIdType a, vtkIdType b, vtkIdType c) {
+    if (a < 0 || b < 0 || c < 0 || a >= pointCount || b >= pointCount || c >= pointCount)
+    {
+      valid = false;
+      return;
+    }
+    if (a == b || b == c || c == a)
+    {
+      return; // covers no texel
+    }
+    double pa[3], pb[3], pc[3];
+    points->GetPoint(a, pa);
+    points->GetPoint(b, pb);
+    points->GetPoint(c, pc);
+    corners.insert(corners.end(),
+      { static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c) });
+    centroids.emplace_back(static_cast<float>((pa[0] + pb[0] + pc[0]) / 3.0),
+      static_cast<float>((pa[1] + pb[1] + pc[1]) / 3.0), static_cast<float>((pa[2] + pb[2] + pc[2]) / 3.0));
+  });
+  if (!valid || centroids.empty())
+  {
+    return result;
+  }
+  csm::BlockOrder order = csm::orderIntoBlocks(centroids, perBlock);
+  std::vector<glm::vec3>().swap(centroids);
+  if (order.blocks.empty())
+  {
+    return result;
+  }
+  result->Corners.resize(corners.size());
+  for (size_t i = 0; i < order.order.size(); ++i)
+  {
+    std::copy_n(corners.begin() + 3 * static_cast<std::ptrdiff_t>(order.order[i]), 3,
+      result->Corners.begin() + 3 * static_cast<std::ptrdiff_t>(i));
+  }
+  std::vector<std::uint32_t>().swap(corners);
+  std::vector<std::uint32_t>().swap(order.order);
+  result->Blocks = std::move(order.blocks);
+  for (const auto& [first, count] : result->Blocks)
+  {
+    std::array<double, 6> box = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX,
+      -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    for (size_t i = 3 * first; i < 3 * (first + count); ++i)
+    {
+      double p[3];
+      points->GetPoint(result->Corners[i], p);
+      for (int k = 0; k < 3; ++k)
+      {
+        box[2 * k] = std::min(box[2 * k], p[k]);
+        box[2 * k + 1] = std::max(box[2 * k + 1], p[k]);
+      }
+    }
+    result->Bounds.push_back(box);
+  }
+  return result;
+}
+
 bool trianglesOf(vtkPolyData* data, std::vector<glm::dvec3>& positions,
   std::vector<std::array<std::int64_t, 3>>& triangles)
 {
+  // (Cell iterators and GetPoint into a buffer: safe beside the main thread's own reading.)
   vtkPoints* points = data->GetPoints();
   if (!points || points->GetNumberOfPoints() == 0)
   {
@@ -901,27 +1086,9 @@ bool trianglesOf(vtkPolyData* data, std::vector<glm::dvec3>& positions,
     positions[static_cast<size_t>(i)] = glm::dvec3(p[0], p[1], p[2]);
   }
   triangles.clear();
-  triangles.reserve(static_cast<size_t>(data->GetPolys()->GetNumberOfConnectivityIds()));
-  vtkIdType n;
-  const vtkIdType* ids;
-  vtkCellArray* polys = data->GetPolys();
-  for (polys->InitTraversal(); polys->GetNextCell(n, ids);)
-  {
-    for (vtkIdType k = 2; k < n; ++k)
-    {
-      triangles.push_back({ ids[0], ids[k - 1], ids[k] });
-    }
-  }
-  vtkCellArray* strips = data->GetStrips();
-  for (strips->InitTraversal(); strips->GetNextCell(n, ids);)
-  {
-    for (vtkIdType k = 2; k < n; ++k)
-    {
-      // Every other triangle of a strip is wound the other way round.
-      triangles.push_back(k % 2 == 0 ? std::array<std::int64_t, 3>{ ids[k - 2], ids[k - 1], ids[k] }
-                                     : std::array<std::int64_t, 3>{ ids[k - 1], ids[k - 2], ids[k] });
-    }
-  }
+  forEachTriangle(data, [&triangles](vtkIdType a, vtkIdType b, vtkIdType c) {
+    triangles.push_back({ a, b, c });
+  });
   return true;
 }
 
@@ -954,45 +1121,58 @@ vtkPolyData* compactableData(vtkProp* prop)
   return data;
 }
 
-/// A block's polydata: its corners (the input's point type, so that the mapper's shift and scale
-/// keep far-from-origin coordinates exact) and its triangles.
-vtkSmartPointer<vtkPolyData> blockPolyData(vtkPoints* input, const csm::CasterBlock& block)
-{
-  vtkNew<vtkPoints> points;
-  points->SetDataType(input->GetDataType());
-  points->SetNumberOfPoints(static_cast<vtkIdType>(block.points.size()));
-  for (size_t i = 0; i < block.points.size(); ++i)
-  {
-    points->SetPoint(static_cast<vtkIdType>(i), input->GetPoint(static_cast<vtkIdType>(block.points[i])));
-  }
-  vtkNew<vtkCellArray> polys;
-  polys->AllocateExact(static_cast<vtkIdType>(block.triangles.size()),
-    3 * static_cast<vtkIdType>(block.triangles.size()));
-  for (const auto& t : block.triangles)
-  {
-    const vtkIdType ids[3] = { t[0], t[1], t[2] };
-    polys->InsertNextCell(3, ids);
-  }
-  auto data = vtkSmartPointer<vtkPolyData>::New();
-  data->SetPoints(points);
-  data->SetPolys(polys);
-  return data;
-}
 }
 
 const vtkCascadedShadowMapBakerPass::Closure& vtkCascadedShadowMapBakerPass::ClassifiedShape(
   vtkPolyData* data)
 {
   Closure& closure = this->Closures[data];
-  if (closure.Data != data || closure.Time != data->GetMTime())
+  if (closure.Data == data && closure.Time == data->GetMTime())
   {
-    const csm::SurfaceClosure c = classifyPolyData(data);
-    closure.Data = data;
-    closure.Time = data->GetMTime();
-    closure.Orientation = c.closed && c.volume != 0.0 ? (c.volume > 0.0 ? 1 : -1) : 0;
-    closure.Planar = c.planar;
-    closure.ShadowsItself = c.canShadowItself();
+    return closure;
   }
+  closure.Data = data;
+  // Until it is classified, a shape counts as open (drawn with both sides, its full bias) and
+  // as one that may shadow itself: correct, only without the savings of a closed one.
+  closure.Orientation = 0;
+  closure.Planar = false;
+  closure.ShadowsItself = true;
+  const double triangles = triangleCount(data);
+  if (triangles > MOST_CLASSIFIED_TRIANGLES)
+  {
+    closure.Time = data->GetMTime(); // not classified: what it costs outweighs what it saves
+    return closure;
+  }
+  csm::SurfaceClosure c;
+  if (triangles <= SYNCHRONOUS_PREPARATION_TRIANGLES)
+  {
+    c = classifyPolyData(data);
+  }
+  else
+  {
+    // A big mesh is classified by a worker thread; frames go on meanwhile.
+    if (!closure.Pending.valid() || closure.PendingTime != data->GetMTime())
+    {
+      auto copy = vtkSmartPointer<vtkPolyData>::New();
+      copy->ShallowCopy(data);
+      closure.PendingTime = data->GetMTime();
+      closure.Pending = std::async(std::launch::async, [copy]() {
+        auto prepared = std::make_shared<csmPreparedClosure>();
+        prepared->Closure = classifyPolyData(copy);
+        return prepared;
+      });
+      return closure;
+    }
+    if (closure.Pending.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    {
+      return closure;
+    }
+    c = closure.Pending.get()->Closure;
+  }
+  closure.Time = data->GetMTime();
+  closure.Orientation = c.closed && c.volume != 0.0 ? (c.volume > 0.0 ? 1 : -1) : 0;
+  closure.Planar = c.planar;
+  closure.ShadowsItself = c.canShadowItself();
   return closure;
 }
 
@@ -1074,43 +1254,71 @@ bool vtkCascadedShadowMapBakerPass::AddCompactCaster(
   {
     return false;
   }
-  // The data's blocks in this window, built again when the data changed.
+  // The data's blocks in this window, prepared again when the data changed: a small mesh at
+  // once, a big one by a worker thread while the frames draw the prop as it is (correct, only
+  // without culling inside it) until the blocks are ready.
   CasterBlocks& blocks = this->Blocks[{ window, data }];
-  if (blocks.Data != data || blocks.Window != window || blocks.Time != data->GetMTime())
+  const vtkMTimeType dataTime = data->GetMTime();
+  const bool current = blocks.Data == data && blocks.Window == window && blocks.Time == dataTime &&
+    blocks.Mapper && blocks.Mapper->HasTriangles();
+  if (!current)
   {
-    for (auto& mapper : blocks.Mappers)
+    if (!blocks.Pending.valid() || blocks.PendingTime != dataTime || blocks.Data != data ||
+      blocks.Window != window)
     {
-      mapper->ReleaseGraphicsResources(window);
-    }
-    blocks.Mappers.clear();
-    blocks.Bounds.clear();
-    blocks.Window = window;
-    blocks.Data = data;
-    blocks.Time = data->GetMTime();
-    blocks.Build = ++this->BlockBuilds;
-    std::vector<glm::dvec3> positions;
-    std::vector<std::array<std::int64_t, 3>> triangles;
-    if (trianglesOf(data, positions, triangles))
-    {
+      auto copy = vtkSmartPointer<vtkPolyData>::New();
+      copy->ShallowCopy(data); // the prop's own points and cells, held while prepared
+      const size_t triangles = static_cast<size_t>(triangleCount(data));
       const size_t perBlock = std::max<size_t>(MINIMUM_BLOCK_TRIANGLES,
-        (triangles.size() + MAXIMUM_BLOCKS - 1) / MAXIMUM_BLOCKS);
-      for (const csm::CasterBlock& block : csm::splitIntoBlocks(positions, triangles, perBlock))
+        (triangles + MAXIMUM_BLOCKS - 1) / MAXIMUM_BLOCKS);
+      const bool now = triangles <= SYNCHRONOUS_PREPARATION_TRIANGLES;
+      blocks.Window = window;
+      blocks.Data = data;
+      blocks.PendingTime = dataTime;
+      blocks.Pending = std::async(now ? std::launch::deferred : std::launch::async,
+        [copy, perBlock]() { return prepareBlocks(copy, perBlock); });
+      if (!now)
       {
-        auto mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
-        mapper->SetInputData(blockPolyData(data->GetPoints(), block));
-        mapper->ScalarVisibilityOff();
-        mapper->StaticOn(); // its input is ours and does not change
-        blocks.Mappers.push_back(mapper);
-        blocks.Bounds.push_back({ block.lower.x, block.upper.x, block.lower.y, block.upper.y,
-          block.lower.z, block.upper.z });
+        return false; // (picked up in a later frame, whenever it is ready)
       }
     }
+    if (blocks.Pending.wait_for(std::chrono::seconds(0)) == std::future_status::timeout)
+    {
+      return false;
+    }
+    std::shared_ptr<csmPreparedBlocks> prepared = blocks.Pending.get();
+    if (blocks.Mapper)
+    {
+      blocks.Mapper->ReleaseGraphicsResources(window);
+    }
+    blocks.Mapper = nullptr;
+    blocks.Bounds.clear();
+    blocks.Cells.clear();
+    blocks.Time = dataTime;
+    blocks.Build = ++this->BlockBuilds;
+    if (prepared->Blocks.empty())
+    {
+      return false; // nothing usable (no area, a bad index or position): drawn as it is
+    }
+    // The prop's own points (the vertex buffer its mapper uploads serves both, through the
+    // window's buffer cache), the blocks' triangles.
+    auto input = vtkSmartPointer<vtkPolyData>::New();
+    input->SetPoints(data->GetPoints());
+    blocks.Mapper = vtkSmartPointer<vtkCascadedShadowBlockMapper>::New();
+    blocks.Mapper->SetInputData(input);
+    blocks.Mapper->ScalarVisibilityOff();
+    for (const auto& block : prepared->Blocks)
+    {
+      blocks.Cells.push_back(static_cast<double>(block.second));
+    }
+    blocks.Bounds = std::move(prepared->Bounds);
+    blocks.Mapper->SetBlocks(std::move(prepared->Corners), std::move(prepared->Blocks));
   }
-  if (blocks.Mappers.empty())
+  if (!blocks.Mapper)
   {
-    return false; // nothing usable (no area, a bad index or position): drawn as it is
+    return false;
   }
-  // The prop's actors for those blocks: its property, a copy of its matrix.
+  // The prop's actor for its blocks: its property, a copy of its matrix.
   vtkActor* actor = vtkActor::SafeDownCast(prop);
   CasterProxy& proxy = this->Proxies[{ window, prop }];
   if (proxy.Prop != prop || proxy.Window != window || proxy.Data != data ||
@@ -1121,28 +1329,24 @@ bool vtkCascadedShadowMapBakerPass::AddCompactCaster(
     proxy.Data = data;
     proxy.Build = blocks.Build;
     proxy.Matrix = vtkSmartPointer<vtkMatrix4x4>::New();
-    proxy.Actors.clear();
-    for (auto& mapper : blocks.Mappers)
-    {
-      auto blockActor = vtkSmartPointer<vtkActor>::New();
-      blockActor->SetMapper(mapper);
-      blockActor->SetUserMatrix(proxy.Matrix);
-      proxy.Actors.push_back(blockActor);
-    }
+    proxy.Actor = vtkSmartPointer<vtkActor>::New();
+    proxy.Actor->SetMapper(blocks.Mapper);
+    proxy.Actor->SetUserMatrix(proxy.Matrix);
   }
   vtkMatrix4x4* matrix = actor->GetMatrix();
   if (!std::equal(matrix->GetData(), matrix->GetData() + 16, proxy.Matrix->GetData()))
   {
     proxy.Matrix->DeepCopy(matrix);
   }
-  std::vector<FrameProps::Caster> added;
-  for (size_t i = 0; i < proxy.Actors.size(); ++i)
+  proxy.Actor->SetProperty(actor->GetProperty());
+  FrameProps::Compact compact;
+  compact.Mapper = blocks.Mapper;
+  compact.Cells = blocks.Cells;
+  for (const std::array<double, 6>& local : blocks.Bounds)
   {
-    proxy.Actors[i]->SetProperty(actor->GetProperty());
     // The block's box in world space: the box of its corners' images.
     std::array<double, 6> world = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX,
       -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-    const std::array<double, 6>& local = blocks.Bounds[i];
     for (int corner = 0; corner < 8; ++corner)
     {
       const double p[4] = { local[corner & 1], local[2 + ((corner >> 1) & 1)],
@@ -1160,9 +1364,24 @@ bool vtkCascadedShadowMapBakerPass::AddCompactCaster(
     {
       return false; // a matrix that sends a corner to infinity: the prop is drawn as it is
     }
-    added.push_back({ proxy.Actors[i], world, closure, true });
+    compact.Bounds.push_back(world);
   }
-  props.Casters.insert(props.Casters.end(), added.begin(), added.end());
+  std::array<double, 6> whole = compact.Bounds.front();
+  for (const auto& box : compact.Bounds)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      whole[2 * k] = std::min(whole[2 * k], box[2 * k]);
+      whole[2 * k + 1] = std::max(whole[2 * k + 1], box[2 * k + 1]);
+    }
+  }
+  FrameProps::Caster caster;
+  caster.Prop = proxy.Actor;
+  caster.Bounds = whole;
+  caster.Closure = closure;
+  caster.Compact = static_cast<int>(props.Compacts.size());
+  props.Compacts.push_back(std::move(compact));
+  props.Casters.push_back(caster);
   return true;
 }
 
@@ -1526,7 +1745,7 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
       renderCascade[c] = renderCascade[c] || reallocated;
       any = any || renderCascade[c];
     }
-    this->LastCascadesKept += maps.NumberOfCascades;
+    this->Statistics.CascadesKept += maps.NumberOfCascades;
     if (!any)
     {
       continue;
@@ -1569,7 +1788,7 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
     this->ClearTiles(ostate, maps, renderCascade);
     if (this->MeasureTimes && slot == 0)
     {
-      lap(this->LastClearSeconds);
+      lap(this->Statistics.ClearSeconds);
     }
     ostate->vtkglEnable(GL_SCISSOR_TEST);
     glEnable(GL_PROGRAM_POINT_SIZE); // points sized as the main view draws them
@@ -1577,14 +1796,14 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
     {
       if (renderCascade[c])
       {
-        --this->LastCascadesKept;
+        --this->Statistics.CascadesKept;
         this->RenderCascade(renderer, state.FrameBuffer, maps, c, props, depthClamp);
         // Hand the map to the GL while the next one is set up: a software rasterizer fills
         // this one on its threads while this thread transforms and bins the next one's casters.
         glFlush();
         if (this->MeasureTimes && slot == 0)
         {
-          lap(this->LastCascadeSeconds[c]);
+          lap(this->Statistics.CascadeSeconds[c]);
         }
       }
     }
@@ -1648,9 +1867,10 @@ void vtkCascadedShadowMapBakerPass::ReleaseGraphicsResources(vtkWindow* w)
       ++it;
       continue;
     }
-    for (auto& mapper : it->second.Mappers)
+    vtkWindow* context = w ? w : it->second.Window.GetPointer();
+    if (it->second.Mapper && context)
     {
-      mapper->ReleaseGraphicsResources(w ? w : it->second.Window.GetPointer());
+      it->second.Mapper->ReleaseGraphicsResources(context);
     }
     it = this->Blocks.erase(it);
   }

@@ -39,6 +39,8 @@
 #include "vtkWeakPointer.h"                    // for members
 
 #include <array>  // for members
+#include <future> // for members
+#include <memory> // for members
 #include <map>    // for members
 #include <set>    // for members
 #include <string> // for members
@@ -46,6 +48,9 @@
 
 class vtkActor;
 class vtkCamera;
+class vtkCascadedShadowBlockMapper;
+struct csmPreparedBlocks;  // a big caster's blocks, prepared by a worker thread
+struct csmPreparedClosure; // a big caster's closed-surface classification, likewise
 class vtkCascadedShadowCasterPass;
 class vtkLight;
 class vtkMatrix4x4;
@@ -221,13 +226,6 @@ public:
   vtkBooleanMacro(CullCastersWithoutReceivers, bool);
   ///@}
 
-  ///@{
-  /// For tests and benchmarks: casters drawn with their exit layer only in the last Render(),
-  /// and the casters left out of a rendered cascade because they shadow nothing there (all
-  /// rendered cascades together).
-  vtkGetMacro(LastClosedCasters, int);
-  vtkGetMacro(LastCastersWithoutReceivers, int);
-  ///@}
 
   ///@{
   /**
@@ -246,16 +244,13 @@ public:
   vtkBooleanMacro(CompactCasters, bool);
   static constexpr int MINIMUM_BLOCK_TRIANGLES = 16384;
   static constexpr int MAXIMUM_BLOCKS = 64;
+  /// Meshes of more triangles are prepared (blocks, closed-surface classification) by a worker
+  /// thread while the frames draw them as they are; meshes of more than MOST_CLASSIFIED_TRIANGLES
+  /// are not classified (drawn into the maps with both sides).
+  static constexpr int SYNCHRONOUS_PREPARATION_TRIANGLES = 262144;
+  static constexpr int MOST_CLASSIFIED_TRIANGLES = 4194304;
   ///@}
 
-  ///@{
-  /// For tests and benchmarks: casters drawn from compact blocks in the last Render(), and the
-  /// blocks drawn into its rendered cascades (all cascades together).
-  vtkGetMacro(LastCompactCasters, int);
-  vtkGetMacro(LastBlocksDrawn, int);
-  /// Cells of the casters' data drawn into the rendered cascades (all cascades together).
-  vtkGetMacro(LastCellsDrawn, double);
-  ///@}
 
   ///@{
   /**
@@ -282,9 +277,8 @@ public:
   vtkSetMacro(KeepPrePassDepth, bool);
   vtkGetMacro(KeepPrePassDepth, bool);
 
-  /// For tests and benchmarks: did the last Render() fit its cascades to visible depths, and
-  /// how many depth-only passes measured them (VisibleDepthFit).
-  vtkGetMacro(LastVisibleDepthsUsed, bool);
+  /// For tests and benchmarks: how many depth-only passes measured the visible depths
+  /// (VisibleDepthFit), over every Render().
   vtkGetMacro(VisibleDepthMeasures, int);
 
   /// The planner that holds the options above and computes the cascades.
@@ -314,8 +308,6 @@ public:
   vtkGetObjectMacro(Controller, vtkMultiProcessController);
   ///@}
 
-  /// Seconds the last bake spent combining the maps across processes (0 for one process).
-  vtkGetMacro(LastCombineSeconds, double);
 
   /// Does VTK shadow this light? Scene and camera lights that are on: directional, or spot with
   /// cone angle < 90 degrees (the same rule as vtkShadowMapBakerPass), and whose
@@ -382,32 +374,46 @@ public:
   /// Number of Render() calls that rendered at least one map (not all kept); for tests.
   vtkGetMacro(BakeCount, int);
 
-  /// In the last Render(): cascades rendered, cascades kept from an earlier frame, props drawn
-  /// into the rendered ones, and their texels; for tests and benchmarks.
-  vtkGetMacro(LastCascadeRenders, int);
-  vtkGetMacro(LastCascadesKept, int);
-  vtkGetMacro(LastPropsDrawn, int);
-  vtkGetMacro(LastTexelsRendered, double);
+
+  /// What the last Render() did, for tests and benchmarks (machine-independent counts; the
+  /// seconds only with MeasureTimes).
+  struct FrameStatistics
+  {
+    int CascadesRendered = 0; ///< maps rendered
+    int CascadesKept = 0;     ///< maps kept from an earlier frame
+    int PropsDrawn = 0;       ///< props (or a prop's block actor) drawn into the rendered maps
+    double TexelsRendered = 0.0; ///< texels of the rendered maps
+    double CellsDrawn = 0.0;     ///< caster cells (triangles, lines, ...) drawn into them
+    int ClosedCasters = 0;       ///< casters drawn with their exit layer only (CullClosedCasters)
+    int CompactCasters = 0;      ///< casters drawn from compact blocks (CompactCasters)
+    int BlocksDrawn = 0;         ///< blocks drawn into the rendered maps
+    int CastersWithoutReceivers = 0; ///< casters (or blocks) left out: they shadow nothing there
+    bool VisibleDepthsUsed = false;  ///< cascades fitted to the visible depths (VisibleDepthFit)
+    double PlanSeconds = 0.0;    ///< planning, all lights (MeasureTimes)
+    double MapSeconds = 0.0;     ///< rendering the maps, the GPU's work included (MeasureTimes)
+    double ClearSeconds = 0.0;   ///< clearing the first light's tiles (MeasureTimes)
+    double CombineSeconds = 0.0; ///< combining the maps across processes
+    /// Each of the first light's re-rendered maps (MeasureTimes; 0 for a kept one).
+    double CascadeSeconds[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
+    /// CascadeSeconds[cascade], 0 for an index out of range.
+    double GetCascadeSeconds(int cascade) const
+    {
+      return cascade >= 0 && cascade < vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES
+        ? this->CascadeSeconds[cascade]
+        : 0.0;
+    }
+  };
+  const FrameStatistics& GetLastFrameStatistics() const { return this->Statistics; }
 
   ///@{
   /**
-   * For benchmarks: with MeasureTimes on, the last Render() measures the seconds spent planning
-   * (all lights) and rendering the maps, the GPU work included (glFinish around each; this slows
-   * rendering down, so it is off by default); for the first shadowed light also the clear of
-   * its tiles and each re-rendered cascade's map (0 for a kept one or an index out of range).
+   * For benchmarks: with MeasureTimes on, Render() measures the seconds of its steps
+   * (GetLastFrameStatistics()), the GPU work included: glFinish around each, which slows
+   * rendering down, so it is off by default.
    */
   vtkSetMacro(MeasureTimes, bool);
   vtkGetMacro(MeasureTimes, bool);
   vtkBooleanMacro(MeasureTimes, bool);
-  vtkGetMacro(LastPlanSeconds, double);
-  vtkGetMacro(LastMapSeconds, double);
-  vtkGetMacro(LastClearSeconds, double);
-  double GetLastCascadeSeconds(int cascade) const
-  {
-    return cascade >= 0 && cascade < vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES
-      ? this->LastCascadeSeconds[cascade]
-      : 0.0;
-  }
   ///@}
 
 protected:
@@ -448,13 +454,23 @@ protected:
       /// 0 draw both sides; +1 / -1 closed, its counter-clockwise faces (after the actor's
       /// matrix) turned outward / inward.
       int Closure = 0;
-      bool Block = false; ///< one of a prop's compact blocks (CompactCasters)
+      /// Drawn from compact blocks (CompactCasters): its entry in Compacts (-1: as it is).
+      int Compact = -1;
       /// The prop may shadow itself (false: planar, or closed and convex).
       bool ShadowsItself = true;
       /// Its prop's box in Receivers (-1: none).
       int Receiver = -1;
     };
     std::vector<Caster> Casters;
+    /// A prop drawn from compact blocks: the mapper that draws the chosen ones, and each
+    /// block's world box and triangles.
+    struct Compact
+    {
+      vtkCascadedShadowBlockMapper* Mapper = nullptr;
+      std::vector<std::array<double, 6>> Bounds;
+      std::vector<double> Cells;
+    };
+    std::vector<Compact> Compacts;
     std::vector<std::array<double, 6>> Receivers;
     /// What the cascade count and the scene-fitted map are judged by
     /// (vtkCascadedShadowMapPlanner::AddCasterLoad), per caster; all processes' when
@@ -531,7 +547,6 @@ protected:
   bool CullCastersWithoutReceivers = true;
   bool VisibleDepthFit = true;
   bool KeepPrePassDepth = true;
-  bool LastVisibleDepthsUsed = false;
   int VisibleDepthMeasures = 0;
 
   std::vector<RendererMaps> Renderers;
@@ -543,21 +558,8 @@ protected:
   /// itself, which owns mappers (vtkCascadedShadowCasterPass says why).
   vtkSmartPointer<vtkCascadedShadowCasterPass> CasterPass;
   vtkMultiProcessController* Controller = nullptr;
-  double LastCombineSeconds = 0.0;
-  double LastPlanSeconds = 0.0;
-  double LastMapSeconds = 0.0;
-  double LastClearSeconds = 0.0;
-  double LastCascadeSeconds[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
+  FrameStatistics Statistics;
   int BakeCount = 0;
-  int LastCascadeRenders = 0;
-  int LastCascadesKept = 0;
-  int LastPropsDrawn = 0;
-  double LastTexelsRendered = 0.0;
-  int LastClosedCasters = 0;
-  int LastCompactCasters = 0;
-  int LastBlocksDrawn = 0;
-  double LastCellsDrawn = 0.0;
-  int LastCastersWithoutReceivers = 0;
   /// csm::classifySurface's answer per polydata, kept while the data does not change.
   struct Closure
   {
@@ -566,27 +568,33 @@ protected:
     int Orientation = 0; ///< +1 outward, -1 inward, 0 open
     bool Planar = false;
     bool ShadowsItself = true; ///< csm::SurfaceClosure::canShadowItself
+    std::future<std::shared_ptr<csmPreparedClosure>> Pending; ///< a big mesh's, under way
+    vtkMTimeType PendingTime = 0;
   };
   std::map<vtkPolyData*, Closure> Closures;
-  /// Compact blocks of a polydata in one window (their mappers hold that context's buffers).
+  /// Compact blocks of a polydata in one window (the mapper holds that context's buffers),
+  /// and the preparation under way (a worker thread's, for a big mesh).
   struct CasterBlocks
   {
     vtkWeakPointer<vtkWindow> Window;
     vtkWeakPointer<vtkPolyData> Data;
-    vtkMTimeType Time = 0;
-    int Build = 0; ///< which build: the proxies of a prop follow it
-    std::vector<vtkSmartPointer<vtkPolyDataMapper>> Mappers;
+    vtkMTimeType Time = 0; ///< of the data the blocks were prepared from
+    int Build = 0;         ///< which build: the proxy of a prop follows it
+    vtkSmartPointer<vtkCascadedShadowBlockMapper> Mapper;
     std::vector<std::array<double, 6>> Bounds; ///< per block, in the data's coordinates
+    std::vector<double> Cells;                 ///< per block: its triangles
+    std::future<std::shared_ptr<csmPreparedBlocks>> Pending;
+    vtkMTimeType PendingTime = 0;
   };
   std::map<std::pair<vtkWindow*, vtkPolyData*>, CasterBlocks> Blocks;
-  /// The actors that draw a prop's blocks in one window (its property, a copy of its matrix).
+  /// The actor that draws a prop's blocks in one window (its property, a copy of its matrix).
   struct CasterProxy
   {
     vtkWeakPointer<vtkWindow> Window;
     vtkWeakPointer<vtkProp> Prop;
     vtkPolyData* Data = nullptr;
     int Build = 0;
-    std::vector<vtkSmartPointer<vtkActor>> Actors;
+    vtkSmartPointer<vtkActor> Actor;
     vtkSmartPointer<vtkMatrix4x4> Matrix;
   };
   std::map<std::pair<vtkWindow*, vtkProp*>, CasterProxy> Proxies;

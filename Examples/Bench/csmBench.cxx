@@ -440,11 +440,11 @@ void Account(Technique& t, vtkRenderer* renderer)
   if (!t.Passes.Cascaded)
     return;
   vtkCascadedShadowMapBakerPass* baker = t.Passes.Cascaded->GetShadowMapBakerPass();
-  t.MapsRendered += baker->GetLastCascadeRenders();
-  t.MapsKept += baker->GetLastCascadesKept();
+  t.MapsRendered += baker->GetLastFrameStatistics().CascadesRendered;
+  t.MapsKept += baker->GetLastFrameStatistics().CascadesKept;
   t.DepthPasses += baker->GetVisibleDepthMeasures() - t.DepthPassesSeen;
   t.DepthPassesSeen = baker->GetVisibleDepthMeasures();
-  t.TexelsRendered += baker->GetLastTexelsRendered();
+  t.TexelsRendered += baker->GetLastFrameStatistics().TexelsRendered;
   if (!baker->GetLightMaps().empty())
   {
     t.CascadesPlanned += baker->GetLightMaps()[0].NumberOfCascades;
@@ -455,8 +455,8 @@ void Account(Technique& t, vtkRenderer* renderer)
   }
   if (baker->GetMeasureTimes())
   {
-    t.PlanMs.push_back(1000.0 * baker->GetLastPlanSeconds());
-    t.MapMs.push_back(1000.0 * baker->GetLastMapSeconds());
+    t.PlanMs.push_back(1000.0 * baker->GetLastFrameStatistics().PlanSeconds);
+    t.MapMs.push_back(1000.0 * baker->GetLastFrameStatistics().MapSeconds);
   }
 }
 
@@ -826,14 +826,14 @@ int main(int argc, char** argv)
               auto* b = t.Passes.Cascaded->GetShadowMapBakerPass();
               std::printf("  plan %.1f  maps %.1f ms  rendered %d kept %d of k %d  %.2f M texels"
                           "  %d blocks",
-                1000.0 * b->GetLastPlanSeconds(), 1000.0 * b->GetLastMapSeconds(),
-                b->GetLastCascadeRenders(), b->GetLastCascadesKept(),
+                1000.0 * b->GetLastFrameStatistics().PlanSeconds, 1000.0 * b->GetLastFrameStatistics().MapSeconds,
+                b->GetLastFrameStatistics().CascadesRendered, b->GetLastFrameStatistics().CascadesKept,
                 b->GetLightMaps().empty() ? 0 : b->GetLightMaps()[0].NumberOfCascades,
-                1e-6 * b->GetLastTexelsRendered(), b->GetLastBlocksDrawn());
+                1e-6 * b->GetLastFrameStatistics().TexelsRendered, b->GetLastFrameStatistics().BlocksDrawn);
               // The rest of the frame: the main view with the lookup.
               std::printf("  rest %.1f ms  clear %.1f ms",
-                t.Times.back() - 1000.0 * (b->GetLastPlanSeconds() + b->GetLastMapSeconds()),
-                1000.0 * b->GetLastClearSeconds());
+                t.Times.back() - 1000.0 * (b->GetLastFrameStatistics().PlanSeconds + b->GetLastFrameStatistics().MapSeconds),
+                1000.0 * b->GetLastFrameStatistics().ClearSeconds);
               if (!b->GetLightMaps().empty())
               {
                 const auto& maps = b->GetLightMaps()[0];
@@ -841,8 +841,8 @@ int main(int argc, char** argv)
                 {
                   std::printf(" %dx%d%s", maps.CascadeResolution[c][0],
                     maps.CascadeResolution[c][1], maps.SceneFitted[c] ? "f" : "");
-                  if (b->GetLastCascadeSeconds(c) > 0.0)
-                    std::printf(" %.1fms", 1000.0 * b->GetLastCascadeSeconds(c));
+                  if (b->GetLastFrameStatistics().GetCascadeSeconds(c) > 0.0)
+                    std::printf(" %.1fms", 1000.0 * b->GetLastFrameStatistics().GetCascadeSeconds(c));
                 }
               }
             }

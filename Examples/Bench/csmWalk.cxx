@@ -411,16 +411,16 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
             ++t.Frames;
             if (baker)
             {
-              t.MapsRendered += baker->GetLastCascadeRenders();
-              t.MapsKept += baker->GetLastCascadesKept();
-              t.Texels += baker->GetLastTexelsRendered();
-              t.Cells += baker->GetLastCellsDrawn();
+              t.MapsRendered += baker->GetLastFrameStatistics().CascadesRendered;
+              t.MapsKept += baker->GetLastFrameStatistics().CascadesKept;
+              t.Texels += baker->GetLastFrameStatistics().TexelsRendered;
+              t.Cells += baker->GetLastFrameStatistics().CellsDrawn;
               if (o.PerFrame)
                 std::printf("    %s %s frame %d: %.1f ms, maps %d rendered %d kept, %.2f M texels, "
                             "%.0f k cells, near %.3g\n",
-                  name.c_str(), pathName.c_str(), i, ms, baker->GetLastCascadeRenders(),
-                  baker->GetLastCascadesKept(), 1e-6 * baker->GetLastTexelsRendered(),
-                  1e-3 * baker->GetLastCellsDrawn(),
+                  name.c_str(), pathName.c_str(), i, ms, baker->GetLastFrameStatistics().CascadesRendered,
+                  baker->GetLastFrameStatistics().CascadesKept, 1e-6 * baker->GetLastFrameStatistics().TexelsRendered,
+                  1e-3 * baker->GetLastFrameStatistics().CellsDrawn,
                   baker->GetLightMaps().empty() ? 0.0 : baker->GetLightMaps()[0].SplitNear);
               if (o.PerFrame && !baker->GetLightMaps().empty())
               {

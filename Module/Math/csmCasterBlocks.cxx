@@ -4,6 +4,7 @@
 #include "csmClosedSurface.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 
@@ -12,9 +13,10 @@ namespace csm
 
 namespace
 {
+template <typename Vector>
 struct Splitter
 {
-  const std::vector<glm::dvec3>& Centroids;
+  const std::vector<Vector>& Centroids;
   std::size_t MaxTriangles;
   std::vector<std::pair<std::size_t, std::size_t>> Leaves; // ranges of the order
 
@@ -32,13 +34,14 @@ struct Splitter
         this->Leaves.emplace_back(begin, end);
         continue;
       }
-      glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+      Vector lo(std::numeric_limits<typename Vector::value_type>::max());
+      Vector hi(-std::numeric_limits<typename Vector::value_type>::max());
       for (std::size_t i = begin; i < end; ++i)
       {
         lo = glm::min(lo, this->Centroids[order[i]]);
         hi = glm::max(hi, this->Centroids[order[i]]);
       }
-      const glm::dvec3 extent = hi - lo;
+      const Vector extent = hi - lo;
       const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
       const std::size_t middle = begin + (end - begin) / 2;
       std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(begin),
@@ -101,7 +104,7 @@ std::vector<CasterBlock> splitIntoBlocks(const std::vector<glm::dvec3>& position
   }
   std::vector<std::uint32_t> order(kept.size());
   std::iota(order.begin(), order.end(), 0u);
-  Splitter splitter{ centroids, std::max<std::size_t>(maxTriangles, 1), {} };
+  Splitter<glm::dvec3> splitter{ centroids, std::max<std::size_t>(maxTriangles, 1), {} };
   splitter.Split(order);
 
   std::vector<CasterBlock> blocks;
@@ -140,6 +143,36 @@ std::vector<CasterBlock> splitIntoBlocks(const std::vector<glm::dvec3>& position
     blocks.push_back(std::move(block));
   }
   return blocks;
+}
+
+BlockOrder orderIntoBlocks(const std::vector<glm::vec3>& centroids, std::size_t maxTriangles)
+{
+  BlockOrder result;
+  if (centroids.empty() || centroids.size() > std::numeric_limits<std::uint32_t>::max())
+  {
+    return result;
+  }
+  for (const glm::vec3& c : centroids)
+  {
+    if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
+    {
+      return result;
+    }
+  }
+  result.order.resize(centroids.size());
+  std::iota(result.order.begin(), result.order.end(), 0u);
+  Splitter<glm::vec3> splitter{ centroids, std::max<std::size_t>(maxTriangles, 1), {} };
+  splitter.Split(result.order);
+  result.blocks.reserve(splitter.Leaves.size());
+  for (const auto& [begin, end] : splitter.Leaves)
+  {
+    // The input's order within a block: neighbouring triangles share corners, which a vertex
+    // cache reuses (the median splits shuffle them).
+    std::sort(result.order.begin() + static_cast<std::ptrdiff_t>(begin),
+      result.order.begin() + static_cast<std::ptrdiff_t>(end));
+    result.blocks.emplace_back(begin, end - begin);
+  }
+  return result;
 }
 
 } // namespace csm

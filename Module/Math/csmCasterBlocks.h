@@ -15,6 +15,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace csm
@@ -38,5 +39,17 @@ struct CasterBlock
 /// is not finite, or an index is out of range: the caller then draws the mesh as it is.
 std::vector<CasterBlock> splitIntoBlocks(const std::vector<glm::dvec3>& positions,
   const std::vector<std::array<std::int64_t, 3>>& triangles, std::size_t maxTriangles);
+
+/// The triangles of a big caster grouped into compact spatial blocks without copying the mesh:
+/// `order` lists triangle indices block after block (each block in the input's order), and
+/// blocks[b] is the b-th block's first position in `order` and its count. The same median
+/// splits as splitIntoBlocks, over the triangles' centroids (one per triangle; a centroid that
+/// is not finite puts its triangle in no block: the caller then draws the mesh as it is).
+struct BlockOrder
+{
+  std::vector<std::uint32_t> order;
+  std::vector<std::pair<std::size_t, std::size_t>> blocks;
+};
+BlockOrder orderIntoBlocks(const std::vector<glm::vec3>& centroids, std::size_t maxTriangles);
 
 } // namespace csm

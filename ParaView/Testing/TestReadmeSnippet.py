@@ -9,7 +9,10 @@ fresh directory <output dir>/README or <output dir>/ParaView-README, where "buil
 a link to <plugin build dir> (the snippet loads the plugin by that relative path, as from the
 repository root). Then it checks, with numbers:
   1. the snippet wrote the picture its SaveScreenshot names (a PNG of at least 100x100 pixels);
-  2. the picture shows a shadow: the same view saved again with the view's CascadedShadows off
+  2. the same view saved again (nothing changed) is the same picture, to the pixel: the light
+     kit's key light follows the camera, and the first screenshot is shadowed from that
+     frame's light and fitted to that frame's view, not the one before;
+  3. the picture shows a shadow: the same view saved again with the view's CascadedShadows off
      (nothing else changed), compared pixel by pixel, has at least MIN_SHADOWED pixels at least
      DARKER_SHARE darker, and at most MAX_BRIGHTENED pixels that much brighter.
 Exit status 0 on success; every failure prints one line starting with "FAIL".
@@ -116,11 +119,25 @@ if shadowed is None or min(shadowed.shape[:2]) < 100:
     finish()
 print("picture: %s, %dx%d" % (picture, shadowed.shape[1], shadowed.shape[0]))
 
-# 2. The same view with the view's shadows off, saved the same way.
 view = namespace.get("view") or GetActiveView()
 if view is None or view.GetXMLName() != "CascadedShadowsView":
     fail("the snippet leaves no CascadedShadowsView")
     finish()
+
+# 2. The same view saved again: the same picture.
+again_path = os.path.join(workdir, "again.png")
+SaveScreenshot(again_path, view)
+again = read_png(again_path)
+if again is None or again.shape != shadowed.shape:
+    fail("the second picture is %s, the first %s"
+         % (None if again is None else again.shape, shadowed.shape))
+    finish()
+differing = int((numpy.abs(again - shadowed) > 0).any(axis=2).sum())
+print("second screenshot: %d pixels differ from the first (need 0)" % differing)
+if differing:
+    fail("the second screenshot of the same view differs from the first in %d pixels" % differing)
+
+# 3. The same view with the view's shadows off, saved the same way.
 view.CascadedShadows = 0
 unshadowed_path = os.path.join(workdir, "shadows-off.png")
 SaveScreenshot(unshadowed_path, view)

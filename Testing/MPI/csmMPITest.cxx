@@ -175,7 +175,7 @@ int main(int argc, char* argv[])
       view.Window->Render();
       view.Window->WaitForCompletion();
       frame.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-      combine.push_back(1000.0 * pass->GetShadowMapBakerPass()->GetLastCombineSeconds());
+      combine.push_back(1000.0 * pass->GetShadowMapBakerPass()->GetLastFrameStatistics().CombineSeconds);
     }
     view.Renderer->GetActiveCamera()->Azimuth(-15.0);
     view.Window->Render();

@@ -120,7 +120,7 @@ TEST(Frames, TheFirstRenderIsTheFittedOne)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->SceneFittedCascadesOff(); // (the cascades that follow the view)
   auto first = scene.Frame();
-  EXPECT_TRUE(baker->GetLastVisibleDepthsUsed());
+  EXPECT_TRUE(baker->GetLastFrameStatistics().VisibleDepthsUsed);
   EXPECT_GT(DarkenedPixels(first, plain), 800);
   const double firstNear = baker->GetLightMaps().at(0).SplitNear;
   auto second = scene.Frame();
@@ -141,7 +141,7 @@ TEST(Frames, ADroppedChainIsFreed)
   vtkWeakPointer<vtkCascadedShadowMapBakerPass> baker = pass->GetShadowMapBakerPass();
   scene.Frame();
   ASSERT_TRUE(baker->GetHasShadows());
-  EXPECT_GT(baker->GetLastCompactCasters(), 0); // the baker's own mappers were drawn
+  EXPECT_GT(baker->GetLastFrameStatistics().CompactCasters, 0); // the baker's own mappers were drawn
   vtkCascadedShadowMapPass::UseShadowsOff(scene.Renderer);
   scene.Frame(); // the props' mappers forget the chain's passes
   EXPECT_EQ(pass.GetPointer(), nullptr);
@@ -252,9 +252,9 @@ TEST(Frames, ASmallCameraStepKeepsMapsThatStillMeetTheErrorTarget)
     scene.Renderer->GetActiveCamera()->Azimuth(0.5);
     scene.Frame();
     const auto& maps = baker->GetLightMaps().at(0);
-    rendered += baker->GetLastCascadeRenders();
-    kept += baker->GetLastCascadesKept();
-    texels += baker->GetLastTexelsRendered();
+    rendered += baker->GetLastFrameStatistics().CascadesRendered;
+    kept += baker->GetLastFrameStatistics().CascadesKept;
+    texels += baker->GetLastFrameStatistics().TexelsRendered;
     std::vector<std::vector<double>> now;
     for (int c = 0; c < maps.NumberOfCascades; ++c)
     {

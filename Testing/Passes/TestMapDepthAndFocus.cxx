@@ -94,7 +94,7 @@ TEST(Passes, UnwarpedMapsOfAGroundInTheMapsDarkenWhatTheStandardMapDarkens)
     const long unwarped = DarkenedPixels(scene.Render(), plain);
     ASSERT_EQ(baker->GetLightMaps().size(), 1u);
     EXPECT_GE(baker->GetLightMaps()[0].NumberOfCascades, 2) << cascades;
-    EXPECT_EQ(baker->GetLastCastersWithoutReceivers(), 0) << cascades; // the ground is drawn
+    EXPECT_EQ(baker->GetLastFrameStatistics().CastersWithoutReceivers, 0) << cascades; // the ground is drawn
     EXPECT_GT(standard, 800) << cascades;
     EXPECT_NEAR(unwarped, standard, 0.1 * standard) << cascades << " cascades";
     std::printf("%d cascades: standard map %ld darkened pixels, unwarped %ld\n", cascades,

@@ -96,32 +96,32 @@ TEST(Passes, MeasuredTimesAreRecorded)
   scene.Window->Render();
   const int n = baker->GetLightMaps().at(0).NumberOfCascades;
   ASSERT_GE(n, 1);
-  EXPECT_EQ(baker->GetLastCascadeRenders(), n);
-  EXPECT_GT(baker->GetLastPlanSeconds(), 0.0);
-  double parts = baker->GetLastClearSeconds();
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, n);
+  EXPECT_GT(baker->GetLastFrameStatistics().PlanSeconds, 0.0);
+  double parts = baker->GetLastFrameStatistics().ClearSeconds;
   for (int c = 0; c < n; ++c)
   {
-    EXPECT_GT(baker->GetLastCascadeSeconds(c), 0.0) << c;
-    parts += baker->GetLastCascadeSeconds(c);
+    EXPECT_GT(baker->GetLastFrameStatistics().GetCascadeSeconds(c), 0.0) << c;
+    parts += baker->GetLastFrameStatistics().GetCascadeSeconds(c);
   }
-  EXPECT_EQ(baker->GetLastCascadeSeconds(n), 0.0);
-  EXPECT_EQ(baker->GetLastCascadeSeconds(-1), 0.0);
-  EXPECT_EQ(baker->GetLastCascadeSeconds(1000), 0.0);
+  EXPECT_EQ(baker->GetLastFrameStatistics().GetCascadeSeconds(n), 0.0);
+  EXPECT_EQ(baker->GetLastFrameStatistics().GetCascadeSeconds(-1), 0.0);
+  EXPECT_EQ(baker->GetLastFrameStatistics().GetCascadeSeconds(1000), 0.0);
   // Structure only: every part was timed (how long each took is the benchmark's business).
   EXPECT_GT(parts, 0.0);
-  EXPECT_GT(baker->GetLastMapSeconds(), 0.0);
+  EXPECT_GT(baker->GetLastFrameStatistics().MapSeconds, 0.0);
   scene.Window->Render(); // nothing changed: every map kept
-  EXPECT_EQ(baker->GetLastCascadeRenders(), 0);
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, 0);
   for (int c = 0; c < n; ++c)
   {
-    EXPECT_EQ(baker->GetLastCascadeSeconds(c), 0.0) << c;
+    EXPECT_EQ(baker->GetLastFrameStatistics().GetCascadeSeconds(c), 0.0) << c;
   }
   baker->MeasureTimesOff();
   scene.Box->SetPosition(0.25, 0, 0); // a prop moved: every map again, not timed
   scene.Window->Render();
-  EXPECT_EQ(baker->GetLastCascadeRenders(), baker->GetLightMaps().at(0).NumberOfCascades);
-  EXPECT_EQ(baker->GetLastMapSeconds(), 0.0);
-  EXPECT_EQ(baker->GetLastCascadeSeconds(0), 0.0);
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, baker->GetLightMaps().at(0).NumberOfCascades);
+  EXPECT_EQ(baker->GetLastFrameStatistics().MapSeconds, 0.0);
+  EXPECT_EQ(baker->GetLastFrameStatistics().GetCascadeSeconds(0), 0.0);
 }
 
 TEST(Passes, PropLightOrOptionChangesReRenderEveryMap)
@@ -135,20 +135,20 @@ TEST(Passes, PropLightOrOptionChangesReRenderEveryMap)
   scene.Frame();
   // Every cascade this frame has (as many as AdaptiveCascades chose).
   auto cascades = [baker]() { return baker->GetLightMaps().at(0).NumberOfCascades; };
-  EXPECT_EQ(baker->GetLastCascadeRenders(), 0);
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, 0);
   EXPECT_GE(cascades(), 1);
-  EXPECT_EQ(baker->GetLastCascadesKept(), cascades());
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesKept, cascades());
   scene.Box->SetPosition(0.3, 0, 0);
   scene.Frame();
-  EXPECT_EQ(baker->GetLastCascadeRenders(), cascades());
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, cascades());
   scene.Light->SetPosition(1, 10, 0);
   scene.Frame();
-  EXPECT_EQ(baker->GetLastCascadeRenders(), cascades());
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, cascades());
   baker->SetPolygonOffsetUnits(3.0);
   scene.Frame();
-  EXPECT_EQ(baker->GetLastCascadeRenders(), cascades());
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, cascades());
   scene.Frame();
-  EXPECT_EQ(baker->GetLastCascadeRenders(), 0);
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, 0);
 }
 
 TEST(Passes, SwitchingBackToAnEarlierCameraReRendersItsMaps)

@@ -116,7 +116,7 @@ TEST(Passes, SceneFittedMapServesEveryViewOfAnOrbit)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   EXPECT_TRUE(baker->GetSceneFittedCascades()); // the default
   scene.Frame();
-  const int first = baker->GetLastCascadeRenders();
+  const int first = baker->GetLastFrameStatistics().CascadesRendered;
   EXPECT_GE(first, 1);
   int kept = 0;
   for (int frame = 0; frame < 6; ++frame)
@@ -127,8 +127,8 @@ TEST(Passes, SceneFittedMapServesEveryViewOfAnOrbit)
     ASSERT_GE(maps.NumberOfCascades, 1);
     const int last = maps.NumberOfCascades - 1;
     EXPECT_TRUE(baker->GetPlanner()->GetCascadeSceneFitted(last)) << "frame " << frame;
-    kept += baker->GetLastCascadesKept();
-    EXPECT_EQ(baker->GetLastCascadeRenders(), last) << "frame " << frame; // only the others
+    kept += baker->GetLastFrameStatistics().CascadesKept;
+    EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, last) << "frame " << frame; // only the others
     // As a pass that plans this view afresh.
     BoxOverPlane other;
     other.Renderer->GetActiveCamera()->DeepCopy(scene.Renderer->GetActiveCamera());
@@ -143,7 +143,7 @@ TEST(Passes, SceneFittedMapServesEveryViewOfAnOrbit)
   // A prop moved: drawn again.
   scene.Box->SetPosition(0.5, 0, 0);
   scene.Frame();
-  EXPECT_GE(baker->GetLastCascadeRenders(), 1);
+  EXPECT_GE(baker->GetLastFrameStatistics().CascadesRendered, 1);
   // Off: the farthest cascade follows the view, and a turn draws it again.
   baker->SceneFittedCascadesOff();
   scene.Frame();
@@ -151,7 +151,7 @@ TEST(Passes, SceneFittedMapServesEveryViewOfAnOrbit)
   scene.Frame();
   EXPECT_FALSE(baker->GetPlanner()->GetCascadeSceneFitted(
     baker->GetLightMaps().at(0).NumberOfCascades - 1));
-  EXPECT_GE(baker->GetLastCascadeRenders(), 1);
+  EXPECT_GE(baker->GetLastFrameStatistics().CascadesRendered, 1);
 }
 
 // Resolution from need: a view that full maps oversample gets the maps its
@@ -250,8 +250,8 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
     fresh.Renderer->GetActiveCamera()->Azimuth(1.5);
     auto ia = keep.Frame();
     auto ib = fresh.Frame();
-    kept += a->GetShadowMapBakerPass()->GetLastCascadesKept();
-    rendered += b->GetShadowMapBakerPass()->GetLastCascadeRenders();
+    kept += a->GetShadowMapBakerPass()->GetLastFrameStatistics().CascadesKept;
+    rendered += b->GetShadowMapBakerPass()->GetLastFrameStatistics().CascadesRendered;
     cascades += b->GetShadowMapBakerPass()->GetLightMaps(fresh.Renderer).at(0).NumberOfCascades;
     // <= 0.5 % of the pixels differ by more than 0.1 of the range (26 levels).
     const long differing = csmTest::DifferingPixels(ia, ib, 26);
@@ -279,7 +279,7 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
     EXPECT_EQ(still.CascadeResolution[c][0], reference.CascadeResolution[c][0]);
     EXPECT_EQ(still.CascadeResolution[c][1], reference.CascadeResolution[c][1]);
   }
-  EXPECT_EQ(baker->GetLastCascadeRenders(), still.NumberOfCascades);
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, still.NumberOfCascades);
 }
 
 namespace
@@ -367,7 +367,7 @@ TEST(Passes, AMapReRenderedBesideKeptOnesHoldsOnlyItsOwnCasters)
     keep.Frame();
     fresh.Frame();
     vtkCascadedShadowMapBakerPass* baker = a->GetShadowMapBakerPass();
-    if (baker->GetLastCascadesKept() == 0 || baker->GetLastCascadeRenders() == 0)
+    if (baker->GetLastFrameStatistics().CascadesKept == 0 || baker->GetLastFrameStatistics().CascadesRendered == 0)
     {
       continue; // not a frame with both
     }
@@ -459,6 +459,6 @@ TEST(Passes, LeavingAKeptMapReRendersItInThatFrame)
   scene.Renderer->GetActiveCamera()->OrthogonalizeViewUp();
   reference.Renderer->GetActiveCamera()->DeepCopy(scene.Renderer->GetActiveCamera());
   auto moved = scene.Frame();
-  EXPECT_GE(pass->GetShadowMapBakerPass()->GetLastCascadeRenders(), 1);
+  EXPECT_GE(pass->GetShadowMapBakerPass()->GetLastFrameStatistics().CascadesRendered, 1);
   EXPECT_EQ(DifferingValues(moved, reference.Frame()), 0);
 }

@@ -107,13 +107,13 @@ TEST(Passes, VisibleDepthFitStartsTheCascadesAtTheNearestSample)
   baker->VisibleDepthFitOff();
   auto boxes = scene.Frame();
   const double boxesNear = baker->GetLightMaps()[0].SplitNear;
-  EXPECT_FALSE(baker->GetLastVisibleDepthsUsed());
+  EXPECT_FALSE(baker->GetLastFrameStatistics().VisibleDepthsUsed);
   EXPECT_LT(boxesNear, 1.01 * cameraNear); // the box around the two blocks holds the eye
 
   baker->VisibleDepthFitOn();
   const int measures = baker->GetVisibleDepthMeasures();
   auto fitted = scene.Frame(); // measured in the frame it serves
-  EXPECT_TRUE(baker->GetLastVisibleDepthsUsed());
+  EXPECT_TRUE(baker->GetLastFrameStatistics().VisibleDepthsUsed);
   EXPECT_EQ(baker->GetVisibleDepthMeasures(), measures + 1);
   const double nearest = NearestSampleDepth(scene.Window, camera);
   EXPECT_GT(nearest, 10.0 * cameraNear);
@@ -139,7 +139,7 @@ TEST(Passes, SomethingNearerComingIntoViewIsShadowedInThatFrame)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   scene.Frame();
   scene.Frame();
-  ASSERT_TRUE(baker->GetLastVisibleDepthsUsed());
+  ASSERT_TRUE(baker->GetLastFrameStatistics().VisibleDepthsUsed);
   const double fittedNear = baker->GetLightMaps()[0].SplitNear;
   auto shelf = BoxActor(-2, 2, 7.8, 8, 4, 8);
   auto cube = BoxActor(-0.5, 0.5, 9, 10, 5.5, 6.5);
@@ -155,7 +155,7 @@ TEST(Passes, SomethingNearerComingIntoViewIsShadowedInThatFrame)
   vtkCascadedShadowMapPass::UseShadowsOn(reference.Renderer);
   auto image = scene.Frame();
   const std::vector<char> nearer = NearerThan(scene.Window, scene.Renderer->GetActiveCamera(), fittedNear);
-  EXPECT_TRUE(baker->GetLastVisibleDepthsUsed());
+  EXPECT_TRUE(baker->GetLastFrameStatistics().VisibleDepthsUsed);
   EXPECT_LT(baker->GetLightMaps()[0].SplitNear, 0.8 * fittedNear);
   auto fresh = reference.Frame();
   EXPECT_EQ(DifferingValues(image, fresh), 0);
