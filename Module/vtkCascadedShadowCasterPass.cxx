@@ -47,6 +47,10 @@ int vtkCascadedShadowCasterPass::DrawCasters(
 
 void vtkCascadedShadowCasterPass::EndCascade()
 {
+  if (this->CullState && !this->CullFaces.empty())
+  {
+    this->CullState->vtkglEnable(GL_POLYGON_OFFSET_FILL); // as the baker set it for the maps
+  }
   this->CullFaces.clear();
   this->CullState = nullptr;
 }
@@ -165,12 +169,20 @@ bool vtkCascadedShadowCasterPass::PostReplaceShaderValues(std::string& vertexSha
 bool vtkCascadedShadowCasterPass::SetShaderParameters(
   vtkShaderProgram* program, vtkAbstractMapper*, vtkProp* prop, vtkOpenGLVertexArrayObject*)
 {
-  // Closed casters: only their exit layer (the property has just set its own culling).
+  // Closed casters: only their exit layer (the property has just set its own culling), at its
+  // own depth: at a concave crease it touches a face turned toward the light that it shadows,
+  // and the baker's polygon offset (steepest on faces nearly along the light) would push it off
+  // that face by about a texel, a line of light along the crease. Other casters keep the offset.
   const auto cull = this->CullState ? this->CullFaces.find(prop) : this->CullFaces.end();
   if (cull != this->CullFaces.end())
   {
     this->CullState->vtkglCullFace(cull->second);
     this->CullState->vtkglEnable(GL_CULL_FACE);
+    this->CullState->vtkglDisable(GL_POLYGON_OFFSET_FILL);
+  }
+  else if (this->CullState && !this->CullFaces.empty())
+  {
+    this->CullState->vtkglEnable(GL_POLYGON_OFFSET_FILL);
   }
   if (!program->IsUniformUsed("csmCasterWidth"))
   {

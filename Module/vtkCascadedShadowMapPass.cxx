@@ -392,12 +392,14 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   {
     program->SetUniformi("csmPCFRadius", this->PCFSize / 2);
   }
-  // Per prop: a closed surface drawn into the maps from behind needs less bias.
+  // Per prop: the faces turned toward the light of a closed surface drawn into the maps from
+  // behind need less bias (the lookup tells which way each face turns).
   const double biasShare = this->ShadowMapBakerPass && this->ShadowMapBakerPass->DrawsFromBehind(prop)
     ? this->ClosedSurfaceBiasFactor
     : 1.0;
-  program->SetUniformf("csmConstantBias", static_cast<float>(biasShare * this->ConstantBias));
-  program->SetUniformf("csmSlopeBias", static_cast<float>(biasShare * this->SlopeBias));
+  program->SetUniformf("csmConstantBias", static_cast<float>(this->ConstantBias));
+  program->SetUniformf("csmSlopeBias", static_cast<float>(this->SlopeBias));
+  program->SetUniformf("csmClosedBiasShare", static_cast<float>(biasShare));
   program->SetUniformf("csmBlendBand", static_cast<float>(this->BlendBand));
   const ShaderUniforms& u = this->Uniforms;
   const int lights = static_cast<int>(u.Lights());

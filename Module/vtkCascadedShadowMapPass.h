@@ -117,14 +117,16 @@ public:
 
   ///@{
   /**
-   * Share of ConstantBias and SlopeBias for surfaces whose lit side is not in the maps: closed
-   * surfaces that the baker draws with only their faces turned away from the light
-   * (vtkCascadedShadowMapBakerPass::DrawsFromBehind). Their lit faces meet only the far side of
-   * their own solid in the map, so the bias, which exists to keep a surface from shadowing
-   * itself, only has the terminator to cover; a full bias there hides contact shadows where
-   * parts touch (bar joints, a part on a floor). 1: the same bias for every surface. Default
-   * 0.25 (eighth session's full run: towers 0.45 -> 0.33 % misclassified, platform 0.57 ->
-   * 0.53 %; Documentation/Results.md).
+   * Share of ConstantBias and SlopeBias for the faces turned toward the light of surfaces whose
+   * lit side is not in the maps: closed surfaces that the baker draws with only their faces
+   * turned away from the light (vtkCascadedShadowMapBakerPass::DrawsFromBehind). Those faces
+   * meet only the far side of their own solid in the map, or, along a concave crease or where
+   * parts touch, the face that shadows them: the bias, which exists to keep a surface from
+   * shadowing itself, there only moves the shadow's edge off the crease (a line of light along a
+   * fillet's facets, a bar joint, a part on a floor). The lookup tells the way each face turns;
+   * the faces turned away (lit at the terminator by an interpolated normal) meet their own depth
+   * and take the full bias. 1: the same bias for every face. Default 0.25
+   * (Documentation/Results.md, "Closed casters").
    */
   vtkSetFiniteClampMacro(ClosedSurfaceBiasFactor, double, 0.0, 1.0);
   vtkGetMacro(ClosedSurfaceBiasFactor, double);

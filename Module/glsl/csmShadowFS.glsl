@@ -18,6 +18,9 @@ uniform int csmPCFRadius;      // kernel of 2 r + 1 texels a side
 
 uniform float csmConstantBias; // in the map's [0,1] depth
 uniform float csmSlopeBias;    // times the receiver-plane depth change over one texel
+// Share of both biases for the faces turned toward the light of a surface drawn into the maps
+// from behind (vtkCascadedShadowMapPass::ClosedSurfaceBiasFactor); 1 for every other surface.
+uniform float csmClosedBiasShare;
 uniform float csmBlendBand;    // share of a cascade's depth range blended into the next
 
 float csmHash(vec2 p)
@@ -104,7 +107,7 @@ vec4 csmDisplacement(mat4 toMap, vec3 d)
 // with the screen derivatives hx, hy of those coordinates (exact for the projective map); the
 // aliasing error m there for the error view (Lloyd et al. 2006, Eq. 1).
 float csmVisibility(sampler2DShadow map, vec4 tile, vec2 texel, vec4 h, vec4 hx, vec4 hy,
-  float biasScale, out float m)
+  float biasScale, float handedness, out float m)
 {
   vec3 p = h.xyz / h.w;
   vec3 dx = (hx.xyz - p * hx.w) / h.w;
@@ -124,7 +127,16 @@ float csmVisibility(sampler2DShadow map, vec4 tile, vec2 texel, vec4 h, vec4 hx,
     ? vec2(dy.y * dx.z - dx.y * dy.z, dx.x * dy.z - dy.x * dx.z) / det
     : vec2(0.0);
   float zSlopePerTexel = min(dot(abs(dz), texel), 0.05);
-  float zRef = p.z - biasScale * csmConstantBias - csmSlopeBias * zSlopePerTexel;
+  // Which way the face turns: the light travels along +z in map space, and the screen
+  // derivatives span the face as the camera sees it (its normal toward the camera, which is
+  // outward on a closed surface), so cross(dx, dy).z = det is the outward normal's z times the
+  // sign of the map's Jacobian, which is the sign of the map matrix's determinant (handedness).
+  // A face turned toward the light on a surface drawn from behind never meets its own depth in
+  // the map, only the far side of its solid or, at a concave crease, the face that shadows it:
+  // it takes csmClosedBiasShare of the bias; a face turned away (lit by an interpolated normal
+  // at the terminator) meets its own depth and takes all of it.
+  float share = det * handedness < 0.0 ? csmClosedBiasShare : 1.0;
+  float zRef = p.z - share * (biasScale * csmConstantBias + csmSlopeBias * zSlopePerTexel);
 #if CSM_KERNEL == CSM_KERNEL_GRID
   return csmGridPCF(map, tile, texel, p.xy, zRef, dz);
 #else
@@ -242,8 +254,9 @@ vec4 csmShadowIn(sampler2DShadow map, int j, int chosen, vec4 h, vec4 hx, vec4 h
   // A camera space map's depth spans wMin / w on a ray of w (csm::computeCameraSpaceMap).
   biasScale = csmDepthW[cascade] > 0.0 ? csmDepthW[cascade] / max(h.w, 1e-30) : 1.0;
 #endif
+  float handedness = determinant(csmToMap[cascade]) < 0.0 ? -1.0 : 1.0;
   float visibility =
-    csmVisibility(map, csmTile[cascade], csmTexel[cascade], h, hx, hy, biasScale, m);
+    csmVisibility(map, csmTile[cascade], csmTexel[cascade], h, hx, hy, biasScale, handedness, m);
   return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), float(chosen), m, visibility);
 }
 

@@ -36,6 +36,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
+#include <map>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -462,6 +463,156 @@ Scene Towers(int count)
   scene.ClippingRange[0] = 0.25;
   scene.ClippingRange[1] = 6000.0;
   scene.ViewAngle = 50.0;
+  return scene;
+}
+
+namespace
+{
+/// Triangles of one closed surface, its points welded by position; each triangle is wound so
+/// that its normal points along the outward direction it is given.
+class SolidBuilder
+{
+public:
+  vtkIdType Point(const Vec& p)
+  {
+    const std::array<long long, 3> key = { std::llround(p[0] * 1e9), std::llround(p[1] * 1e9),
+      std::llround(p[2] * 1e9) };
+    const auto found = this->Ids.find(key);
+    if (found != this->Ids.end())
+      return found->second;
+    const vtkIdType id = this->Points->InsertNextPoint(p.data());
+    this->Ids.emplace(key, id);
+    return id;
+  }
+
+  void Triangle(const Vec& a, const Vec& b, const Vec& c, const Vec& outward)
+  {
+    const Vec u = b - a, v = c - a;
+    const Vec n = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
+    const bool flip = vtkMath::Dot(n.data(), outward.data()) < 0.0;
+    const vtkIdType ids[3] = { this->Point(a), this->Point(flip ? c : b), this->Point(flip ? b : c) };
+    this->Polys->InsertNextCell(3, ids);
+  }
+
+  void Quad(const Vec& a, const Vec& b, const Vec& c, const Vec& d, const Vec& outward)
+  {
+    this->Triangle(a, b, c, outward);
+    this->Triangle(a, c, d, outward);
+  }
+
+  /// A rectangle with a round hole: corners c00, c10, c11, c01 (counter-clockwise seen from
+  /// outward), the hole's points around it in the same order; each corner fans to its quarter of
+  /// the hole, so that the rectangle's edges keep only their corners (no T-junction with the
+  /// faces beside it).
+  void PlateWithHole(const Vec corners[4], const std::vector<Vec>& hole, const Vec& outward)
+  {
+    const size_t n = hole.size(), quarter = n / 4;
+    for (size_t q = 0; q < 4; ++q)
+    {
+      for (size_t k = q * quarter; k < (q + 1) * quarter; ++k)
+        this->Triangle(corners[q], hole[k], hole[(k + 1) % n], outward);
+      this->Triangle(corners[q], corners[(q + 1) % 4], hole[((q + 1) * quarter) % n], outward);
+    }
+  }
+
+  vtkSmartPointer<vtkPolyData> Finish()
+  {
+    vtkNew<vtkPolyData> data;
+    data->SetPoints(this->Points);
+    data->SetPolys(this->Polys);
+    vtkNew<vtkPolyDataNormals> normals;
+    normals->SetInputData(data);
+    normals->SetFeatureAngle(30.0);
+    normals->SplittingOn();
+    normals->ConsistencyOff();
+    normals->AutoOrientNormalsOff();
+    normals->Update();
+    return normals->GetOutput();
+  }
+
+private:
+  std::map<std::array<long long, 3>, vtkIdType> Ids;
+  vtkNew<vtkPoints> Points;
+  vtkNew<vtkCellArray> Polys;
+};
+} // namespace
+
+Scene Bracket()
+{
+  const double pi = vtkMath::Pi();
+  const double lh = 0.14, lv = 0.10, t = 0.02, depth = 0.10, r = 0.012; // legs, thickness, fillet
+  const int filletFacets = 8, holeFacets = 32;
+  const double holeRadius = 0.012;
+  const double hx = 0.5 * (t + r + lh), vy = 0.5 * (t + r + lv), hz = 0.5 * depth;
+  // The profile in the xy plane, counter-clockwise: the outer corner at the origin, the lower
+  // leg along +x, the upright leg along +y, the fillet's arc around (t + r, t + r).
+  std::vector<std::array<double, 2>> profile = { { 0, 0 }, { lh, 0 }, { lh, t } };
+  for (int i = 0; i <= filletFacets; ++i)
+  {
+    const double a = 1.5 * pi - 0.5 * pi * i / filletFacets; // 270 -> 180 degrees
+    profile.push_back({ t + r + r * std::cos(a), t + r + r * std::sin(a) });
+  }
+  profile.push_back({ t, lv });
+  profile.push_back({ 0, lv });
+  auto at = [](const std::array<double, 2>& p, double z) { return Vec{ p[0], p[1], z }; };
+  SolidBuilder solid;
+  // Both ends of the extrusion: fans from the outer corner, which sees the whole profile.
+  for (size_t i = 1; i + 1 < profile.size(); ++i)
+  {
+    solid.Triangle(at(profile[0], 0), at(profile[i], 0), at(profile[i + 1], 0), { 0, 0, -1 });
+    solid.Triangle(at(profile[0], depth), at(profile[i], depth), at(profile[i + 1], depth), { 0, 0, 1 });
+  }
+  // The flat sides without holes: the lower leg's end, the upright leg's top.
+  solid.Quad(at(profile[1], 0), at(profile[2], 0), at(profile[2], depth), at(profile[1], depth), { 1, 0, 0 });
+  solid.Quad({ t, lv, 0 }, { 0, lv, 0 }, { 0, lv, depth }, { t, lv, depth }, { 0, 1, 0 });
+  // The fillet: one strip of quads per facet, outward toward the arc's centre.
+  for (int i = 0; i < filletFacets; ++i)
+  {
+    const auto& p = profile[3 + i];
+    const auto& q = profile[4 + i];
+    const Vec outward = { t + r - 0.5 * (p[0] + q[0]), t + r - 0.5 * (p[1] + q[1]), 0.0 };
+    solid.Quad(at(p, 0), at(q, 0), at(q, depth), at(p, depth), outward);
+  }
+  // The holes: circles in each leg's two faces, joined by their walls.
+  auto circle = [&](int axis, double level, double c0, double c1) {
+    // axis 1: a hole along y in the plane y = level around (x, z) = (c0, c1); axis 0: along x
+    // around (y, z) = (c0, c1). The points go counter-clockwise in the plane's own (u, v).
+    std::vector<Vec> points;
+    for (int k = 0; k < holeFacets; ++k)
+    {
+      const double a = 2.0 * pi * k / holeFacets;
+      const double u = c0 + holeRadius * std::cos(a), v = c1 + holeRadius * std::sin(a);
+      points.push_back(axis == 1 ? Vec{ u, level, v } : Vec{ level, u, v });
+    }
+    return points;
+  };
+  const auto bottom = circle(1, 0.0, hx, hz), top = circle(1, t, hx, hz);
+  const auto outer = circle(0, 0.0, vy, hz), inner = circle(0, t, vy, hz);
+  // Corners in the order of each circle's (u, v): (+, +), (-, +), (-, -), (+, -) about its centre.
+  const Vec bottomCorners[4] = { { lh, 0, depth }, { 0, 0, depth }, { 0, 0, 0 }, { lh, 0, 0 } };
+  const Vec topCorners[4] = { { lh, t, depth }, { t + r, t, depth }, { t + r, t, 0 }, { lh, t, 0 } };
+  const Vec outerCorners[4] = { { 0, lv, depth }, { 0, 0, depth }, { 0, 0, 0 }, { 0, lv, 0 } };
+  const Vec innerCorners[4] = { { t, lv, depth }, { t, t + r, depth }, { t, t + r, 0 }, { t, lv, 0 } };
+  solid.PlateWithHole(bottomCorners, bottom, { 0, -1, 0 });
+  solid.PlateWithHole(topCorners, top, { 0, 1, 0 });
+  solid.PlateWithHole(outerCorners, outer, { -1, 0, 0 });
+  solid.PlateWithHole(innerCorners, inner, { 1, 0, 0 });
+  for (int k = 0; k < holeFacets; ++k)
+  {
+    const int m = (k + 1) % holeFacets;
+    const Vec toAxisH = { hx - 0.5 * (top[k][0] + top[m][0]), 0, hz - 0.5 * (top[k][2] + top[m][2]) };
+    solid.Quad(bottom[k], bottom[m], top[m], top[k], toAxisH);
+    const Vec toAxisV = { 0, vy - 0.5 * (inner[k][1] + inner[m][1]), hz - 0.5 * (inner[k][2] + inner[m][2]) };
+    solid.Quad(outer[k], outer[m], inner[m], inner[k], toAxisV);
+  }
+  Scene scene;
+  scene.Name = "bracket";
+  scene.Actors.push_back(MakeActor(solid.Finish(), 0.7, 0.72, 0.75));
+  Finish(scene);
+  const double eye[3] = { 0.24, 0.17, 0.27 }, focal[3] = { 0.06, 0.02, 0.05 };
+  std::copy(eye, eye + 3, scene.CameraPosition);
+  std::copy(focal, focal + 3, scene.FocalPoint);
+  scene.ViewAngle = 30.0;
   return scene;
 }
 

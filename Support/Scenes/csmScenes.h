@@ -48,6 +48,14 @@ long long PlatformMaxTriangles();
 /// default view starts next to the first tower with near 0.25 and far 6000 (f/n > 10^4).
 Scene Towers(int count = 125);
 
+/// A machined L-bracket seen from close up (metres): legs 14 and 10 cm long, 2 cm thick and
+/// 10 cm wide, a fillet of 1.2 cm radius (8 facets) on the inside bend, a through hole in each
+/// leg; one closed, consistently oriented surface (normals split at 30 degrees: the fillet
+/// smooth, the edges sharp). Its default view looks into the bend; a light from outside the
+/// upright leg, low over the horizon, puts the bend and the lower leg's top in its shadow, with
+/// concave creases (the fillet's facets, the fillet's ends) inside it. Named "bracket".
+Scene Bracket();
+
 /// A model read from .vtp .vtk .stl .ply .obj .glb .gltf, standing on a ground plane. Returns
 /// false with a message when the file cannot be read or holds no surface.
 bool FromFile(const std::string& path, Scene& scene, std::string& error);
