@@ -45,6 +45,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <atomic>
 #include <future>
 #include <limits>
 #include <memory>
@@ -161,6 +162,36 @@ double casterCells(vtkProp* prop)
   return data ? static_cast<double>(data->GetNumberOfElements(vtkDataObject::CELL)) : 0.0;
 }
 
+/// Does a camera look from where and where another did (its clipping range aside)?
+bool sameViewpoint(vtkCamera* a, vtkCamera* b)
+{
+  const double* pa = a->GetPosition();
+  const double* pb = b->GetPosition();
+  const double* fa = a->GetFocalPoint();
+  const double* fb = b->GetFocalPoint();
+  const double* ua = a->GetViewUp();
+  const double* ub = b->GetViewUp();
+  return std::equal(pa, pa + 3, pb) && std::equal(fa, fa + 3, fb) && std::equal(ua, ua + 3, ub) &&
+    a->GetViewAngle() == b->GetViewAngle() && a->GetParallelScale() == b->GetParallelScale() &&
+    a->GetParallelProjection() == b->GetParallelProjection();
+}
+
+/// Does a camera see exactly as another did (view and projection at this aspect)?
+bool sameView(vtkCamera* a, vtkCamera* b, double aspect)
+{
+  vtkMatrix4x4* viewA = a->GetModelViewTransformMatrix();
+  vtkMatrix4x4* viewB = b->GetModelViewTransformMatrix();
+  if (!std::equal(viewA->GetData(), viewA->GetData() + 16, viewB->GetData()))
+  {
+    return false;
+  }
+  double projectionA[16];
+  std::copy(a->GetProjectionTransformMatrix(aspect, -1, 1)->GetData(),
+    a->GetProjectionTransformMatrix(aspect, -1, 1)->GetData() + 16, projectionA);
+  vtkMatrix4x4* projectionB = b->GetProjectionTransformMatrix(aspect, -1, 1);
+  return std::equal(projectionA, projectionA + 16, projectionB->GetData());
+}
+
 /// Row-major double -> column-major float (GLSL's mat4).
 void toColumnMajor(const double m[16], float out[16])
 {
@@ -224,6 +255,7 @@ vtkCascadedShadowMapBakerPass::vtkCascadedShadowMapBakerPass()
   this->LightCamera = vtkSmartPointer<vtkCamera>::New();
   this->Projection = vtkSmartPointer<vtkMatrix4x4>::New();
   this->CasterPass = vtkSmartPointer<vtkCascadedShadowCasterPass>::New();
+  this->StopWorkers = std::make_shared<std::atomic<bool>>(false);
   // Identity view: the cascade matrix (world -> light clip) is the whole projection.
   this->LightCamera->SetPosition(0.0, 0.0, 0.0);
   this->LightCamera->SetFocalPoint(0.0, 0.0, -1.0);
@@ -235,6 +267,10 @@ vtkCascadedShadowMapBakerPass::vtkCascadedShadowMapBakerPass()
 
 vtkCascadedShadowMapBakerPass::~vtkCascadedShadowMapBakerPass()
 {
+  // Preparations under way stop at their next check (their futures wait for them below).
+  this->StopWorkers->store(true);
+  this->Closures.clear();
+  this->Blocks.clear();
   this->SetController(nullptr);
 }
 
@@ -623,7 +659,9 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   this->LastRenderer = renderer;
   RendererMaps& state = this->MapsOf(renderer, window);
   this->Statistics = FrameStatistics();
+  ++this->FrameNumber;
 
+  this->ViewMoved = state.LastCamera && !sameViewpoint(state.LastCamera, camera);
   // 1. The props: casters, receivers, scene bounds (across processes when distributed).
   FrameProps props;
   this->CollectProps(renderer, state, props);
@@ -713,21 +751,6 @@ bool readWindowDepths(vtkRenderer* renderer, double range[2])
   return true;
 }
 
-/// Does a camera see exactly as another did (view and projection at this aspect)?
-bool sameView(vtkCamera* a, vtkCamera* b, double aspect)
-{
-  vtkMatrix4x4* viewA = a->GetModelViewTransformMatrix();
-  vtkMatrix4x4* viewB = b->GetModelViewTransformMatrix();
-  if (!std::equal(viewA->GetData(), viewA->GetData() + 16, viewB->GetData()))
-  {
-    return false;
-  }
-  double projectionA[16];
-  std::copy(a->GetProjectionTransformMatrix(aspect, -1, 1)->GetData(),
-    a->GetProjectionTransformMatrix(aspect, -1, 1)->GetData() + 16, projectionA);
-  vtkMatrix4x4* projectionB = b->GetProjectionTransformMatrix(aspect, -1, 1);
-  return std::equal(projectionA, projectionA + 16, projectionB->GetData());
-}
 }
 
 void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(
@@ -936,14 +959,23 @@ namespace
 /// The positions and the triangles of a polydata's polygons (fans) and strips (false: no points).
 /// Calls f(a, b, c) for every triangle of a polydata's polygons (fans) and strips, wound as
 /// drawn; safe beside the main thread's own reading (each traversal has its own iterator).
+/// Stops early (returning false) once `stop` is set.
 template <typename F>
-void forEachTriangle(vtkPolyData* data, F&& f)
+bool forEachTriangle(vtkPolyData* data, F&& f, const std::atomic<bool>* stop = nullptr)
 {
   vtkIdType n;
   const vtkIdType* ids;
+  vtkIdType visited = 0;
+  auto stopped = [&visited, stop]() {
+    return stop && (++visited & 0xfff) == 0 && stop->load(std::memory_order_relaxed);
+  };
   auto polys = vtk::TakeSmartPointer(data->GetPolys()->NewIterator());
   for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
   {
+    if (stopped())
+    {
+      return false;
+    }
     polys->GetCurrentCell(n, ids);
     for (vtkIdType k = 2; k < n; ++k)
     {
@@ -953,6 +985,10 @@ void forEachTriangle(vtkPolyData* data, F&& f)
   auto strips = vtk::TakeSmartPointer(data->GetStrips()->NewIterator());
   for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
   {
+    if (stopped())
+    {
+      return false;
+    }
     strips->GetCurrentCell(n, ids);
     for (vtkIdType k = 2; k < n; ++k)
     {
@@ -967,6 +1003,7 @@ void forEachTriangle(vtkPolyData* data, F&& f)
       }
     }
   }
+  return true;
 }
 
 /// Triangles of a polydata (polygons as fans, strips) without traversing them.
@@ -998,7 +1035,8 @@ struct csmPreparedClosure
 
 namespace
 {
-std::shared_ptr<csmPreparedBlocks> prepareBlocks(vtkSmartPointer<vtkPolyData> data, std::size_t perBlock)
+std::shared_ptr<csmPreparedBlocks> prepareBlocks(
+  vtkSmartPointer<vtkPolyData> data, std::size_t perBlock, const std::atomic<bool>* stop)
 {
   auto result = std::make_shared<csmPreparedBlocks>();
   vtkPoints* points = data->GetPoints();
@@ -1012,7 +1050,7 @@ std::shared_ptr<csmPreparedBlocks> prepareBlocks(vtkSmartPointer<vtkPolyData> da
   corners.reserve(3 * static_cast<size_t>(triangleCount(data)));
   centroids.reserve(static_cast<size_t>(triangleCount(data)));
   bool valid = true;
-  forEachTriangle(data, [&](vtkIdType a, vtkIdType b, vtkIdType c) {
+  valid = forEachTriangle(data, [&](vtkIdType a, vtkIdType b, vtkIdType c) {
     if (a < 0 || b < 0 || c < 0 || a >= pointCount || b >= pointCount || c >= pointCount)
     {
       valid = false;
@@ -1030,14 +1068,14 @@ std::shared_ptr<csmPreparedBlocks> prepareBlocks(vtkSmartPointer<vtkPolyData> da
       { static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c) });
     centroids.emplace_back(static_cast<float>((pa[0] + pb[0] + pc[0]) / 3.0),
       static_cast<float>((pa[1] + pb[1] + pc[1]) / 3.0), static_cast<float>((pa[2] + pb[2] + pc[2]) / 3.0));
-  });
+  }, stop) && valid;
   if (!valid || centroids.empty())
   {
     return result;
   }
   csm::BlockOrder order = csm::orderIntoBlocks(centroids, perBlock);
   std::vector<glm::vec3>().swap(centroids);
-  if (order.blocks.empty())
+  if (order.blocks.empty() || (stop && stop->load()))
   {
     return result;
   }
@@ -1070,7 +1108,7 @@ std::shared_ptr<csmPreparedBlocks> prepareBlocks(vtkSmartPointer<vtkPolyData> da
 }
 
 bool trianglesOf(vtkPolyData* data, std::vector<glm::dvec3>& positions,
-  std::vector<std::array<std::int64_t, 3>>& triangles)
+  std::vector<std::array<std::int64_t, 3>>& triangles, const std::atomic<bool>* stop = nullptr)
 {
   // (Cell iterators and GetPoint into a buffer: safe beside the main thread's own reading.)
   vtkPoints* points = data->GetPoints();
@@ -1086,18 +1124,17 @@ bool trianglesOf(vtkPolyData* data, std::vector<glm::dvec3>& positions,
     positions[static_cast<size_t>(i)] = glm::dvec3(p[0], p[1], p[2]);
   }
   triangles.clear();
-  forEachTriangle(data, [&triangles](vtkIdType a, vtkIdType b, vtkIdType c) {
-    triangles.push_back({ a, b, c });
-  });
-  return true;
+  return forEachTriangle(
+    data, [&triangles](vtkIdType a, vtkIdType b, vtkIdType c) { triangles.push_back({ a, b, c }); },
+    stop);
 }
 
 /// csm::classifySurface of a polydata.
-csm::SurfaceClosure classifyPolyData(vtkPolyData* data)
+csm::SurfaceClosure classifyPolyData(vtkPolyData* data, const std::atomic<bool>* stop = nullptr)
 {
   std::vector<glm::dvec3> positions;
   std::vector<std::array<std::int64_t, 3>> triangles;
-  return trianglesOf(data, positions, triangles) ? csm::classifySurface(positions, triangles)
+  return trianglesOf(data, positions, triangles, stop) ? csm::classifySurface(positions, triangles)
                                                  : csm::SurfaceClosure();
 }
 
@@ -1153,12 +1190,24 @@ const vtkCascadedShadowMapBakerPass::Closure& vtkCascadedShadowMapBakerPass::Cla
     // A big mesh is classified by a worker thread; frames go on meanwhile.
     if (!closure.Pending.valid() || closure.PendingTime != data->GetMTime())
     {
+      // (From the second frame that draws it on, as its blocks.)
+      if (closure.SeenTime != data->GetMTime() || closure.SeenFrame >= this->FrameNumber ||
+        !this->ViewMoved)
+      {
+        if (closure.SeenTime != data->GetMTime())
+        {
+          closure.SeenTime = data->GetMTime();
+          closure.SeenFrame = this->FrameNumber;
+        }
+        return closure;
+      }
       auto copy = vtkSmartPointer<vtkPolyData>::New();
       copy->ShallowCopy(data);
       closure.PendingTime = data->GetMTime();
-      closure.Pending = std::async(std::launch::async, [copy]() {
+      std::shared_ptr<std::atomic<bool>> stop = this->StopWorkers;
+      closure.Pending = std::async(std::launch::async, [copy, stop]() {
         auto prepared = std::make_shared<csmPreparedClosure>();
-        prepared->Closure = classifyPolyData(copy);
+        prepared->Closure = classifyPolyData(copy, stop.get());
         return prepared;
       });
       return closure;
@@ -1266,17 +1315,32 @@ bool vtkCascadedShadowMapBakerPass::AddCompactCaster(
     if (!blocks.Pending.valid() || blocks.PendingTime != dataTime || blocks.Data != data ||
       blocks.Window != window)
     {
-      auto copy = vtkSmartPointer<vtkPolyData>::New();
-      copy->ShallowCopy(data); // the prop's own points and cells, held while prepared
       const size_t triangles = static_cast<size_t>(triangleCount(data));
-      const size_t perBlock = std::max<size_t>(MINIMUM_BLOCK_TRIANGLES,
-        (triangles + MAXIMUM_BLOCKS - 1) / MAXIMUM_BLOCKS);
       const bool now = triangles <= SYNCHRONOUS_PREPARATION_TRIANGLES;
+      // A big mesh is prepared once a later frame's view moved (the maps that follow a moving
+      // view are drawn again and again; a still view keeps its maps): a single image (a
+      // screenshot, a batch frame, even rendered twice) never waits for, nor holds the memory
+      // of, its preparation.
+      const bool seen = blocks.SeenTime == dataTime && blocks.Data == data &&
+        blocks.Window == window && blocks.SeenFrame < this->FrameNumber && this->ViewMoved;
+      if (!seen)
+      {
+        blocks.SeenFrame = this->FrameNumber;
+      }
       blocks.Window = window;
       blocks.Data = data;
+      blocks.SeenTime = dataTime;
+      if (!now && !seen)
+      {
+        return false;
+      }
+      auto copy = vtkSmartPointer<vtkPolyData>::New();
+      copy->ShallowCopy(data); // the prop's own points and cells, held while prepared
+      const size_t perBlock = std::max<size_t>(MINIMUM_BLOCK_TRIANGLES,
+        (triangles + MAXIMUM_BLOCKS - 1) / MAXIMUM_BLOCKS);
       blocks.PendingTime = dataTime;
       blocks.Pending = std::async(now ? std::launch::deferred : std::launch::async,
-        [copy, perBlock]() { return prepareBlocks(copy, perBlock); });
+        [copy, perBlock, stop = this->StopWorkers]() { return prepareBlocks(copy, perBlock, stop.get()); });
       if (!now)
       {
         return false; // (picked up in a later frame, whenever it is ready)

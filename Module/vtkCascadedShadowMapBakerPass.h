@@ -39,6 +39,7 @@
 #include "vtkWeakPointer.h"                    // for members
 
 #include <array>  // for members
+#include <atomic> // for members
 #include <future> // for members
 #include <memory> // for members
 #include <map>    // for members
@@ -560,6 +561,8 @@ protected:
   vtkMultiProcessController* Controller = nullptr;
   FrameStatistics Statistics;
   int BakeCount = 0;
+  long long FrameNumber = 0; ///< Render() calls
+  bool ViewMoved = false;    ///< this frame's camera differs from the last one's
   /// csm::classifySurface's answer per polydata, kept while the data does not change.
   struct Closure
   {
@@ -570,6 +573,8 @@ protected:
     bool ShadowsItself = true; ///< csm::SurfaceClosure::canShadowItself
     std::future<std::shared_ptr<csmPreparedClosure>> Pending; ///< a big mesh's, under way
     vtkMTimeType PendingTime = 0;
+    vtkMTimeType SeenTime = 0;
+    long long SeenFrame = 0;
   };
   std::map<vtkPolyData*, Closure> Closures;
   /// Compact blocks of a polydata in one window (the mapper holds that context's buffers),
@@ -585,6 +590,8 @@ protected:
     std::vector<double> Cells;                 ///< per block: its triangles
     std::future<std::shared_ptr<csmPreparedBlocks>> Pending;
     vtkMTimeType PendingTime = 0;
+    vtkMTimeType SeenTime = 0; ///< of the data a frame drew as it is, not yet prepared
+    long long SeenFrame = 0;   ///< that frame (FrameNumber)
   };
   std::map<std::pair<vtkWindow*, vtkPolyData*>, CasterBlocks> Blocks;
   /// The actor that draws a prop's blocks in one window (its property, a copy of its matrix).
@@ -599,6 +606,8 @@ protected:
   };
   std::map<std::pair<vtkWindow*, vtkProp*>, CasterProxy> Proxies;
   int BlockBuilds = 0;
+  /// Set when the baker goes: the worker threads' preparations stop early.
+  std::shared_ptr<std::atomic<bool>> StopWorkers;
   int WarnedShadowingLights = 0; // lights over the limit last warned about: warn once
   std::set<std::string> Reported; // messages said already (ReportOnce)
 
