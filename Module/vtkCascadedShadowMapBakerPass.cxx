@@ -1647,9 +1647,9 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       : nullptr;
     // Slack pays only where the next frames can keep the map: a still frame of a camera on a
     // smooth path, the light and scene unchanged (a camera light moves with the camera).
-    const bool smoothStep = !interacting && kept && maps.NumberOfCascades > 0 &&
-      vtkCascadedShadowMapPlanner::IsSmallCameraStep(
-        state.LastCamera, camera, aspect, this->Planner->GetCascadeNear(0));
+    // (Judged per cascade: a step that moves a near cascade's small body out of any border may
+    // leave a far one's well inside.)
+    const bool smoothPath = !interacting && kept && maps.NumberOfCascades > 0;
     vtkNew<vtkMatrix4x4> m;
     // The largest maps this count of cascades has in the atlas (csm::ceilingsForCount: the
     // planner judged the count at the same).
@@ -1668,7 +1668,9 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       // fresh map would (csm::slackedMap, csm::keptMapServes). Not for screen-sized casters,
       // whose maps serve only the view they were sized for.
       double cascadeBorder = border;
-      if (smoothStep && !screenSized && !maps.SceneFitted[c])
+      if (smoothPath && !screenSized && !maps.SceneFitted[c] &&
+        vtkCascadedShadowMapPlanner::IsSmallCameraStep(
+          state.LastCamera, camera, aspect, this->Planner->GetCascadeFar(c)))
       {
         const csm::SlackedMap slacked = csm::slackedMap(need, most, this->MapSlack);
         cascadeBorder = slacked.border;

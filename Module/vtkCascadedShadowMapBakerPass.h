@@ -290,7 +290,9 @@ public:
 
   ///@{
   /// Slope-scaled depth offset applied while rendering the maps (glPolygonOffset factor and
-  /// units), finite. Defaults 1.1 and 2.
+  /// units), finite; not to closed casters drawn from behind (CullClosedCasters), whose exit
+  /// layer stays at its own depth (an offset there lets light through along concave creases:
+  /// Documentation/Results.md, "Closed casters"). Defaults 1.1 and 2.
   vtkSetFiniteClampMacro(PolygonOffsetFactor, double, -VTK_FLOAT_MAX, VTK_FLOAT_MAX);
   vtkGetMacro(PolygonOffsetFactor, double);
   vtkSetFiniteClampMacro(PolygonOffsetUnits, double, -VTK_FLOAT_MAX, VTK_FLOAT_MAX);

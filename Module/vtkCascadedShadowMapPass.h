@@ -56,7 +56,8 @@ public:
   ///@{
   /// PCF kernel width in texels of the cascade: 1, 3, 5 or 7 (even values round up). Default 3
   /// (Barroso & Celes §4 use 3x3 to 5x5; 3x3 takes 4 bilinear taps where 5x5 takes 9, and
-  /// misclassified no more pixels on any bench scene: Documentation/Results.md).
+  /// misclassified no more pixels on any bench scene: Documentation/Results.md, "Lookup cost
+  /// and PCF").
   virtual void SetPCFSize(int size);
   vtkGetMacro(PCFSize, int);
   ///@}
@@ -75,10 +76,9 @@ public:
    * interpolate them: the lookup then makes no matrix product per fragment, with the same
    * result up to float rounding. Only while shadowed lights times the cascades is at most
    * MAXIMUM_MAP_COORDINATE_VARYINGS (varyings are few); otherwise, or off, the fragment shader
-   * multiplies, for the cascades it tests only. Default off since the fifteenth session: on
-   * llvmpipe the varyings' set-up for every triangle cost more than the products they save
-   * (csm-bench --quick, side by side: towers still frames 0.85x VTK's with them, 0.61x
-   * without; platform 0.77x, 0.73x; the engine the same).
+   * multiplies, for the cascades it tests only. Default off: on llvmpipe the varyings' set-up
+   * for every triangle costs more than the products they save (Documentation/Results.md,
+   * "Map coordinates from vertices").
    */
   vtkSetMacro(MapCoordinatesFromVertices, bool);
   vtkGetMacro(MapCoordinatesFromVertices, bool);

@@ -698,11 +698,11 @@ double vtkCascadedShadowMapPlanner::CompareKeptMap(
 }
 
 bool vtkCascadedShadowMapPlanner::IsSmallCameraStep(
-  vtkCamera* before, vtkCamera* now, double aspect, double nearestDepth)
+  vtkCamera* before, vtkCamera* now, double aspect, double depth)
 {
   csm::Camera a, b;
   return before && now && toCamera(before, aspect, a) && toCamera(now, aspect, b) &&
-    csm::smallCameraStep(a, b, nearestDepth);
+    csm::smallCameraStep(a, b, depth);
 }
 
 bool vtkCascadedShadowMapPlanner::CascadeReachesBox(

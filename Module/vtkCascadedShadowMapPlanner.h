@@ -354,9 +354,8 @@ public:
     int resolution) const;
 
   /// Did the camera take a small step from `before` (a smooth path: csm::smallCameraStep),
-  /// measured against the nearest visible depth?
-  static bool IsSmallCameraStep(vtkCamera* before, vtkCamera* now, double aspect,
-    double nearestDepth);
+  /// measured against a view depth (the far end of a cascade)?
+  static bool IsSmallCameraStep(vtkCamera* before, vtkCamera* now, double aspect, double depth);
 
   /// Does any part of a world box (xmin, xmax, ymin, ymax, zmin, zmax) reach the light volume of
   /// a cascade (row-major world -> light clip)? With depthClamp, what is nearer than the near

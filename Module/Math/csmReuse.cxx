@@ -45,11 +45,11 @@ SlackedMap slackedMap(const MapSize& need, const MapSize& most, double slack)
   return slacked;
 }
 
-bool smallCameraStep(const Camera& before, const Camera& now, double vsNearest)
+bool smallCameraStep(const Camera& before, const Camera& now, double vsDepth)
 {
   const double lengths = glm::length(before.wsDirection) * glm::length(now.wsDirection);
-  if (!(lengths > 0.0) || !std::isfinite(lengths) || !(vsNearest > 0.0) ||
-    !std::isfinite(vsNearest))
+  if (!(lengths > 0.0) || !std::isfinite(lengths) || !(vsDepth > 0.0) ||
+    !std::isfinite(vsDepth))
   {
     return false;
   }
@@ -61,7 +61,7 @@ bool smallCameraStep(const Camera& before, const Camera& now, double vsNearest)
     return false;
   }
   constexpr double kPi = 3.14159265358979323846;
-  return cosTurn >= std::cos(kSmallStepTurnDeg * kPi / 180.0) && moved <= kSmallStepShare * vsNearest;
+  return cosTurn >= std::cos(kSmallStepTurnDeg * kPi / 180.0) && moved <= kSmallStepShare * vsDepth;
 }
 
 bool keptMapServes(double errorRatio, const MapSize& keptSize, const MapSize& need)

@@ -40,11 +40,11 @@ SlackedMap slackedMap(const MapSize& need, const MapSize& most, double slack);
 
 /// Did the camera take a small step since the last frame (a smooth path, whose next frames a
 /// slacked map may serve)? Turned by at most kSmallStepTurnDeg and moved by at most
-/// kSmallStepShare of the nearest visible depth; a camera that did not move took no step, and
-/// an invalid one none either.
+/// kSmallStepShare of vsDepth (the far end of the cascade that would keep its map); a camera
+/// that did not move took no step, and an invalid one none either.
 constexpr double kSmallStepTurnDeg = 5.0;
 constexpr double kSmallStepShare = 0.25;
-bool smallCameraStep(const Camera& before, const Camera& now, double vsNearest);
+bool smallCameraStep(const Camera& before, const Camera& now, double vsDepth);
 
 /// Does a kept map of keptSize texels serve where a tight fresh map needs `need` texels to meet
 /// the error target? Its error over the fresh map's at equal resolution is errorRatio

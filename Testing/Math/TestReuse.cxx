@@ -103,7 +103,7 @@ TEST(Reuse, ASlackedMapServesACameraThatTurnsALittle)
   EXPECT_TRUE(stopped); // 20 degrees later the map no longer serves
 }
 
-TEST(Reuse, ASmallCameraStepIsATurnOfAFewDegreesOrAMoveWellShortOfTheNearestSample)
+TEST(Reuse, ASmallCameraStepIsATurnOfAFewDegreesAndAMoveWellShortOfTheDepth)
 {
   csm::Camera before = csmMathTest::camera(1.0, 100.0, 60.0);
   csm::Camera turned = before;
@@ -114,7 +114,7 @@ TEST(Reuse, ASmallCameraStepIsATurnOfAFewDegreesOrAMoveWellShortOfTheNearestSamp
   csm::Camera moved = before;
   moved.wsPosition = { 0.0, 0.0, -2.0 };
   EXPECT_TRUE(csm::smallCameraStep(before, moved, 10.0));
-  EXPECT_FALSE(csm::smallCameraStep(before, moved, 4.0)); // half the way to the nearest sample
+  EXPECT_FALSE(csm::smallCameraStep(before, moved, 4.0)); // half the way to the depth
   EXPECT_FALSE(csm::smallCameraStep(before, before, 10.0)); // no step at all
   EXPECT_FALSE(csm::smallCameraStep(before, moved, std::nan("")));
   csm::Camera broken = before;

@@ -115,7 +115,7 @@ TEST(Splits, ParsesAndPrintsSchemes)
   EXPECT_FALSE(csm::parseSplitScheme("logarithmic", scheme));
 }
 
-// Issue 9 (7): f/n beyond a double (1e600) still gives finite, increasing log splits.
+// f/n beyond a double (1e600) still gives finite, increasing log splits.
 TEST(Splits, LogSplitsInLogSpace)
 {
   const auto l = csm::splitDepths(params(csm::SplitScheme::Log, 4), 1e-300, 1e300, 0.0);

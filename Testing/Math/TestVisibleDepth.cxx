@@ -49,7 +49,7 @@ TEST(VisibleDepth, WindowAndViewDepthsAreInverse)
 TEST(VisibleDepth, TheNearestSampleOfABoxAtKnownDepth)
 {
   // A depth buffer of a box face at view depth 40 in front of a background (1.0), camera
-  // 0.5 .. 1000: the measured near is the face's depth within 1 % (the test), and the
+  // 0.5 .. 1000: the measured near is the face's depth within 1 %, and the
   // carried range of a still camera holds it.
   const csm::Camera cam = camera(0.5, 1000.0, 30.0, 4.0 / 3.0);
   std::vector<float> buffer(640 * 480, 1.0f);
