@@ -34,7 +34,7 @@ struct Options
   csm::Settings settings;
   bool json = false;
   bool table = false;
-  bool face = false; ///< --partition face: face partitioning instead of z-partitioning alone
+  bool face = false;        ///< --partition face: face partitioning instead of z-partitioning alone
   double errorTarget = 0.0; ///< > 0: the cascade count from the error model, up to --cascades
   double imageHeight = 600.0;
   int resolution = 2048;
@@ -214,8 +214,8 @@ void printJson(const Options& o, const csm::ShadowSetup& s)
     jsonNumber(o.aspect).c_str(), jsonNumber(o.gamma).c_str(), csm::toString(o.settings.warp),
     csm::toString(o.settings.split.scheme), o.settings.split.k,
     jsonNumber(o.settings.split.alpha).c_str(), jsonNumber(o.settings.split.lambda).c_str());
-  std::printf(" \"status\": \"%s\", \"gamma_lim_deg\": %s,\n \"cascades\": [", csm::toString(s.status),
-    jsonNumber(s.gammaLimDeg).c_str());
+  std::printf(" \"status\": \"%s\", \"gamma_lim_deg\": %s,\n \"cascades\": [",
+    csm::toString(s.status), jsonNumber(s.gammaLimDeg).c_str());
   for (size_t i = 0; i < s.cascades.size(); ++i)
   {
     const csm::Cascade& c = s.cascades[i];
@@ -246,8 +246,8 @@ void printText(const Options& o, const csm::ShadowSetup& s)
   std::printf("warp %s, partition %s, k %d, alpha %g, lambda %g; gamma_lim %.4f deg\n",
     csm::toString(o.settings.warp), csm::toString(o.settings.split.scheme), o.settings.split.k,
     o.settings.split.alpha, o.settings.split.lambda, s.gammaLimDeg);
-  std::printf("%-3s %14s %14s %14s %12s %12s %12s\n", "i", "near", "far", "n'", "Mx", "Mz",
-    "storage");
+  std::printf(
+    "%-3s %14s %14s %14s %12s %12s %12s\n", "i", "near", "far", "n'", "Mx", "Mz", "storage");
   for (size_t i = 0; i < s.cascades.size(); ++i)
   {
     const csm::Cascade& c = s.cascades[i];
@@ -259,8 +259,8 @@ void printText(const Options& o, const csm::ShadowSetup& s)
     std::printf("%-3zu %14.6g %14.6g %s %12.5g %12.5g %12.5g\n", i, c.vsNear, c.vsFar, np, c.Mx,
       c.Mz, c.storage);
   }
-  std::printf("storage total %.6g, optimal %.6g (ratio %.3g)\n", s.storageTotal,
-    s.storageOptimal, s.storageTotal / s.storageOptimal);
+  std::printf("storage total %.6g, optimal %.6g (ratio %.3g)\n", s.storageTotal, s.storageOptimal,
+    s.storageTotal / s.storageOptimal);
   if (o.errorTarget > 0.0)
   {
     // The choice as AdaptiveCascades makes it, and every count's own plan beside it.
@@ -270,9 +270,9 @@ void printText(const Options& o, const csm::ShadowSetup& s)
     std::printf("%-3s %12s %16s\n", "k", "texels", "predicted m");
     for (int k = 1; k <= o.settings.split.k; ++k)
     {
-      const csm::ShadowSetup plan = csm::computeShadowSetupForCount(makeCamera(o),
-        lightDirection(o.gamma), nullptr, o.settings, nullptr, k,
-        csm::resolutionCeilingForCount(k, o.settings.split.k, o.resolution));
+      const csm::ShadowSetup plan =
+        csm::computeShadowSetupForCount(makeCamera(o), lightDirection(o.gamma), nullptr, o.settings,
+          nullptr, k, csm::resolutionCeilingForCount(k, o.settings.split.k, o.resolution));
       const csm::MapSize r = csm::resolutionCeilingForCount(
         static_cast<int>(plan.cascades.size()), o.settings.split.k, o.resolution);
       const std::string texels = std::to_string(r.width) + "x" + std::to_string(r.height);
@@ -325,8 +325,8 @@ void printFaceText(const Options& o, const csm::FacePartitioning& s)
     std::printf("%-7s %-3d %14.6g %14.6g %s %12.5g %12.5g %12.5g\n", csm::toString(p.face),
       p.zIndex, c.vsNear, c.vsFar, np, c.Mx, c.Mz, c.storage);
   }
-  std::printf("storage total %.6g, optimal %.6g (ratio %.3g)\n", s.storageTotal,
-    s.storageOptimal, s.storageTotal / s.storageOptimal);
+  std::printf("storage total %.6g, optimal %.6g (ratio %.3g)\n", s.storageTotal, s.storageOptimal,
+    s.storageTotal / s.storageOptimal);
 }
 
 // Speed against error for common settings: maps rendered per frame (the cost on the GPU), the

@@ -8,7 +8,6 @@
 
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
-#include "vtkCascadedShadowMapPlanner.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
 #include "vtkCascadedShadowMapPlanner.h"
@@ -56,7 +55,7 @@ struct Options
   bool Offscreen = false;
   std::string Out;
   int Frames = 0;
-  double Orbit = 360.0; // degrees the camera turns over --frames
+  double Orbit = 360.0;     // degrees the camera turns over --frames
   bool Interactive = false; // --frames as a user dragging the camera (desired update rate 15)
   bool Breakdown = false;   // --frames: also the median planning and map times (glFinish-bracketed)
   std::string Keys;         // keys of the window pressed in turn before the image or frames
@@ -164,12 +163,15 @@ void usage()
     "                     the window's text), then render the image or --frames; e.g. tt\n"
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
     "  t technique, l light angle +15 deg\n",
-    o.Scene.c_str(), csmScenes::PlatformMaxTriangles(), o.Triangles, d.Technique.c_str(), kWarps[d.Warp], kPartitions[d.Partition],
-    d.CameraSpaceFocus, vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda, d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
+    o.Scene.c_str(), csmScenes::PlatformMaxTriangles(), o.Triangles, d.Technique.c_str(),
+    kWarps[d.Warp], kPartitions[d.Partition], d.CameraSpaceFocus,
+    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda,
+    d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
     d.CompactCasters ? "on" : "off", d.CullCastersWithoutReceivers ? "on" : "off",
-    d.VisibleDepthFit ? "on" : "off", d.SceneFittedCascades ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias,
-    d.SlopeBias, d.ClosedSurfaceBiasFactor, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], o.Light[0],
-    o.Light[1], o.Light[2], o.Width, o.Height,
+    d.VisibleDepthFit ? "on" : "off", d.SceneFittedCascades ? "on" : "off", d.Alpha, d.Resolution,
+    d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias, d.SlopeBias,
+    d.ClosedSurfaceBiasFactor, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug],
+    o.Light[0], o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
                              : "needs an X display: xvfb-run -a",
     o.Orbit);
@@ -333,21 +335,22 @@ Options parse(int argc, char** argv)
     else
     {
       static const char* const numeric[] = { "--triangles", "--cascades", "--resolution",
-        "--error-target", "--pcf",
-        "--lambda", "--alpha", "--bias", "--slope-bias", "--closed-bias", "--blend", "--darkness", "--gamma",
-        "--frames", "--orbit", "--cssm-focus" };
-      if (std::none_of(std::begin(numeric), std::end(numeric),
-            [&](const char* known) { return f == known; }))
+        "--error-target", "--pcf", "--lambda", "--alpha", "--bias", "--slope-bias", "--closed-bias",
+        "--blend", "--darkness", "--gamma", "--frames", "--orbit", "--cssm-focus" };
+      if (std::none_of(
+            std::begin(numeric), std::end(numeric), [&](const char* known) { return f == known; }))
         fail("unknown option '" + f + "'");
       const double value = number(f, v);
       next();
-      auto whole = [&](double lo, double hi) {
+      auto whole = [&](double lo, double hi)
+      {
         if (value != std::floor(value) || value < lo || value > hi)
           fail(f + " needs a whole number in [" + std::to_string(int(lo)) + ", " +
             std::to_string(int(hi)) + "]");
         return static_cast<int>(value);
       };
-      auto range = [&](double lo, double hi) {
+      auto range = [&](double lo, double hi)
+      {
         if (value < lo || value > hi)
         {
           std::ostringstream bounds;
@@ -484,8 +487,9 @@ struct App
       << static_cast<int>(this->LastFrameMs) << " ms";
     if (s.Technique == "csm")
       t << "\nwarp " << kWarps[s.Warp] << " | partition "
-        << (s.CameraSpace ? "cssm"
-             : s.FacePartitions > 0 ? kPartitionChoices[4 + s.FacePartitions] : kPartitions[s.Partition])
+        << (s.CameraSpace             ? "cssm"
+               : s.FacePartitions > 0 ? kPartitionChoices[4 + s.FacePartitions]
+                                      : kPartitions[s.Partition])
         << " | cascades " << s.Cascades << " | pcf " << s.PCF << " " << kKernels[s.Kernel]
         << " | debug " << kDebug[s.Debug];
     this->Text->SetInput(t.str().c_str());
@@ -539,8 +543,8 @@ struct App
   }
 
   /// The window's text and keys on the interactor, ahead of its style's own keys.
-  void Connect(vtkRenderWindowInteractor* interactor, vtkInteractorObserver* style,
-    vtkCallbackCommand* onKey)
+  void Connect(
+    vtkRenderWindowInteractor* interactor, vtkInteractorObserver* style, vtkCallbackCommand* onKey)
   {
     if (!this->Text)
       this->AddText();
@@ -670,15 +674,15 @@ int main(int argc, char** argv)
         closedCasters = stats.ClosedCasters;
         compactCasters = stats.CompactCasters;
         blocksDrawn += stats.BlocksDrawn;
-        withoutReceivers +=
-          stats.CastersWithoutReceivers;
+        withoutReceivers += stats.CastersWithoutReceivers;
         texelsRendered += stats.TexelsRendered;
         planTimes.push_back(1000.0 * stats.PlanSeconds);
         mapTimes.push_back(1000.0 * stats.MapSeconds);
       }
     }
     window->SetDesiredUpdateRate(0.0001); // the interactor's still rate
-    auto median = [](std::vector<double> v) {
+    auto median = [](std::vector<double> v)
+    {
       std::sort(v.begin(), v.end());
       return v[v.size() / 2];
     };
@@ -688,8 +692,8 @@ int main(int argc, char** argv)
                   "frame: %.2f M\n",
         cascadesRendered, cascadesKept, app.Opt.Frames, texelsRendered / app.Opt.Frames / 1e6);
     if (app.Passes.Cascaded && app.Opt.Breakdown)
-      std::printf("median_plan_ms: %.3f  median_map_ms: %.3f\n", median(planTimes),
-        median(mapTimes));
+      std::printf(
+        "median_plan_ms: %.3f  median_map_ms: %.3f\n", median(planTimes), median(mapTimes));
     if (app.Passes.Cascaded)
       std::printf("closed_casters: %d of %d actors (drawn into the maps from behind)\n",
         closedCasters, renderer->GetActors()->GetNumberOfItems());

@@ -23,7 +23,8 @@ int main()
   vtkNew<vtkCubeSource> box;
   box->SetBounds(-1, 1, 2, 4, -1, 1);
   vtkNew<vtkRenderer> renderer;
-  for (vtkAlgorithm* source : { static_cast<vtkAlgorithm*>(ground), static_cast<vtkAlgorithm*>(box) })
+  for (vtkAlgorithm* source :
+    { static_cast<vtkAlgorithm*>(ground), static_cast<vtkAlgorithm*>(box) })
   {
     vtkNew<vtkPolyDataMapper> mapper;
     mapper->SetInputConnection(source->GetOutputPort());
@@ -48,7 +49,8 @@ int main()
   const char* display = std::getenv("DISPLAY");
   if (window->IsA("vtkXOpenGLRenderWindow") && !(display && *display))
   {
-    std::fprintf(stderr, "csm-minimal: no X display (DISPLAY is not set): run it under xvfb-run -a\n");
+    std::fprintf(
+      stderr, "csm-minimal: no X display (DISPLAY is not set): run it under xvfb-run -a\n");
     return EXIT_FAILURE;
   }
   window->AddRenderer(renderer);

@@ -9,8 +9,8 @@
 
 vtkStandardNewMacro(vtkCascadedShadowBlockMapper);
 
-void vtkCascadedShadowBlockMapper::SetBlocks(std::vector<std::uint32_t>&& corners,
-  std::vector<std::pair<std::size_t, std::size_t>> blocks)
+void vtkCascadedShadowBlockMapper::SetBlocks(
+  std::vector<std::uint32_t>&& corners, std::vector<std::pair<std::size_t, std::size_t>> blocks)
 {
   this->Corners = std::move(corners);
   this->Blocks = std::move(blocks);

@@ -26,8 +26,8 @@ public:
 
   /// The triangles (three point ids each), block after block, and each block's first triangle
   /// and count. The ids are uploaded at the next draw and then released.
-  void SetBlocks(std::vector<std::uint32_t>&& corners,
-    std::vector<std::pair<std::size_t, std::size_t>> blocks);
+  void SetBlocks(
+    std::vector<std::uint32_t>&& corners, std::vector<std::pair<std::size_t, std::size_t>> blocks);
   std::size_t GetNumberOfBlocks() const { return this->Blocks.size(); }
   std::size_t GetNumberOfBlockTriangles(std::size_t block) const
   {

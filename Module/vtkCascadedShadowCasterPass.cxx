@@ -21,8 +21,8 @@
 
 vtkStandardNewMacro(vtkCascadedShadowCasterPass);
 
-void vtkCascadedShadowCasterPass::BeginCascade(vtkOpenGLState* state,
-  const CasterUniforms& uniforms, std::map<vtkProp*, unsigned int> cullFaces)
+void vtkCascadedShadowCasterPass::BeginCascade(
+  vtkOpenGLState* state, const CasterUniforms& uniforms, std::map<vtkProp*, unsigned int> cullFaces)
 {
   this->CullState = state;
   this->Uniforms = uniforms;
@@ -85,9 +85,8 @@ bool drawsOnlyWideLines(vtkAbstractMapper* mapper, vtkProp* prop)
   vtkPolyData* data = polyMapper ? polyMapper->GetInput() : nullptr;
   float sizes[2];
   vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, sizes);
-  if (!property || !data || sizes[0] <= 1.0f ||
-    property->GetRepresentation() == VTK_POINTS || property->GetVertexVisibility() ||
-    data->GetNumberOfVerts() > 0)
+  if (!property || !data || sizes[0] <= 1.0f || property->GetRepresentation() == VTK_POINTS ||
+    property->GetVertexVisibility() || data->GetNumberOfVerts() > 0)
   {
     return false;
   }
@@ -97,9 +96,8 @@ bool drawsOnlyWideLines(vtkAbstractMapper* mapper, vtkProp* prop)
 }
 }
 
-bool vtkCascadedShadowCasterPass::PreReplaceShaderValues(std::string&,
-  std::string& geometryShader, std::string& fragmentShader, vtkAbstractMapper* mapper,
-  vtkProp* prop)
+bool vtkCascadedShadowCasterPass::PreReplaceShaderValues(std::string&, std::string& geometryShader,
+  std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop)
 {
   // Depth only: no lighting in the maps' fragment shader (the mapper finds no tag to expand).
   // This also keeps the depth program apart from the main pass's in the shader cache.
@@ -121,8 +119,8 @@ bool vtkCascadedShadowCasterPass::PreReplaceShaderValues(std::string&,
   return true;
 }
 
-bool vtkCascadedShadowCasterPass::PostReplaceShaderValues(std::string& vertexShader,
-  std::string&, std::string& fragmentShader, vtkAbstractMapper*, vtkProp* prop)
+bool vtkCascadedShadowCasterPass::PostReplaceShaderValues(std::string& vertexShader, std::string&,
+  std::string& fragmentShader, vtkAbstractMapper*, vtkProp* prop)
 {
   // Points: sized per vertex as the main view draws them (gl_PointSize, GL_PROGRAM_POINT_SIZE
   // is on while the maps render); spheres keep only their silhouette; impostors (tubes,
@@ -135,8 +133,8 @@ bool vtkCascadedShadowCasterPass::PostReplaceShaderValues(std::string& vertexSha
     fragmentMain == std::string::npos || fragmentEnd == std::string::npos ||
     fragmentEnd < fragmentMain)
   {
-    this->ReportOnce(false,
-      "a mapper's shaders have no main(): its lines and points cast shadows one texel wide");
+    this->ReportOnce(
+      false, "a mapper's shaders have no main(): its lines and points cast shadows one texel wide");
     return true;
   }
   // Only props whose points are drawn bigger than a pixel pay for the sizing: a software

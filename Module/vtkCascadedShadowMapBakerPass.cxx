@@ -1,36 +1,36 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapBakerPass.h"
 
+#include "csmAtlas.h" // the atlas layout
 #include "csmCasterBlocks.h"
 #include "csmClosedSurface.h"
 #include "csmReuse.h"
-#include "csmAtlas.h" // the atlas layout
 #include "csmVisibleDepth.h"
 
 #include "vtkActor.h"
-#include "vtkCellArray.h"
-#include "vtkCellArrayIterator.h"
 #include "vtkCamera.h"
 #include "vtkCascadedShadowBlockMapper.h"
 #include "vtkCascadedShadowCasterPass.h"
 #include "vtkCascadedShadowMapPlanner.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCommunicator.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMath.h"
-#include "vtkCommunicator.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPoints.h"
-#include "vtkPolyData.h"
-#include "vtkPolyDataMapper.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLState.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
 #include "vtkProp.h"
 #include "vtkPropCollection.h"
 #include "vtkProperty.h"
@@ -42,10 +42,10 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <atomic>
 #include <future>
 #include <limits>
 #include <memory>
@@ -71,8 +71,8 @@ constexpr size_t kMaxReceiverBoxes = 64;
 /// Most casters the cascade count is weighed with one by one (each is tested against every
 /// cascade of every count planned).
 constexpr size_t kMaxCasterLoads = 256;
-/// Most receiver boxes a caster without self-shadow is tested against (CullCastersWithoutReceivers);
-/// beyond, every caster is drawn.
+/// Most receiver boxes a caster without self-shadow is tested against
+/// (CullCastersWithoutReceivers); beyond, every caster is drawn.
 constexpr size_t kMaxReceiverTests = 4096;
 // Frames per second from which the window's desired update rate means "interacting" (the
 // interactor's default is 15, its still rate 0.0001).
@@ -155,8 +155,8 @@ double casterCells(vtkProp* prop)
 {
   vtkActor* actor = vtkActor::SafeDownCast(prop);
   vtkMapper* mapper = actor ? actor->GetMapper() : nullptr;
-  vtkDataObject* data = mapper && mapper->GetNumberOfInputPorts() > 0 &&
-      mapper->GetNumberOfInputConnections(0) > 0
+  vtkDataObject* data =
+    mapper && mapper->GetNumberOfInputPorts() > 0 && mapper->GetNumberOfInputConnections(0) > 0
     ? mapper->GetInputDataObject(0, 0)
     : nullptr;
   return data ? static_cast<double>(data->GetNumberOfElements(vtkDataObject::CELL)) : 0.0;
@@ -371,8 +371,8 @@ bool vtkCascadedShadowMapBakerPass::InputsChanged(vtkRenderer* renderer, Rendere
     input = std::max(input, prop->GetRedrawMTime());
   }
   int* size = renderer->GetSize();
-  const bool changed = input > state.LastInputTime || size[0] != state.LastSize[0] ||
-    size[1] != state.LastSize[1];
+  const bool changed =
+    input > state.LastInputTime || size[0] != state.LastSize[0] || size[1] != state.LastSize[1];
   state.LastInputTime = input;
   state.LastSize[0] = size[0];
   state.LastSize[1] = size[1];
@@ -418,8 +418,8 @@ void vtkCascadedShadowMapBakerPass::ReportOnce(bool error, const std::string& me
   }
 }
 
-bool vtkCascadedShadowMapBakerPass::PrepareAtlas(vtkOpenGLRenderWindow* window,
-  LightMaps& maps, int tiles, int wanted, bool& reallocated)
+bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
+  vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles, int wanted, bool& reallocated)
 {
   reallocated = false;
   // The texels of up to csm::kAtlasFullMaps full maps in one texture for every count of
@@ -441,8 +441,8 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(vtkOpenGLRenderWindow* window,
   vtkTextureObject* atlas = maps.Atlas;
   const unsigned int width = static_cast<unsigned int>(budget.columns * budget.tile.width);
   const unsigned int height = static_cast<unsigned int>(budget.rows * budget.tile.height);
-  if (atlas->GetContext() != window || atlas->GetWidth() != width ||
-    atlas->GetHeight() != height || !atlas->GetHandle())
+  if (atlas->GetContext() != window || atlas->GetWidth() != width || atlas->GetHeight() != height ||
+    !atlas->GetHandle())
   {
     atlas->ReleaseGraphicsResources(window);
     atlas->SetContext(window);
@@ -523,7 +523,8 @@ void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
   vtkOpenGLFramebufferObject* frameBuffer, LightMaps& maps, int c, const FrameProps& props,
   bool depthClamp)
 {
-  vtkOpenGLState* ostate = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow())->GetState();
+  vtkOpenGLState* ostate =
+    static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow())->GetState();
   const std::array<int, 4> tile = tileTexels(maps, c);
   const int x = tile[0], y = tile[1], w = tile[2], h = tile[3];
   ostate->vtkglViewport(x, y, w, h);
@@ -620,8 +621,8 @@ void vtkCascadedShadowMapBakerPass::SetUpLightCamera(const LightMaps& maps, int 
   {
     vtkMath::MultiplyScalar(travel, 1.0 / length);
     this->LightCamera->SetFocalPoint(travel);
-    this->LightCamera->SetViewUp(std::abs(travel[1]) < 0.9 ? 0.0 : 1.0,
-      std::abs(travel[1]) < 0.9 ? 1.0 : 0.0, 0.0);
+    this->LightCamera->SetViewUp(
+      std::abs(travel[1]) < 0.9 ? 0.0 : 1.0, std::abs(travel[1]) < 0.9 ? 1.0 : 0.0, 0.0);
   }
   else
   {
@@ -753,8 +754,8 @@ bool readWindowDepths(vtkRenderer* renderer, double range[2])
 
 }
 
-void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(
-  vtkOpenGLRenderer* renderer, const vtkRenderState* s, RendererMaps& state, const FrameProps& props)
+void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* renderer,
+  const vtkRenderState* s, RendererMaps& state, const FrameProps& props)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
   const double aspect = renderer->GetTiledAspectRatio();
@@ -914,8 +915,8 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
         this->Statistics.ClosedCasters += closure != 0 ? 1 : 0;
         const size_t first = props.Casters.size();
         if (this->CompactCasters &&
-          this->AddCompactCaster(prop, closure,
-            static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow()), props))
+          this->AddCompactCaster(
+            prop, closure, static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow()), props))
         {
           ++this->Statistics.CompactCasters;
         }
@@ -966,9 +967,8 @@ bool forEachTriangle(vtkPolyData* data, F&& f, const std::atomic<bool>* stop = n
   vtkIdType n;
   const vtkIdType* ids;
   vtkIdType visited = 0;
-  auto stopped = [&visited, stop]() {
-    return stop && (++visited & 0xfff) == 0 && stop->load(std::memory_order_relaxed);
-  };
+  auto stopped = [&visited, stop]()
+  { return stop && (++visited & 0xfff) == 0 && stop->load(std::memory_order_relaxed); };
   auto polys = vtk::TakeSmartPointer(data->GetPolys()->NewIterator());
   for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
   {
@@ -1041,7 +1041,8 @@ std::shared_ptr<csmPreparedBlocks> prepareBlocks(
   auto result = std::make_shared<csmPreparedBlocks>();
   vtkPoints* points = data->GetPoints();
   const vtkIdType pointCount = points ? points->GetNumberOfPoints() : 0;
-  if (pointCount == 0 || pointCount > static_cast<vtkIdType>(std::numeric_limits<std::uint32_t>::max()))
+  if (pointCount == 0 ||
+    pointCount > static_cast<vtkIdType>(std::numeric_limits<std::uint32_t>::max()))
   {
     return result;
   }
@@ -1050,25 +1051,32 @@ std::shared_ptr<csmPreparedBlocks> prepareBlocks(
   corners.reserve(3 * static_cast<size_t>(triangleCount(data)));
   centroids.reserve(static_cast<size_t>(triangleCount(data)));
   bool valid = true;
-  valid = forEachTriangle(data, [&](vtkIdType a, vtkIdType b, vtkIdType c) {
-    if (a < 0 || b < 0 || c < 0 || a >= pointCount || b >= pointCount || c >= pointCount)
-    {
-      valid = false;
-      return;
-    }
-    if (a == b || b == c || c == a)
-    {
-      return; // covers no texel
-    }
-    double pa[3], pb[3], pc[3];
-    points->GetPoint(a, pa);
-    points->GetPoint(b, pb);
-    points->GetPoint(c, pc);
-    corners.insert(corners.end(),
-      { static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c) });
-    centroids.emplace_back(static_cast<float>((pa[0] + pb[0] + pc[0]) / 3.0),
-      static_cast<float>((pa[1] + pb[1] + pc[1]) / 3.0), static_cast<float>((pa[2] + pb[2] + pc[2]) / 3.0));
-  }, stop) && valid;
+  valid = forEachTriangle(
+            data,
+            [&](vtkIdType a, vtkIdType b, vtkIdType c)
+            {
+              if (a < 0 || b < 0 || c < 0 || a >= pointCount || b >= pointCount || c >= pointCount)
+              {
+                valid = false;
+                return;
+              }
+              if (a == b || b == c || c == a)
+              {
+                return; // covers no texel
+              }
+              double pa[3], pb[3], pc[3];
+              points->GetPoint(a, pa);
+              points->GetPoint(b, pb);
+              points->GetPoint(c, pc);
+              corners.insert(corners.end(),
+                { static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
+                  static_cast<std::uint32_t>(c) });
+              centroids.emplace_back(static_cast<float>((pa[0] + pb[0] + pc[0]) / 3.0),
+                static_cast<float>((pa[1] + pb[1] + pc[1]) / 3.0),
+                static_cast<float>((pa[2] + pb[2] + pc[2]) / 3.0));
+            },
+            stop) &&
+    valid;
   if (!valid || centroids.empty())
   {
     return result;
@@ -1090,8 +1098,8 @@ std::shared_ptr<csmPreparedBlocks> prepareBlocks(
   result->Blocks = std::move(order.blocks);
   for (const auto& [first, count] : result->Blocks)
   {
-    std::array<double, 6> box = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX,
-      -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    std::array<double, 6> box = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+      VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
     for (size_t i = 3 * first; i < 3 * (first + count); ++i)
     {
       double p[3];
@@ -1125,7 +1133,10 @@ bool trianglesOf(vtkPolyData* data, std::vector<glm::dvec3>& positions,
   }
   triangles.clear();
   return forEachTriangle(
-    data, [&triangles](vtkIdType a, vtkIdType b, vtkIdType c) { triangles.push_back({ a, b, c }); },
+    data,
+    [&triangles](vtkIdType a, vtkIdType b, vtkIdType c) {
+      triangles.push_back({ a, b, c });
+    },
     stop);
 }
 
@@ -1135,7 +1146,7 @@ csm::SurfaceClosure classifyPolyData(vtkPolyData* data, const std::atomic<bool>*
   std::vector<glm::dvec3> positions;
   std::vector<std::array<std::int64_t, 3>> triangles;
   return trianglesOf(data, positions, triangles, stop) ? csm::classifySurface(positions, triangles)
-                                                 : csm::SurfaceClosure();
+                                                       : csm::SurfaceClosure();
 }
 
 /// The polydata of a prop that may be drawn from compact blocks: a plain actor and mapper,
@@ -1205,11 +1216,13 @@ const vtkCascadedShadowMapBakerPass::Closure& vtkCascadedShadowMapBakerPass::Cla
       copy->ShallowCopy(data);
       closure.PendingTime = data->GetMTime();
       std::shared_ptr<std::atomic<bool>> stop = this->StopWorkers;
-      closure.Pending = std::async(std::launch::async, [copy, stop]() {
-        auto prepared = std::make_shared<csmPreparedClosure>();
-        prepared->Closure = classifyPolyData(copy, stop.get());
-        return prepared;
-      });
+      closure.Pending = std::async(std::launch::async,
+        [copy, stop]()
+        {
+          auto prepared = std::make_shared<csmPreparedClosure>();
+          prepared->Closure = classifyPolyData(copy, stop.get());
+          return prepared;
+        });
       return closure;
     }
     if (closure.Pending.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
@@ -1259,8 +1272,9 @@ bool vtkCascadedShadowMapBakerPass::CasterHasReceivers(
     maps.LightGeometry[4] - maps.LightGeometry[1], maps.LightGeometry[5] - maps.LightGeometry[2] };
   // A shadow shorter than a millionth of the scene is no shadow (the lookup's bias hides it).
   const double* s = props.SceneBounds;
-  const double minimum = 1e-6 * std::sqrt((s[1] - s[0]) * (s[1] - s[0]) +
-    (s[3] - s[2]) * (s[3] - s[2]) + (s[5] - s[4]) * (s[5] - s[4]));
+  const double minimum = 1e-6 *
+    std::sqrt((s[1] - s[0]) * (s[1] - s[0]) + (s[3] - s[2]) * (s[3] - s[2]) +
+      (s[5] - s[4]) * (s[5] - s[4]));
   for (size_t r = 0; r < props.Receivers.size(); ++r)
   {
     if (static_cast<int>(r) != caster.Receiver &&
@@ -1336,11 +1350,12 @@ bool vtkCascadedShadowMapBakerPass::AddCompactCaster(
       }
       auto copy = vtkSmartPointer<vtkPolyData>::New();
       copy->ShallowCopy(data); // the prop's own points and cells, held while prepared
-      const size_t perBlock = std::max<size_t>(MINIMUM_BLOCK_TRIANGLES,
-        (triangles + MAXIMUM_BLOCKS - 1) / MAXIMUM_BLOCKS);
+      const size_t perBlock = std::max<size_t>(
+        MINIMUM_BLOCK_TRIANGLES, (triangles + MAXIMUM_BLOCKS - 1) / MAXIMUM_BLOCKS);
       blocks.PendingTime = dataTime;
       blocks.Pending = std::async(now ? std::launch::deferred : std::launch::async,
-        [copy, perBlock, stop = this->StopWorkers]() { return prepareBlocks(copy, perBlock, stop.get()); });
+        [copy, perBlock, stop = this->StopWorkers]()
+        { return prepareBlocks(copy, perBlock, stop.get()); });
       if (!now)
       {
         return false; // (picked up in a later frame, whenever it is ready)
@@ -1525,9 +1540,9 @@ void vtkCascadedShadowMapBakerPass::GatherAcrossProcesses(FrameProps& props)
   }
 }
 
-void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
-  vtkOpenGLRenderWindow* window, RendererMaps& state, const FrameProps& props,
-  std::vector<LightMaps>& planned, std::vector<int>& render)
+void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
+  RendererMaps& state, const FrameProps& props, std::vector<LightMaps>& planned,
+  std::vector<int>& render)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
   const bool depthClamp = this->Planner->GetDepthClamp();
@@ -1550,8 +1565,8 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
   // and there is no scene-fitted map (measured on the tube-drawn platform, `csm-bench --quick
   // --scenes platform-beams`: weighed by cells, paths 1.35-1.44x VTK's; unweighed 1.03x).
   this->Planner->ClearCasterLoads();
-  const bool screenSizedCasters = std::any_of(props.CasterLoads.begin(),
-    props.CasterLoads.end(), [](const FrameProps::CasterLoad& l) { return l.ScreenSized; });
+  const bool screenSizedCasters = std::any_of(props.CasterLoads.begin(), props.CasterLoads.end(),
+    [](const FrameProps::CasterLoad& l) { return l.ScreenSized; });
   if (!screenSizedCasters && props.CasterLoads.size() <= kMaxCasterLoads)
   {
     for (const auto& load : props.CasterLoads)
@@ -1584,8 +1599,8 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
   // draws them: a still frame keeps such a map only for the view it was sized for.
   const bool screenSized = hasScreenSizedCasters(props.Casters);
   // Resolution from need (ErrorTarget), up to the ceiling of this kind of frame.
-  const int ceiling = interacting ? std::min(this->InteractiveResolution, this->Resolution)
-                                  : this->Resolution;
+  const int ceiling =
+    interacting ? std::min(this->InteractiveResolution, this->Resolution) : this->Resolution;
   // And the cascades: more than fill the atlas with full maps only in a still frame (each is a
   // caster pass; they refine the error where four full maps cannot reach ErrorTarget).
   const int mostCascades = interacting ? csm::kAtlasFullMaps : 0;
@@ -1629,8 +1644,8 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       this->Planner->Plan(camera, aspect, light, sceneBounds, imageHeight, ceiling, mostCascades);
     state.VisibleDepthsUsed = state.VisibleDepthsUsed || this->Planner->GetVisibleDepthsUsed();
     maps.NumberOfCascades = std::min(count, kMaxCascades);
-    maps.Faces = count > 0 && !light->GetPositional() &&
-      this->Planner->GetCascadesSelectedByPlanes();
+    maps.Faces =
+      count > 0 && !light->GetPositional() && this->Planner->GetCascadesSelectedByPlanes();
     light->GetTransformedPosition(maps.LightGeometry);
     light->GetTransformedFocalPoint(maps.LightGeometry + 3);
     maps.LightGeometry[6] = light->GetPositional() ? light->GetConeAngle() : -1.0;
@@ -1639,8 +1654,7 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
     const bool ownMapAxes =
       this->Planner->GetFacePartitions() > 0 || this->Planner->GetCameraSpace();
     const LightMaps* kept = !props.Changed && depthClamp && !ownMapAxes &&
-        slot < state.Maps.size() &&
-        state.Maps[slot].Light == light &&
+        slot < state.Maps.size() && state.Maps[slot].Light == light &&
         std::equal(maps.LightGeometry, maps.LightGeometry + 7, state.Maps[slot].LightGeometry) &&
         state.Maps[slot].NumberOfCascades == maps.NumberOfCascades
       ? &state.Maps[slot]
@@ -1653,15 +1667,16 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
     vtkNew<vtkMatrix4x4> m;
     // The largest maps this count of cascades has in the atlas (csm::ceilingsForCount: the
     // planner judged the count at the same).
-    const csm::CascadeCeilings countCeilings = csm::ceilingsForCount(
-      maps.NumberOfCascades, this->Planner->GetNumberOfCascades(), ceiling);
+    const csm::CascadeCeilings countCeilings =
+      csm::ceilingsForCount(maps.NumberOfCascades, this->Planner->GetNumberOfCascades(), ceiling);
     for (int c = 0; c < maps.NumberOfCascades; ++c)
     {
       int* resolution = maps.CascadeResolution[c];
       maps.SceneFitted[c] = this->Planner->GetCascadeSceneFitted(c);
       const csm::MapSize& most = countCeilings.of(maps.SceneFitted[c]);
       const int countCeiling[2] = { most.width, most.height };
-      this->Planner->GetCascadeResolution(c, imageHeight, RESOLUTION_STEP, countCeiling, resolution);
+      this->Planner->GetCascadeResolution(
+        c, imageHeight, RESOLUTION_STEP, countCeiling, resolution);
       const csm::MapSize need(resolution[0], resolution[1]);
       // A still frame's map that follows the view gets slack (a border and more texels), so
       // that the next frames of a camera that moves a little keep it while it meets what a
@@ -1690,16 +1705,15 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
       // (Turned the same way: the error ratio compares the maps at equal resolution.)
       const int* keptResolution = kept ? kept->CascadeResolution[c] : nullptr;
       bool keep = kept &&
-        (interacting || !screenSized ||
-          std::equal(viewKey, viewKey + 18, kept->CasterView[c])) &&
+        (interacting || !screenSized || std::equal(viewKey, viewKey + 18, kept->CasterView[c])) &&
         kept->MapTurned[c] == maps.MapTurned[c];
       if (keep)
       {
         const double ratio = this->Planner->CompareKeptMap(c, kept->WorldToMap[c],
           kReuseMarginTexels, std::min(keptResolution[0], keptResolution[1]));
         // (Where the GL's texture size limit made the tile smaller than the need.)
-        const csm::MapSize fits(std::min(need.width, kept->Resolution[0]),
-          std::min(need.height, kept->Resolution[1]));
+        const csm::MapSize fits(
+          std::min(need.width, kept->Resolution[0]), std::min(need.height, kept->Resolution[1]));
         keep = interacting
           ? keptResolution[0] >= std::min(resolution[0], kept->Resolution[0]) &&
             keptResolution[1] >= std::min(resolution[1], kept->Resolution[1]) && ratio <= tolerance
@@ -1734,8 +1748,8 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer,
   {
     // One process's "render" is every process's: the maps are combined across them.
     std::vector<int> any(render.size(), 0);
-    this->Controller->AllReduce(render.data(), any.data(), static_cast<vtkIdType>(render.size()),
-      vtkCommunicator::MAX_OP);
+    this->Controller->AllReduce(
+      render.data(), any.data(), static_cast<vtkIdType>(render.size()), vtkCommunicator::MAX_OP);
     render = any;
   }
   if (shadowingLights > maximumLights && shadowingLights != this->WarnedShadowingLights)
@@ -1845,7 +1859,8 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
     using Clock = std::chrono::steady_clock;
     auto since = Clock::now();
     // (MeasureTimes: each step's time up to its glFinish.)
-    auto lap = [&](double& seconds) {
+    auto lap = [&](double& seconds)
+    {
       glFinish();
       const auto now = Clock::now();
       seconds = std::chrono::duration<double>(now - since).count();
@@ -1952,9 +1967,15 @@ vtkCascadedShadowMapPlanner* vtkCascadedShadowMapBakerPass::GetPlanner()
 }
 
 // The planning options live in the planner; the baker forwards them.
-#define csmForwardToPlanner(name, type)                                                          \
-  void vtkCascadedShadowMapBakerPass::Set##name(type value) { this->Planner->Set##name(value); } \
-  type vtkCascadedShadowMapBakerPass::Get##name() { return this->Planner->Get##name(); }
+#define csmForwardToPlanner(name, type)                                                            \
+  void vtkCascadedShadowMapBakerPass::Set##name(type value)                                        \
+  {                                                                                                \
+    this->Planner->Set##name(value);                                                               \
+  }                                                                                                \
+  type vtkCascadedShadowMapBakerPass::Get##name()                                                  \
+  {                                                                                                \
+    return this->Planner->Get##name();                                                             \
+  }
 csmForwardToPlanner(NumberOfCascades, int)
 csmForwardToPlanner(WarpMode, int)
 csmForwardToPlanner(SplitScheme, int)
@@ -1989,8 +2010,9 @@ void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MeasureTimes: " << (this->MeasureTimes ? "on" : "off") << "\n";
   os << indent << "CullClosedCasters: " << (this->CullClosedCasters ? "on" : "off") << "\n";
   os << indent << "VisibleDepthFit: " << (this->VisibleDepthFit ? "on" : "off") << "\n";
-  os << indent << "CullCastersWithoutReceivers: "
-     << (this->CullCastersWithoutReceivers ? "on" : "off") << "\n";
+  os << indent
+     << "CullCastersWithoutReceivers: " << (this->CullCastersWithoutReceivers ? "on" : "off")
+     << "\n";
   os << indent << "CompactCasters: " << (this->CompactCasters ? "on" : "off") << "\n";
   os << indent << "Renderers: " << this->Renderers.size() << "\n";
   os << indent << "ShadowedLights: " << this->GetLightMaps().size() << "\n";

@@ -31,9 +31,9 @@
 #ifndef vtkCascadedShadowMapBakerPass_h
 #define vtkCascadedShadowMapBakerPass_h
 
+#include "vtkCascadedShadowMapPlanner.h" // for MAXIMUM_NUMBER_OF_CASCADES
+#include "vtkCascadedShadowsSetMacro.h"  // for vtkSetFiniteClampMacro
 #include "vtkOpenGLRenderPass.h"
-#include "vtkCascadedShadowMapPlanner.h"      // for MAXIMUM_NUMBER_OF_CASCADES
-#include "vtkCascadedShadowsSetMacro.h"     // for vtkSetFiniteClampMacro
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 #include "vtkSmartPointer.h"                   // for members
 #include "vtkWeakPointer.h"                    // for members
@@ -41,8 +41,8 @@
 #include <array>  // for members
 #include <atomic> // for members
 #include <future> // for members
-#include <memory> // for members
 #include <map>    // for members
+#include <memory> // for members
 #include <set>    // for members
 #include <string> // for members
 #include <vector> // for members
@@ -94,7 +94,6 @@ public:
   vtkSetClampMacro(InteractiveResolution, int, 64, 8192);
   vtkGetMacro(InteractiveResolution, int);
   ///@}
-
 
   ///@{
   /**
@@ -168,8 +167,8 @@ public:
    * side around its part of the scene (the texel size grows by 1 + 2 border), and a map is kept
    * while the camera moves as long as it covers the cascade's part of the visible scene and its
    * aliasing error there is at most MapReuseTolerance times that of a freshly planned map with
-   * the same border (Lloyd et al. 2006, Eq. 2-4, at the vertices of the cascade's receiver body). A still frame
-   * keeps only maps that are exactly what it would plan: it always has full quality.
+   * the same border (Lloyd et al. 2006, Eq. 2-4, at the vertices of the cascade's receiver body). A
+   * still frame keeps only maps that are exactly what it would plan: it always has full quality.
    * Defaults 0.2 (0..0.5) and 1.25 (1..100; 1: re-render every map the camera moves). Maps
    * are only kept with DepthClamp on (without it, a kept map's near plane may cut the casters
    * of the new view).
@@ -227,7 +226,6 @@ public:
   vtkBooleanMacro(CullCastersWithoutReceivers, bool);
   ///@}
 
-
   ///@{
   /**
    * Casters drawn from compact blocks. A map needs a caster's depth only, so a prop that is a
@@ -251,7 +249,6 @@ public:
   static constexpr int SYNCHRONOUS_PREPARATION_TRIANGLES = 262144;
   static constexpr int MOST_CLASSIFIED_TRIANGLES = 4194304;
   ///@}
-
 
   ///@{
   /**
@@ -311,7 +308,6 @@ public:
   vtkGetObjectMacro(Controller, vtkMultiProcessController);
   ///@}
 
-
   /// Does VTK shadow this light? Scene and camera lights that are on: directional, or spot with
   /// cone angle < 90 degrees (the same rule as vtkShadowMapBakerPass), and whose
   /// ShadowAttenuation is above 0 (an invisible shadow gets no maps).
@@ -321,18 +317,23 @@ public:
   struct LightMaps
   {
     vtkLight* Light = nullptr;
-    int LightIndex = -1;          ///< index among the renderer's switched-on lights
-    int NumberOfCascades = 0;     ///< 0: nothing to shadow for this light this frame
-    double WorldToMap[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][16] = {};     ///< world -> light clip, row-major, per cascade
-    double SplitNear = 0.0;       ///< view depth where the first cascade begins
-    double SplitFar[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};           ///< view depth where each cascade ends
-    /// Face partitions: the 4 world half-spaces of each piece (vtkCascadedShadowMapPlanner::GetCascadePlanes).
+    int LightIndex = -1;      ///< index among the renderer's switched-on lights
+    int NumberOfCascades = 0; ///< 0: nothing to shadow for this light this frame
+    double WorldToMap[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES]
+                     [16] = {}; ///< world -> light clip, row-major, per cascade
+    double SplitNear = 0.0;     ///< view depth where the first cascade begins
+    double
+      SplitFar[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {}; ///< view depth where
+                                                                              ///< each cascade ends
+    /// Face partitions: the 4 world half-spaces of each piece
+    /// (vtkCascadedShadowMapPlanner::GetCascadePlanes).
     double Planes[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][16] = {};
     bool Faces = false; ///< the maps are face partitions, selected by their planes
     /// Camera space maps: the smallest w of the map (its constant bias scales by it over the
     /// point's w); 0 otherwise.
     double DepthW[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
-    double Tile[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][4] = {};            ///< atlas tile: offset x, y and scale x, y in [0, 1]
+    double Tile[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES]
+               [4] = {}; ///< atlas tile: offset x, y and scale x, y in [0, 1]
     /// Texels of each cascade's tile, width and height (csm::atlasForCount: twice Resolution a
     /// side for one cascade in 2 x 2 tiles, Resolution for up to csm::kAtlasFullMaps, less
     /// beyond, in non-square tiles, or where GL limits).
@@ -340,11 +341,14 @@ public:
     /// Texels of each cascade's map along its s and t axes (from ErrorTarget), in the lower left
     /// of its tile.
     int CascadeResolution[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][2] = {};
-    /// Each cascade's map is fixed in the world (vtkCascadedShadowMapPlanner::GetCascadeSceneFitted).
+    /// Each cascade's map is fixed in the world
+    /// (vtkCascadedShadowMapPlanner::GetCascadeSceneFitted).
     bool SceneFitted[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
-    /// Each cascade's map is turned a quarter to its tile (vtkCascadedShadowMapPlanner::GetCascadeMapTurned).
+    /// Each cascade's map is turned a quarter to its tile
+    /// (vtkCascadedShadowMapPlanner::GetCascadeMapTurned).
     bool MapTurned[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
-    double LightGeometry[7] = { 0, 0, 0, 0, 0, 0, 0 }; ///< position, focal point, cone angle (-1: directional) the maps were rendered for
+    double LightGeometry[7] = { 0, 0, 0, 0, 0, 0,
+      0 }; ///< position, focal point, cone angle (-1: directional) the maps were rendered for
     /// Per cascade: the main view its screen-sized casters (tubes, spheres, wide lines, big
     /// points) were sized for: world -> view (row-major) and the pixel size (see CasterView()).
     double CasterView[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][18] = {};
@@ -371,20 +375,20 @@ public:
 
   /// Does this prop's own lit side stay out of the maps? True for a closed surface drawn with
   /// only its faces turned away from the light (CullClosedCasters): its lit faces cannot shadow
-  /// themselves, so the lookup may bias them less (vtkCascadedShadowMapPass::ClosedSurfaceBiasFactor).
+  /// themselves, so the lookup may bias them less
+  /// (vtkCascadedShadowMapPass::ClosedSurfaceBiasFactor).
   bool DrawsFromBehind(vtkProp* prop) { return this->ClosureOf(prop) != 0; }
 
   /// Number of Render() calls that rendered at least one map (not all kept); for tests.
   vtkGetMacro(BakeCount, int);
 
-
   /// What the last Render() did, for tests and benchmarks (machine-independent counts; the
   /// seconds only with MeasureTimes).
   struct FrameStatistics
   {
-    int CascadesRendered = 0; ///< maps rendered
-    int CascadesKept = 0;     ///< maps kept from an earlier frame
-    int PropsDrawn = 0;       ///< props (or a prop's block actor) drawn into the rendered maps
+    int CascadesRendered = 0;    ///< maps rendered
+    int CascadesKept = 0;        ///< maps kept from an earlier frame
+    int PropsDrawn = 0;          ///< props (or a prop's block actor) drawn into the rendered maps
     double TexelsRendered = 0.0; ///< texels of the rendered maps
     double CellsDrawn = 0.0;     ///< caster cells (triangles, lines, ...) drawn into them
     int ClosedCasters = 0;       ///< casters drawn with their exit layer only (CullClosedCasters)
@@ -392,10 +396,10 @@ public:
     int BlocksDrawn = 0;         ///< blocks drawn into the rendered maps
     int CastersWithoutReceivers = 0; ///< casters (or blocks) left out: they shadow nothing there
     bool VisibleDepthsUsed = false;  ///< cascades fitted to the visible depths (VisibleDepthFit)
-    double PlanSeconds = 0.0;    ///< planning, all lights (MeasureTimes)
-    double MapSeconds = 0.0;     ///< rendering the maps, the GPU's work included (MeasureTimes)
-    double ClearSeconds = 0.0;   ///< clearing the first light's tiles (MeasureTimes)
-    double CombineSeconds = 0.0; ///< combining the maps across processes
+    double PlanSeconds = 0.0;        ///< planning, all lights (MeasureTimes)
+    double MapSeconds = 0.0;         ///< rendering the maps, the GPU's work included (MeasureTimes)
+    double ClearSeconds = 0.0;       ///< clearing the first light's tiles (MeasureTimes)
+    double CombineSeconds = 0.0;     ///< combining the maps across processes
     /// Each of the first light's re-rendered maps (MeasureTimes; 0 for a kept one).
     double CascadeSeconds[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     /// CascadeSeconds[cascade], 0 for an index out of range.
@@ -452,7 +456,7 @@ protected:
     bool Changed = true; ///< a prop, light, option or the window size changed: render every map
     struct Caster
     {
-      vtkProp* Prop = nullptr; ///< a visible opaque prop, or an actor of a prop's blocks
+      vtkProp* Prop = nullptr;      ///< a visible opaque prop, or an actor of a prop's blocks
       std::array<double, 6> Bounds; ///< world box
       /// 0 draw both sides; +1 / -1 closed, its counter-clockwise faces (after the actor's
       /// matrix) turned outward / inward.
@@ -508,16 +512,16 @@ protected:
   void CombineAcrossProcesses(vtkTextureObject* atlas);
   /// Sizes the light's atlas and its tiles; returns false when it cannot be allocated. Sets
   /// reallocated when the texture is new (nothing in it may be kept).
-  bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles, int resolution,
-    bool& reallocated);
+  bool PrepareAtlas(
+    vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles, int resolution, bool& reallocated);
   /// Gives the tiles of the cascades to render (renderCascade[c]) far depth.
   void ClearTiles(vtkOpenGLState* ostate, const LightMaps& maps, const int* renderCascade);
   void RenderCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebufferObject* frameBuffer,
     LightMaps& maps, int cascade, const FrameProps& props, bool depthClamp);
   /// For a prop drawn from compact blocks (CompactCasters), appends its blocks to the casters
   /// with their world boxes and returns true; false: the prop is drawn as it is.
-  bool AddCompactCaster(vtkProp* prop, int closure, vtkOpenGLRenderWindow* window,
-    FrameProps& props);
+  bool AddCompactCaster(
+    vtkProp* prop, int closure, vtkOpenGLRenderWindow* window, FrameProps& props);
   /// +1 / -1: the prop's data is closed, its counter-clockwise faces turned outward / inward in
   /// world space; 0: draw both sides (CullClosedCasters).
   int ClosureOf(vtkProp* prop);
@@ -527,8 +531,8 @@ protected:
   struct Closure;
   const Closure& ClassifiedShape(vtkPolyData* data);
   /// Does the caster shadow anything in this light's maps (CullCastersWithoutReceivers)?
-  bool CasterHasReceivers(const FrameProps& props, const FrameProps::Caster& caster,
-    const LightMaps& maps) const;
+  bool CasterHasReceivers(
+    const FrameProps& props, const FrameProps::Caster& caster, const LightMaps& maps) const;
   /// vtkErrorMacro / vtkWarningMacro, once per distinct message.
   void ReportOnce(bool error, const std::string& message);
   /// The light camera for a cascade: the light's rotation as view, the rest as projection.
@@ -610,7 +614,7 @@ protected:
   int BlockBuilds = 0;
   /// Set when the baker goes: the worker threads' preparations stop early.
   std::shared_ptr<std::atomic<bool>> StopWorkers;
-  int WarnedShadowingLights = 0; // lights over the limit last warned about: warn once
+  int WarnedShadowingLights = 0;  // lights over the limit last warned about: warn once
   std::set<std::string> Reported; // messages said already (ReportOnce)
 
 private:

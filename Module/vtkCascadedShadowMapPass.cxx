@@ -3,8 +3,8 @@
 
 #include "csmAtlas.h" // csm::kAtlasFullMaps
 
-#include "vtkActor.h"
 #include "vtkAbstractMapper.h"
+#include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCameraPass.h"
 #include "vtkCascadedShadowMapBakerPass.h"
@@ -183,8 +183,7 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   if (this->MapCoordinatesFromVertices)
   {
     const int most = baker->GetNumberOfCascades();
-    const int key[3] = { most, baker->GetAdaptiveCascades() ? 1 : 0,
-      static_cast<int>(u.Lights()) };
+    const int key[3] = { most, baker->GetAdaptiveCascades() ? 1 : 0, static_cast<int>(u.Lights()) };
     int cascades = std::min(most, csm::kAtlasFullMaps);
     if (std::equal(key, key + 3, this->VaryingsKey))
     {
@@ -267,8 +266,7 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader
     vertexShader.insert(vertexMain, common.str() + csmShadowVS + "\n");
   }
   std::ostringstream decl;
-  decl << common.str()
-       << "#define CSM_KERNEL_GRID " << KERNEL_GRID << "\n"
+  decl << common.str() << "#define CSM_KERNEL_GRID " << KERNEL_GRID << "\n"
        << "#define CSM_KERNEL_JITTERED " << KERNEL_JITTERED << "\n"
        << "#define CSM_KERNEL " << this->PCFKernel << "\n"
        << "#define CSM_DEBUG_CASCADES " << DEBUG_CASCADES << "\n"
@@ -303,8 +301,9 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader
   const std::string mapperName = mapper ? mapper->GetClassName() : "a mapper";
   if (!vtkShaderProgram::Substitute(fragmentShader, kShadowDec, decl.str(), false))
   {
-    this->ReportOnce(mapperName + "'s fragment shader has no //VTK::Light::Dec: its props are "
-                                  "drawn without shadows");
+    this->ReportOnce(mapperName +
+      "'s fragment shader has no //VTK::Light::Dec: its props are "
+      "drawn without shadows");
     return true;
   }
   // Screen derivatives where control flow is still uniform; the lookup itself only where the
@@ -330,22 +329,21 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader
     const std::string result = "csmResult" + std::to_string(j);
     const std::string map = "csmMap" + std::to_string(j) + ", " + std::to_string(j);
     const std::string lookup = result +
-      (impostor ? " = csmImpostorShadow(" + map + ", vertexVC, normalVCVSOutput);"
-        : fromVertices ? " = csmShadowFromVertices(" + map + ", vertexVC, csmMapDx, csmMapDy);"
-                       : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
+      (impostor          ? " = csmImpostorShadow(" + map + ", vertexVC, normalVCVSOutput);"
+          : fromVertices ? " = csmShadowFromVertices(" + map + ", vertexVC, csmMapDx, csmMapDy);"
+                         : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
     const std::string factor = result + ".x * ";
     // Phong-style lighting (diffuse and specular), or PBR (radiance, directional or positional).
     const bool phong =
       vtkShaderProgram::Substitute(fragmentShader, "diffuse += (df * lightColor" + k + ");",
-        "if (" + reaches + ") { " + lookup + " }\n  diffuse += (df * " + factor +
-          "lightColor" + k + ");",
+        "if (" + reaches + ") { " + lookup + " }\n  diffuse += (df * " + factor + "lightColor" + k +
+          ");",
         false);
     const bool specular =
       vtkShaderProgram::Substitute(fragmentShader, "specular += (sf * lightColor" + k + ");",
         "specular += (sf * " + factor + "lightColor" + k + ");", false);
-    const bool pbr =
-      vtkShaderProgram::Substitute(fragmentShader, "radiance = lightColor" + k + ";",
-        lookup + "\n  radiance = " + factor + "lightColor" + k + ";", false) |
+    const bool pbr = vtkShaderProgram::Substitute(fragmentShader, "radiance = lightColor" + k + ";",
+                       lookup + "\n  radiance = " + factor + "lightColor" + k + ";", false) |
       vtkShaderProgram::Substitute(fragmentShader, "radiance = lightColor" + k + " * attenuation;",
         lookup + "\n  radiance = " + factor + "lightColor" + k + " * attenuation;", false);
     if (!(phong && specular) && !pbr)
@@ -394,7 +392,8 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   }
   // Per prop: the faces turned toward the light of a closed surface drawn into the maps from
   // behind need less bias (the lookup tells which way each face turns).
-  const double biasShare = this->ShadowMapBakerPass && this->ShadowMapBakerPass->DrawsFromBehind(prop)
+  const double biasShare =
+    this->ShadowMapBakerPass && this->ShadowMapBakerPass->DrawsFromBehind(prop)
     ? this->ClosedSurfaceBiasFactor
     : 1.0;
   program->SetUniformf("csmConstantBias", static_cast<float>(this->ConstantBias));

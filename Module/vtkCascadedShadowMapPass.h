@@ -25,8 +25,8 @@
 #ifndef vtkCascadedShadowMapPass_h
 #define vtkCascadedShadowMapPass_h
 
+#include "vtkCascadedShadowsSetMacro.h" // for vtkSetFiniteClampMacro
 #include "vtkOpenGLRenderPass.h"
-#include "vtkCascadedShadowsSetMacro.h"     // for vtkSetFiniteClampMacro
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 #include "vtkSmartPointer.h"                   // for members
 
@@ -150,8 +150,9 @@ public:
   {
     DEBUG_OFF = 0,
     DEBUG_CASCADES = 1, ///< colour by cascade index (first shadowed light)
-    DEBUG_ERROR = 2,    ///< heat map of the aliasing error m (Lloyd Eq. 1): blue over-, red undersampled
-    DEBUG_FACTOR = 3    ///< the shadow visibility alone, as grey
+    DEBUG_ERROR =
+      2, ///< heat map of the aliasing error m (Lloyd Eq. 1): blue over-, red undersampled
+    DEBUG_FACTOR = 3 ///< the shadow visibility alone, as grey
   };
   ///@{
   /// Debug output. Default DEBUG_OFF.
@@ -199,24 +200,25 @@ protected:
   /// 8 j + c): filled once per frame in Render(), only uploaded per draw.
   struct ShaderUniforms
   {
-    std::vector<int> LightIndex;  ///< per light: index among the switched-on lights
-    std::vector<int> TextureUnit; ///< per light: its atlas
-    std::vector<int> Count;       ///< per light: cascades
+    std::vector<int> LightIndex;               ///< per light: index among the switched-on lights
+    std::vector<int> TextureUnit;              ///< per light: its atlas
+    std::vector<int> Count;                    ///< per light: cascades
     std::vector<float> SplitNear, Attenuation; ///< per light
-    std::vector<float> ToMap;     ///< per cascade: view -> map, 16 floats column-major
-    std::vector<float> Tile;      ///< per cascade: atlas offset and scale, 4 floats
-    std::vector<float> SplitFar;  ///< per cascade
-    std::vector<float> Texel;     ///< per cascade: one texel along s and t in the cascade's [0,1] coordinates
-    std::vector<float> Planes;    ///< per cascade: 4 view-space half-spaces (face partitions)
-    bool Faces = false;           ///< some light's maps are face partitions
-    std::vector<float> DepthW;    ///< per cascade: a camera space map's smallest w (0: none)
-    bool CameraSpace = false;     ///< some light's map is a camera space map
+    std::vector<float> ToMap;                  ///< per cascade: view -> map, 16 floats column-major
+    std::vector<float> Tile;                   ///< per cascade: atlas offset and scale, 4 floats
+    std::vector<float> SplitFar;               ///< per cascade
+    std::vector<float>
+      Texel; ///< per cascade: one texel along s and t in the cascade's [0,1] coordinates
+    std::vector<float> Planes; ///< per cascade: 4 view-space half-spaces (face partitions)
+    bool Faces = false;        ///< some light's maps are face partitions
+    std::vector<float> DepthW; ///< per cascade: a camera space map's smallest w (0: none)
+    bool CameraSpace = false;  ///< some light's map is a camera space map
     size_t Lights() const { return this->Count.size(); }
   };
   ShaderUniforms Uniforms;
   /// Render() with the baker's maps: the uniforms, then the renderer's geometry.
   void DrawShadowed(const vtkRenderState* s);
-  std::string ShaderSignature; // what the injected code is compiled for (lights, kernel, debug)
+  std::string ShaderSignature;    // what the injected code is compiled for (lights, kernel, debug)
   std::set<std::string> Reported; // warnings said already: once each
   void ReportOnce(const std::string& message);
   bool ConstantKernelSize() const; // is the PCF radius compiled in (few lights)?

@@ -11,21 +11,21 @@
 
 #include <cmath> // for std::isfinite
 
-#define vtkSetFiniteClampMacro(name, type, min, max)                                              \
-  virtual void Set##name(type _arg)                                                               \
-  {                                                                                               \
-    if (!std::isfinite(_arg))                                                                     \
-    {                                                                                             \
-      vtkErrorMacro(<< "Set" #name "(" << _arg << "): not a finite number; keeping "              \
-                    << this->name);                                                               \
-      return;                                                                                     \
-    }                                                                                             \
-    const type _clamped = _arg < (min) ? (min) : (_arg > (max) ? (max) : _arg);                   \
-    if (this->name != _clamped)                                                                   \
-    {                                                                                             \
-      this->name = _clamped;                                                                      \
-      this->Modified();                                                                           \
-    }                                                                                             \
+#define vtkSetFiniteClampMacro(name, type, min, max)                                               \
+  virtual void Set##name(type _arg)                                                                \
+  {                                                                                                \
+    if (!std::isfinite(_arg))                                                                      \
+    {                                                                                              \
+      vtkErrorMacro(<< "Set" #name "(" << _arg << "): not a finite number; keeping "               \
+                    << this->name);                                                                \
+      return;                                                                                      \
+    }                                                                                              \
+    const type _clamped = _arg < (min) ? (min) : (_arg > (max) ? (max) : _arg);                    \
+    if (this->name != _clamped)                                                                    \
+    {                                                                                              \
+      this->name = _clamped;                                                                       \
+      this->Modified();                                                                            \
+    }                                                                                              \
   }
 
 #endif

@@ -10,13 +10,14 @@ source "$ROOT/scripts/common.sh"
 BUILD="${CSM_BUILD_DIR:-$ROOT/build}"
 LOGS="$BUILD/logs"
 PACKAGES=(cmake g++ make pkg-config libvtk9-dev libglm-dev libgtest-dev libbenchmark-dev
-  xvfb xauth libgl1-mesa-dri libosmesa6-dev assimp-testmodels libembree-dev openmpi-bin
+  xvfb xauth libgl1-mesa-dri libosmesa6-dev assimp-testmodels libembree-dev openmpi-bin clang-format
   python3-vtk9 python3-numpy)
 
 configure_and_build() {
   mkdir -p "$LOGS"
   echo "Configuring and building in $BUILD (Release)"
-  if ! cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release >"$LOGS/configure.log" 2>&1; then
+  # shellcheck disable=SC2086 # CSM_CMAKE_ARGS: more -D options, split on spaces (package.sh)
+  if ! cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release ${CSM_CMAKE_ARGS:-} >"$LOGS/configure.log" 2>&1; then
     grep -A5 "CMake Error" "$LOGS/configure.log" | head -n 20 >&2 || tail -n 20 "$LOGS/configure.log" >&2
     die "CMake configure failed (full log: $LOGS/configure.log)"
   fi

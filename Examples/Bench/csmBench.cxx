@@ -6,16 +6,17 @@
 #include "csmFileChecks.h"
 #include "csmScenes.h"
 #include "csmTechnique.h"
-#include "csmWalk.h"
 #include "csmTruth.h"
+#include "csmWalk.h"
 
+#include "vtkActor.h"
 #include "vtkAxis.h"
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
 #include "vtkCascadedShadowMapPlanner.h"
-#include "vtkChartMatrix.h"
 #include "vtkChartLegend.h"
+#include "vtkChartMatrix.h"
 #include "vtkChartXY.h"
 #include "vtkContextScene.h"
 #include "vtkContextView.h"
@@ -29,7 +30,6 @@
 #include "vtkPlot.h"
 #include "vtkPlotPoints.h"
 #include "vtkProperty.h"
-#include "vtkActor.h"
 #include "vtkRenderPass.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -63,15 +63,15 @@ struct Options
   std::string Out = "csm-bench.csv";
   std::string Plot;
   int Width = 800, Height = 600;
-  int Frames = 30;       // per camera path (orbit, fly-through)
-  int Budget = 4096;     // total texels = Budget^2
-  int Rounds = 3;        // interleaving rounds
-  int AccuracyEvery = 10; // accuracy on every n-th path frame
-  int InteractiveFrames = 30; // interactive orbit: 2 degrees a frame, as a user drags
-  int StillFrames = 8;        // the default view, camera still
-  int DollyFrames = 12;       // flicker: consecutive frames of a dolly toward the focal point
-  bool Breakdown = false;     // per frame: planning and map times, maps rendered
-  std::string ErrorImages;    // folder for one image per measured view and technique
+  int Frames = 30;                 // per camera path (orbit, fly-through)
+  int Budget = 4096;               // total texels = Budget^2
+  int Rounds = 3;                  // interleaving rounds
+  int AccuracyEvery = 10;          // accuracy on every n-th path frame
+  int InteractiveFrames = 30;      // interactive orbit: 2 degrees a frame, as a user drags
+  int StillFrames = 8;             // the default view, camera still
+  int DollyFrames = 12;            // flicker: consecutive frames of a dolly toward the focal point
+  bool Breakdown = false;          // per frame: planning and map times, maps rendered
+  std::string ErrorImages;         // folder for one image per measured view and technique
   std::vector<std::string> Labels; // only these techniques (empty: all of the mode)
   std::vector<std::string> Scenes = { "platform", "platform-beams", "platform-2m", "towers",
     "engine" };
@@ -98,7 +98,7 @@ struct Technique
   double TexelsRendered = 0.0;          // map texels rendered over the timed frames
   long long MapsRendered = 0, MapsKept = 0;
   long long DepthPasses = 0; // depth-only passes that measured the visible depths (VisibleDepthFit)
-  int DepthPassesSeen = 0;  // the baker's count at the last timed frame
+  int DepthPassesSeen = 0;   // the baker's count at the last timed frame
   long long CascadesPlanned = 0, FramesPlanned = 0; // k_used: cascades of the first light a frame
   csmTruth::Classification Errors;
   std::vector<double> M;
@@ -117,7 +117,8 @@ std::vector<Technique> Techniques(const Options& o)
 {
   std::vector<Technique> list;
   auto add = [&](const std::string& label, const std::string& technique, int warp, int partition,
-               int k, int pcf) {
+               int k, int pcf)
+  {
     Technique t;
     t.Label = label;
     t.Shadow.Technique = technique;
@@ -138,8 +139,9 @@ std::vector<Technique> Techniques(const Options& o)
   add("vtk", "vtk", 0, 0, 1, 1);
   // The pass as a user gets it (every option at the pass's default: up to 8 cascades, as many
   // as meet the error target), and the same with two fixed cascades.
-  auto addDefaults = [&](const std::string& label, int fixedCascades, bool cullClosed = true,
-                         bool visibleFit = true) {
+  auto addDefaults =
+    [&](const std::string& label, int fixedCascades, bool cullClosed = true, bool visibleFit = true)
+  {
     Technique t; // default-constructed ShadowOptions: the pass's defaults
     t.Label = label;
     if (fixedCascades > 0)
@@ -149,7 +151,8 @@ std::vector<Technique> Techniques(const Options& o)
     }
     t.Shadow.CullClosedCasters = t.Shadow.CullClosedCasters && cullClosed;
     t.Shadow.VisibleDepthFit = t.Shadow.VisibleDepthFit && visibleFit;
-    t.Texels = static_cast<long long>(t.Shadow.Cascades) * t.Shadow.Resolution * t.Shadow.Resolution;
+    t.Texels =
+      static_cast<long long>(t.Shadow.Cascades) * t.Shadow.Resolution * t.Shadow.Resolution;
     t.MemoryMB = 4.0 * t.Texels / (1024.0 * 1024.0);
     list.push_back(t);
   };
@@ -196,7 +199,8 @@ std::vector<Technique> Techniques(const Options& o)
   if (!o.Labels.empty())
   {
     for (const std::string& label : o.Labels)
-      if (std::none_of(list.begin(), list.end(), [&](const Technique& t) { return t.Label == label; }))
+      if (std::none_of(
+            list.begin(), list.end(), [&](const Technique& t) { return t.Label == label; }))
         fail("no technique labelled '" + label + "' in this mode");
     list.erase(std::remove_if(list.begin(), list.end(),
                  [&](const Technique& t) {
@@ -282,8 +286,9 @@ std::vector<View> Views(const csmScenes::Scene& scene, const Options& o)
     v.Measured = i % o.AccuracyEvery == o.AccuracyEvery / 2;
     views.push_back(v);
   }
-  const std::vector<double> gammas =
-    o.Quick ? std::vector<double>{ 45.0 } : std::vector<double>{ 0, 10, 30, 60, 90, 120, 150, 170, 180 };
+  const std::vector<double> gammas = o.Quick
+    ? std::vector<double>{ 45.0 }
+    : std::vector<double>{ 0, 10, 30, 60, 90, 120, 150, 170, 180 };
   for (double g : gammas)
   {
     View v;
@@ -317,8 +322,9 @@ void Apply(const View& v, vtkRenderer* renderer, vtkLight* light, const csmScene
 /// The misclassified pixels of one view: false shadow red, false light blue, the pixels
 /// classified right light grey (lit) and dark grey (shadowed), those not compared the plain
 /// render darkened.
-void WriteErrorImage(const std::string& file, vtkImageData* plain, const std::vector<char>& comparable,
-  const std::vector<char>& occluded, const std::vector<float>& factor)
+void WriteErrorImage(const std::string& file, vtkImageData* plain,
+  const std::vector<char>& comparable, const std::vector<char>& occluded,
+  const std::vector<float>& factor)
 {
   vtkNew<vtkImageData> image;
   image->DeepCopy(plain);
@@ -397,7 +403,8 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
     // The map the lookup takes: this cascade's where it holds the point, else the next one's
     // (a kept map may miss its slice's edge); none where neither does (a scene-fitted map holds
     // only what can be in shadow: the point is lit without a map, and has no m).
-    auto holds = [&](int i) {
+    auto holds = [&](int i)
+    {
       double h[4];
       const double ph[4] = { p[0], p[1], p[2], 1.0 };
       for (int r = 0; r < 4; ++r)
@@ -518,9 +525,11 @@ bool Plot(const std::vector<std::pair<std::string, std::vector<Technique>>>& res
     for (int col = 0; col < 2; ++col)
     {
       vtkChart* chart = matrix->GetChart(vtkVector2i(col, r));
-      chart->SetTitle(scene.first + (col == 0 ? ": misclassified % vs frame ms" : ": max m vs frame ms"));
+      chart->SetTitle(
+        scene.first + (col == 0 ? ": misclassified % vs frame ms" : ": max m vs frame ms"));
       chart->GetAxis(vtkAxis::BOTTOM)->SetTitle("median frame time (ms, software Mesa)");
-      chart->GetAxis(vtkAxis::LEFT)->SetTitle(col == 0 ? "misclassified pixels (%)" : "max m (texels per pixel)");
+      chart->GetAxis(vtkAxis::LEFT)
+        ->SetTitle(col == 0 ? "misclassified pixels (%)" : "max m (texels per pixel)");
       if (col == 1)
         chart->GetAxis(vtkAxis::LEFT)->SetLogScale(true);
       // One series per technique family, and the Pareto front (lower time and error) as a line.
@@ -607,19 +616,20 @@ Options Parse(int argc, char** argv)
     const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
     if (f == "--help" || f == "-h")
     {
-      std::printf("usage: csm-bench [--quick] [--breakdown] [--out FILE.csv] [--plot FILE.png]\n"
-                  "                 [--size WxH] [--frames N] [--budget TEXELS_SIDE] [--scenes a,b,...]\n"
-                  "scenes: platform, platform-beams (its bars as lines drawn as tubes), platform-2m,\n"
-                  "towers, engine. --quick: platform (or --scenes),\n"
-                  "640x480, 6 frames a path, budget 2048, VTK's pass and ours with the defaults.\n"
-                  "Timed paths: coarse orbit + fly-through (interleaved), an interactive orbit of\n"
-                  "2 degrees a frame and a still camera. --breakdown: per frame, the planning and\n"
-                  "map times (glFinish around them) and the maps rendered / kept; each path\n"
-                  "frame printed with its clear, each map's size and time, and the rest (the\n"
-                  "main view with the lookup).\n"
-                  "--labels a,b,...: only these techniques (their labels as in the CSV).\n"
-                  "--error-images DIR: per measured view and technique, DIR/scene-label-view.png:\n"
-                  "false shadow red, false light blue, right light / dark grey, not compared dark.\n");
+      std::printf(
+        "usage: csm-bench [--quick] [--breakdown] [--out FILE.csv] [--plot FILE.png]\n"
+        "                 [--size WxH] [--frames N] [--budget TEXELS_SIDE] [--scenes a,b,...]\n"
+        "scenes: platform, platform-beams (its bars as lines drawn as tubes), platform-2m,\n"
+        "towers, engine. --quick: platform (or --scenes),\n"
+        "640x480, 6 frames a path, budget 2048, VTK's pass and ours with the defaults.\n"
+        "Timed paths: coarse orbit + fly-through (interleaved), an interactive orbit of\n"
+        "2 degrees a frame and a still camera. --breakdown: per frame, the planning and\n"
+        "map times (glFinish around them) and the maps rendered / kept; each path\n"
+        "frame printed with its clear, each map's size and time, and the rest (the\n"
+        "main view with the lookup).\n"
+        "--labels a,b,...: only these techniques (their labels as in the CSV).\n"
+        "--error-images DIR: per measured view and technique, DIR/scene-label-view.png:\n"
+        "false shadow red, false light blue, right light / dark grey, not compared dark.\n");
       std::exit(0);
     }
     else if (f == "--quick")
@@ -627,7 +637,8 @@ Options Parse(int argc, char** argv)
     else if (f == "--breakdown")
       o.Breakdown = true;
     else if ((f == "--out" || f == "--plot" || f == "--size" || f == "--frames" ||
-               f == "--budget" || f == "--scenes" || f == "--error-images" || f == "--labels") && !v)
+               f == "--budget" || f == "--scenes" || f == "--error-images" || f == "--labels") &&
+      !v)
       fail(f + " needs a value");
     else if (f == "--out")
       o.Out = argv[++i];
@@ -826,13 +837,19 @@ int main(int argc, char** argv)
               auto* b = t.Passes.Cascaded->GetShadowMapBakerPass();
               std::printf("  plan %.1f  maps %.1f ms  rendered %d kept %d of k %d  %.2f M texels"
                           "  %d blocks",
-                1000.0 * b->GetLastFrameStatistics().PlanSeconds, 1000.0 * b->GetLastFrameStatistics().MapSeconds,
-                b->GetLastFrameStatistics().CascadesRendered, b->GetLastFrameStatistics().CascadesKept,
+                1000.0 * b->GetLastFrameStatistics().PlanSeconds,
+                1000.0 * b->GetLastFrameStatistics().MapSeconds,
+                b->GetLastFrameStatistics().CascadesRendered,
+                b->GetLastFrameStatistics().CascadesKept,
                 b->GetLightMaps().empty() ? 0 : b->GetLightMaps()[0].NumberOfCascades,
-                1e-6 * b->GetLastFrameStatistics().TexelsRendered, b->GetLastFrameStatistics().BlocksDrawn);
+                1e-6 * b->GetLastFrameStatistics().TexelsRendered,
+                b->GetLastFrameStatistics().BlocksDrawn);
               // The rest of the frame: the main view with the lookup.
               std::printf("  rest %.1f ms  clear %.1f ms",
-                t.Times.back() - 1000.0 * (b->GetLastFrameStatistics().PlanSeconds + b->GetLastFrameStatistics().MapSeconds),
+                t.Times.back() -
+                  1000.0 *
+                    (b->GetLastFrameStatistics().PlanSeconds +
+                      b->GetLastFrameStatistics().MapSeconds),
                 1000.0 * b->GetLastFrameStatistics().ClearSeconds);
               if (!b->GetLightMaps().empty())
               {
@@ -842,7 +859,8 @@ int main(int argc, char** argv)
                   std::printf(" %dx%d%s", maps.CascadeResolution[c][0],
                     maps.CascadeResolution[c][1], maps.SceneFitted[c] ? "f" : "");
                   if (b->GetLastFrameStatistics().GetCascadeSeconds(c) > 0.0)
-                    std::printf(" %.1fms", 1000.0 * b->GetLastFrameStatistics().GetCascadeSeconds(c));
+                    std::printf(
+                      " %.1fms", 1000.0 * b->GetLastFrameStatistics().GetCascadeSeconds(c));
                 }
               }
             }
@@ -882,7 +900,8 @@ int main(int argc, char** argv)
             window->Render();
             window->WaitForCompletion();
             timer->StopTimer();
-            (interactive ? t.InteractiveTimes : t.StillTimes).push_back(1000.0 * timer->GetElapsedTime());
+            (interactive ? t.InteractiveTimes : t.StillTimes)
+              .push_back(1000.0 * timer->GetElapsedTime());
             Account(t, renderer);
           }
           window->SetDesiredUpdateRate(0.0001);
@@ -927,7 +946,8 @@ int main(int argc, char** argv)
         window->Render();
         auto shadowed = Grab(window);
         const auto factor = csmTruth::FactorFromRenders(shadowed, plain);
-        const csmTruth::Classification c = csmTruth::Classify(surfaces, comparable, occluded, factor);
+        const csmTruth::Classification c =
+          csmTruth::Classify(surfaces, comparable, occluded, factor);
         if (!o.ErrorImages.empty())
         {
           std::string name = sceneName + "-" + t.Label + "-" + v.Name + ".png";
@@ -1034,8 +1054,10 @@ int main(int argc, char** argv)
       }
     }
 
-    auto timedFrames = [](const Technique& t) {
-      return std::max<double>(1.0, double(t.Times.size() + t.InteractiveTimes.size() + t.StillTimes.size()));
+    auto timedFrames = [](const Technique& t)
+    {
+      return std::max<double>(
+        1.0, double(t.Times.size() + t.InteractiveTimes.size() + t.StillTimes.size()));
     };
     for (const Technique& t : techniques)
     {
@@ -1043,17 +1065,20 @@ int main(int argc, char** argv)
       const bool csm = t.Shadow.Technique == "csm";
       csv << sceneName << "," << t.Shadow.Technique << "," << t.Label << ","
           << (csm ? kWarps[t.Shadow.Warp] : "none") << ","
-          << (!csm ? "single" : t.Shadow.CameraSpace ? "cssm" : t.Shadow.FacePartitions == 1 ? "face"
-                 : t.Shadow.FacePartitions == 2 ? "face+log" : kPartitions[t.Shadow.Partition])
-          << "," << t.Shadow.Cascades << ","
-          << t.Shadow.Resolution << "," << (csm ? t.Shadow.PCF : 1) << "," << t.Texels << ","
-          << t.MemoryMB << "," << Median(t.Times) << "," << Percentile(t.Times, 0.1) << ","
-          << Percentile(t.Times, 0.9) << "," << (csm ? Median(t.MathUs) : NAN) << ","
-          << t.Errors.MismatchPct() << "," << t.Errors.FalseShadowPct() << ","
-          << t.Errors.FalseLightPct() << "," << ms.Max << "," << ms.P95 << "," << ms.Mean << ","
-          << (csm ? Median(t.Storage) : NAN) << "," << t.Times.size() << "," << measuredPixels
-          << "," << Median(t.InteractiveTimes) << "," << Median(t.StillTimes) << ","
-          << Median(t.PlanMs) << "," << Mean(t.MapMs) << "," << PerMap(t) << ","
+          << (!csm                              ? "single"
+                 : t.Shadow.CameraSpace         ? "cssm"
+                 : t.Shadow.FacePartitions == 1 ? "face"
+                 : t.Shadow.FacePartitions == 2 ? "face+log"
+                                                : kPartitions[t.Shadow.Partition])
+          << "," << t.Shadow.Cascades << "," << t.Shadow.Resolution << ","
+          << (csm ? t.Shadow.PCF : 1) << "," << t.Texels << "," << t.MemoryMB << ","
+          << Median(t.Times) << "," << Percentile(t.Times, 0.1) << "," << Percentile(t.Times, 0.9)
+          << "," << (csm ? Median(t.MathUs) : NAN) << "," << t.Errors.MismatchPct() << ","
+          << t.Errors.FalseShadowPct() << "," << t.Errors.FalseLightPct() << "," << ms.Max << ","
+          << ms.P95 << "," << ms.Mean << "," << (csm ? Median(t.Storage) : NAN) << ","
+          << t.Times.size() << "," << measuredPixels << "," << Median(t.InteractiveTimes) << ","
+          << Median(t.StillTimes) << "," << Median(t.PlanMs) << "," << Mean(t.MapMs) << ","
+          << PerMap(t) << ","
           << (csm && t.MapsRendered > 0 ? t.TexelsRendered / t.MapsRendered : NAN) << ","
           << t.FlickerPct() << ","
           << (t.FramesPlanned ? double(t.CascadesPlanned) / t.FramesPlanned : NAN) << ","
@@ -1069,7 +1094,8 @@ int main(int argc, char** argv)
       {
         const Technique& vtk = techniques.front();
         std::printf("  %-16s time / vtk: paths %.2fx  interactive %.2fx  still %.2fx", "",
-          Median(t.Times) / Median(vtk.Times), Median(t.InteractiveTimes) / Median(vtk.InteractiveTimes),
+          Median(t.Times) / Median(vtk.Times),
+          Median(t.InteractiveTimes) / Median(vtk.InteractiveTimes),
           Median(t.StillTimes) / Median(vtk.StillTimes));
         if (csm)
           std::printf("  k %.2f  maps rendered %.2f kept %.2f per frame, %.2f visible-depth passes",
@@ -1097,8 +1123,8 @@ int main(int argc, char** argv)
   detail.close();
   if (!csv || !detail)
   {
-    std::fprintf(stderr, "csm-bench: error: cannot write %s or %s.views.csv\n", o.Out.c_str(),
-      o.Out.c_str());
+    std::fprintf(
+      stderr, "csm-bench: error: cannot write %s or %s.views.csv\n", o.Out.c_str(), o.Out.c_str());
     return 1;
   }
   std::printf("wrote %s and %s.views.csv\n", o.Out.c_str(), o.Out.c_str());

@@ -31,15 +31,15 @@ Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera, const glm:
 
   const glm::dvec4 h = wsToClip * glm::dvec4(wsPoint, 1.0);
   const glm::dmat4 t = glm::transpose(wsToClip); // t[r] is row r
-  auto gradient = [&](int row) { // d(ndc_row)/d(ws point)
+  auto gradient = [&](int row) {                 // d(ndc_row)/d(ws point)
     return (glm::dvec3(t[row]) * h.w - glm::dvec3(t[3]) * h[row]) / (h.w * h.w);
   };
   // Lloyd et al. 2006, Eq. 3-4 with res = 1: s, t in [0, 1] are half the NDC. The map axis
   // along ls x is the row that follows it: s, or t for a map turned a quarter (orientToTile),
   // also when the map was planned for an earlier camera (whose ls x differs a little) or its
   // axes are not ls x and z at all (VTK's map: the better aligned row).
-  const bool turned = std::abs(glm::dot(glm::dvec3(t[1]), wsMapX)) >
-    std::abs(glm::dot(glm::dvec3(t[0]), wsMapX));
+  const bool turned =
+    std::abs(glm::dot(glm::dvec3(t[1]), wsMapX)) > std::abs(glm::dot(glm::dvec3(t[0]), wsMapX));
   const double dsdx = 0.5 * std::abs(glm::dot(gradient(turned ? 1 : 0), wsMapX));
   const double dtdz = 0.5 * std::abs(glm::dot(gradient(turned ? 0 : 1), wsMapZ));
   Aliasing m;
@@ -59,8 +59,8 @@ void cascadeError(Cascade& cascade, const Camera& camera, const glm::dvec3& wsLi
   cascade.storage = cascade.Mx * cascade.Mz / camera.aspect;
 }
 
-int resolutionForError(double maxAliasing, double imageHeight, double targetError, int step,
-  int ceiling)
+int resolutionForError(
+  double maxAliasing, double imageHeight, double targetError, int step, int ceiling)
 {
   ceiling = std::max(ceiling, 1);
   step = std::max(1, std::min(step, ceiling));
@@ -74,8 +74,8 @@ int resolutionForError(double maxAliasing, double imageHeight, double targetErro
   return std::min(ceiling, std::max(step, steps * step));
 }
 
-MapSize resolutionForError(const Cascade& cascade, double imageHeight, double targetError,
-  int step, const MapSize& ceiling)
+MapSize resolutionForError(
+  const Cascade& cascade, double imageHeight, double targetError, int step, const MapSize& ceiling)
 {
   // Both axes get the texels of the larger M (a map sharper along its other axis than the target
   // asks costs little and keeps the filter's footprint round); each within its side of the tile.

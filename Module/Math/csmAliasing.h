@@ -20,10 +20,10 @@ struct Aliasing
   double mz = 0.0; ///< w_lz / w_i
 };
 
-/// Lloyd et al. 2006, Eq. 2-4 at a world point for a light clip matrix: beam widths of one shadow-map texel
-/// (map resolution 1) along ls x and ls z over the width of one image pixel (image height 1).
-/// Each is measured along the map row that follows it: s for ls x and t for ls z, the other
-/// way round for a map turned by orientToTile (whose t row is the one along ls x); for a map
+/// Lloyd et al. 2006, Eq. 2-4 at a world point for a light clip matrix: beam widths of one
+/// shadow-map texel (map resolution 1) along ls x and ls z over the width of one image pixel (image
+/// height 1). Each is measured along the map row that follows it: s for ls x and t for ls z, the
+/// other way round for a map turned by orientToTile (whose t row is the one along ls x); for a map
 /// whose axes are not ls x and z (kept from an earlier camera, or VTK's), the better aligned.
 Aliasing aliasingAt(const glm::dmat4& wsToClip, const Camera& camera,
   const glm::dvec3& wsLightDirection, const glm::dvec3& wsPoint);
@@ -44,15 +44,15 @@ void cascadeError(Cascade& cascade, const Camera& camera, const glm::dvec3& wsLi
 /// image imageHeight pixels high: maxAliasing * imageHeight / targetError, rounded up to a
 /// multiple of step and kept in [step, ceiling]. The ceiling when any input is not a finite
 /// positive number (spot lights have no M; a target of 0 means "always the ceiling").
-int resolutionForError(double maxAliasing, double imageHeight, double targetError, int step,
-  int ceiling);
+int resolutionForError(
+  double maxAliasing, double imageHeight, double targetError, int step, int ceiling);
 
 /// The same for a cascade's map on a tile of at most ceiling texels along s and t: the texels
 /// its larger M needs (max(Mx, Mz)) along both axes, each in [step, its side of the ceiling].
 /// (Sized per axis, the map would be sharper along one axis than the other and the filter's
 /// footprint elongated: the box and plane scene of the tests then darkens 4 % more pixels.)
 /// A scene-fitted cascade (drawn once) gets the whole ceiling.
-MapSize resolutionForError(const Cascade& cascade, double imageHeight, double targetError,
-  int step, const MapSize& ceiling);
+MapSize resolutionForError(
+  const Cascade& cascade, double imageHeight, double targetError, int step, const MapSize& ceiling);
 
 } // namespace csm

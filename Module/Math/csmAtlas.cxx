@@ -48,11 +48,12 @@ AtlasGrid atlasGrid(int count, const AtlasGrid& atlas)
   }
   const long long width = static_cast<long long>(atlas.columns) * atlas.tile.width;
   const long long height = static_cast<long long>(atlas.rows) * atlas.tile.height;
-  auto better = [](const MapSize& a, const MapSize& b) {
+  auto better = [](const MapSize& a, const MapSize& b)
+  {
     const int shortA = std::min(a.width, a.height), shortB = std::min(b.width, b.height);
-    return shortA != shortB ? shortA > shortB
-                            : static_cast<long long>(a.width) * a.height >
-        static_cast<long long>(b.width) * b.height;
+    return shortA != shortB
+      ? shortA > shortB
+      : static_cast<long long>(a.width) * a.height > static_cast<long long>(b.width) * b.height;
   };
   for (int columns = 1; columns <= count; ++columns)
   {
@@ -99,7 +100,8 @@ CascadeCeilings ceilingsForCount(int count, int mostCascades, int resolution)
 
 glm::dvec2 mapAxisAliasing(const Cascade& cascade)
 {
-  return cascade.mapTurned ? glm::dvec2(cascade.Mz, cascade.Mx) : glm::dvec2(cascade.Mx, cascade.Mz);
+  return cascade.mapTurned ? glm::dvec2(cascade.Mz, cascade.Mx)
+                           : glm::dvec2(cascade.Mx, cascade.Mz);
 }
 
 double predictedError(const Cascade& cascade, double imageHeight, const MapSize& map)

@@ -4,8 +4,8 @@
 #include "csmGeometry.h"
 
 #include <glm/geometric.hpp>
-#include <glm/vec2.hpp>
 #include <glm/trigonometric.hpp>
+#include <glm/vec2.hpp>
 
 #include <algorithm>
 #include <array>
@@ -66,8 +66,8 @@ glm::dmat4 projectFrom(const glm::dvec3& normal, double offset, const glm::dvec3
 
 /// A plane point (homogeneous) captured by a camera at the eye pushed back by pushBack along the
 /// view, looking along view with the given right and up axes: rows x, y, (0), w.
-glm::dmat4 capture(const glm::dvec3& right, const glm::dvec3& up, const glm::dvec3& view,
-  double pushBack)
+glm::dmat4 capture(
+  const glm::dvec3& right, const glm::dvec3& up, const glm::dvec3& view, double pushBack)
 {
   glm::dmat4 c(0.0);
   for (int column = 0; column < 3; ++column)
@@ -183,8 +183,8 @@ struct CornerFit
   bool ok = true; ///< every corner in front of the capturing camera
 };
 
-CornerFit fitCorners(const glm::dmat4& projected, const GeneralFrame& g, const glm::dvec3& L,
-  double wFloor)
+CornerFit fitCorners(
+  const glm::dmat4& projected, const GeneralFrame& g, const glm::dvec3& L, double wFloor)
 {
   CornerFit f;
   f.projected = projected;
@@ -240,11 +240,12 @@ double focusPushBack(const Camera& camera, const GeneralFrame& g, double vsFocus
     return 0.0;
   }
   const double focus = std::clamp(vsFocus, camera.vsNear, camera.vsFar);
-  const glm::dvec3 focusOnPlane =
-    g.view * focus + g.up * ((-g.offset - glm::dot(g.normal, g.view) * focus) / glm::dot(g.normal, g.up));
+  const glm::dvec3 focusOnPlane = g.view * focus +
+    g.up * ((-g.offset - glm::dot(g.normal, g.view) * focus) / glm::dot(g.normal, g.up));
   // The share of t from P's near edge to the focus (the near edge is on top for a light from in
   // front). The plane's own points project onto themselves, from a point or along L.
-  auto share = [&](const CornerFit& f) {
+  auto share = [&](const CornerFit& f)
+  {
     const glm::dvec4 h = f.projected * glm::dvec4(focusOnPlane, 1.0);
     const double fromBottom = (h.y / h.w - f.t.x) / std::max(f.t.y - f.t.x, 1e-300);
     return g.lightFromFront ? 1.0 - fromBottom : fromBottom;
@@ -312,8 +313,10 @@ CameraSpaceMap computeCameraSpaceMap(
   }
   // The projection onto P along the light, captured by the camera pushed back by pushBack.
   const glm::dmat4 toPlane = projectAlong(g.normal, g.offset, L);
-  auto fit = [&](double pushBack) {
-    return fitCorners(capture(g.right, g.up, g.view, pushBack) * toPlane, g, L, 1e-9 * camera.vsNear);
+  auto fit = [&](double pushBack)
+  {
+    return fitCorners(
+      capture(g.right, g.up, g.view, pushBack) * toPlane, g, L, 1e-9 * camera.vsNear);
   };
   map.pushBack = focusPushBack(camera, g, vsFocus, fit, map.focusClamped);
   const CornerFit f = fit(map.pushBack);
@@ -324,8 +327,8 @@ CameraSpaceMap computeCameraSpaceMap(
                   "frustum case needs four planes)";
     return map;
   }
-  map.wsToClip = fitClip(f.projected, lightDepthRow(L, f.depth, f.w.x, camera.vsFar), f.s, f.t,
-    camera.wsPosition);
+  map.wsToClip = fitClip(
+    f.projected, lightDepthRow(L, f.depth, f.w.x, camera.vsFar), f.s, f.t, camera.wsPosition);
   map.wsPlane = glm::dvec4(g.normal, g.offset - glm::dot(g.normal, camera.wsPosition));
   map.wMin = f.w.x;
   map.status = Status::Ok;
@@ -337,8 +340,9 @@ CameraSpaceMap computeCameraSpaceSpot(
 {
   CameraSpaceMap map;
   map.message = generalCaseError(camera);
-  if (map.message.empty() && !(std::isfinite(wsLightPosition.x) &&
-                               std::isfinite(wsLightPosition.y) && std::isfinite(wsLightPosition.z)))
+  if (map.message.empty() &&
+    !(std::isfinite(wsLightPosition.x) && std::isfinite(wsLightPosition.y) &&
+      std::isfinite(wsLightPosition.z)))
   {
     map.message = "the light's position must be finite";
   }
@@ -380,9 +384,8 @@ CameraSpaceMap computeCameraSpaceSpot(
   }
   const glm::dmat4 toPlane = projectFrom(g.normal, g.offset, l) * (sideMin > 0.0 ? 1.0 : -1.0);
   const glm::dvec3 none(0.0);
-  auto fit = [&](double pushBack) {
-    return fitCorners(capture(g.right, g.up, g.view, pushBack) * toPlane, g, none, 0.0);
-  };
+  auto fit = [&](double pushBack)
+  { return fitCorners(capture(g.right, g.up, g.view, pushBack) * toPlane, g, none, 0.0); };
   map.pushBack = focusPushBack(camera, g, vsFocus, fit, map.focusClamped);
   const CornerFit f = fit(map.pushBack);
   map.vsFocus = f.ok ? focusOfFit(g, f, map.pushBack) : 0.0;
@@ -408,8 +411,8 @@ CameraSpaceMap computeCameraSpaceSpot(
   return map;
 }
 
-std::vector<CameraSpaceFace> computeCameraSpaceDueling(const Camera& camera,
-  const glm::dvec3& wsLightDirection)
+std::vector<CameraSpaceFace> computeCameraSpaceDueling(
+  const Camera& camera, const glm::dvec3& wsLightDirection)
 {
   std::vector<CameraSpaceFace> faces;
   if (!cameraError(camera).empty() || !lightDirectionError(wsLightDirection).empty() ||

@@ -32,10 +32,10 @@ namespace csm
 struct CameraSpaceMap
 {
   Status status = Status::InvalidInput;
-  std::string message;          ///< why, when the status is not Ok
-  bool lightFromFront = false;  ///< the plane runs from the upper near to the lower far edge
-  glm::dmat4 wsToClip{ 1.0 };   ///< world -> clip; the view frustum [vsNear, vsFar] in [-1, 1]^3
-  glm::dvec4 wsPlane{ 0.0 };    ///< the projection plane P (xyz unit normal, w offset), world
+  std::string message;         ///< why, when the status is not Ok
+  bool lightFromFront = false; ///< the plane runs from the upper near to the lower far edge
+  glm::dmat4 wsToClip{ 1.0 };  ///< world -> clip; the view frustum [vsNear, vsFar] in [-1, 1]^3
+  glm::dvec4 wsPlane{ 0.0 };   ///< the projection plane P (xyz unit normal, w offset), world
   /// The smallest w over the frustum: on a ray of w the map's depth (after the division) spans
   /// wMin / w of what it spans on the nearest ray, so a constant depth bias must scale by it.
   double wMin = 0.0;
@@ -102,7 +102,7 @@ struct CameraSpaceFace
 /// i.e. whose two planes through t, a far corner and the light hold it. Empty for an invalid
 /// or parallel camera, a bad light, or a light (nearly) perpendicular to the view (t at
 /// infinity).
-std::vector<CameraSpaceFace> computeCameraSpaceDueling(const Camera& camera,
-  const glm::dvec3& wsLightDirection);
+std::vector<CameraSpaceFace> computeCameraSpaceDueling(
+  const Camera& camera, const glm::dvec3& wsLightDirection);
 
 } // namespace csm

@@ -18,10 +18,9 @@ namespace
 class CountChooser
 {
 public:
-  CountChooser(const Camera& camera, const glm::dvec3& wsLightDirection,
-    const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
-    double imageHeight, int maximumResolution, double targetError,
-    const std::vector<CasterLoad>* casters)
+  CountChooser(const Camera& camera, const glm::dvec3& wsLightDirection, const Bounds* sceneBounds,
+    const Settings& settings, const std::vector<Bounds>* receiverParts, double imageHeight,
+    int maximumResolution, double targetError, const std::vector<CasterLoad>* casters)
     : Cam(camera)
     , Light(wsLightDirection)
     , SceneBounds(sceneBounds)
@@ -79,9 +78,8 @@ private:
         followingView.cascades.push_back(c);
       }
     }
-    return followingView.cascades.empty()
-      ? 0.0
-      : passTexels(followingView, *this->Casters) +
+    return followingView.cascades.empty() ? 0.0
+                                          : passTexels(followingView, *this->Casters) +
         texelsForError(followingView, this->ImageHeight, this->TargetError, this->ceilingOf(k));
   }
 
@@ -240,8 +238,8 @@ ShadowSetup computeShadowSetupForCount(const Camera& camera, const glm::dvec3& w
     : plan;
 }
 
-double texelsForError(const ShadowSetup& setup, double imageHeight, double targetError,
-  const CascadeCeilings& ceilings)
+double texelsForError(
+  const ShadowSetup& setup, double imageHeight, double targetError, const CascadeCeilings& ceilings)
 {
   if (setup.cascades.empty() || !(targetError > 0.0))
   {
@@ -253,8 +251,7 @@ double texelsForError(const ShadowSetup& setup, double imageHeight, double targe
     // resolutionForError's sides, without the rounding to its step (a scene-fitted map: its
     // tile).
     const MapSize& ceiling = ceilings.of(c);
-    const double side =
-      c.sceneFitted ? kInf : std::max(c.Mx, c.Mz) * imageHeight / targetError;
+    const double side = c.sceneFitted ? kInf : std::max(c.Mx, c.Mz) * imageHeight / targetError;
     const double s = std::isfinite(side) ? side : ceiling.width;
     const double t = std::isfinite(side) ? side : ceiling.height;
     // (std::min below keeps a scene-fitted map at its tile.)
@@ -284,8 +281,8 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
   double imageHeight, int maximumResolution, double targetError, int kPrevious,
   const std::vector<CasterLoad>* casters)
 {
-  CountChooser chooser(camera, wsLightDirection, sceneBounds, settings, receiverParts,
-    imageHeight, maximumResolution, targetError, casters);
+  CountChooser chooser(camera, wsLightDirection, sceneBounds, settings, receiverParts, imageHeight,
+    maximumResolution, targetError, casters);
   return chooser.choose(kPrevious);
 }
 

@@ -42,7 +42,8 @@ struct Splitter
         hi = glm::max(hi, this->Centroids[order[i]]);
       }
       const Vector extent = hi - lo;
-      const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+      const int axis =
+        extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
       const std::size_t middle = begin + (end - begin) / 2;
       std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(begin),
         order.begin() + static_cast<std::ptrdiff_t>(middle),
@@ -93,9 +94,9 @@ std::vector<CasterBlock> splitIntoBlocks(const std::vector<glm::dvec3>& position
       continue;
     }
     kept.push_back(v);
-    centroids.push_back((positions[static_cast<std::size_t>(t[0])] +
-                          positions[static_cast<std::size_t>(t[1])] +
-                          positions[static_cast<std::size_t>(t[2])]) /
+    centroids.push_back(
+      (positions[static_cast<std::size_t>(t[0])] + positions[static_cast<std::size_t>(t[1])] +
+        positions[static_cast<std::size_t>(t[2])]) /
       3.0);
   }
   if (kept.empty())

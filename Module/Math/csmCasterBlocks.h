@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A big caster mesh as compact spatial blocks, so that each cascade's map draws only the blocks
-// whose boxes reach its light volume, and draws them from positions alone. Pure math, no VTK, no GL.
+// whose boxes reach its light volume, and draws them from positions alone. Pure math, no VTK, no
+// GL.
 //
 // A shadow map needs a caster's depth only: its normals, colours and texture coordinates are
 // dead weight in the map's vertex stage, and the points a mesh splits for its normals (a box has
@@ -34,9 +35,10 @@ struct CasterBlock
 /// Split a triangle mesh into blocks of at most maxTriangles triangles (at least 1), halving the
 /// triangles at the median centroid along the longest side of their centroids' box until each part
 /// fits; within a block the triangles keep the input's order, and corners are numbered in the
-/// order the triangles first use them. Every triangle with three distinct (welded) corners lands in exactly one block; degenerate
-/// ones are dropped (they cover no texel). Empty result when there is no such triangle, a position
-/// is not finite, or an index is out of range: the caller then draws the mesh as it is.
+/// order the triangles first use them. Every triangle with three distinct (welded) corners lands in
+/// exactly one block; degenerate ones are dropped (they cover no texel). Empty result when there is
+/// no such triangle, a position is not finite, or an index is out of range: the caller then draws
+/// the mesh as it is.
 std::vector<CasterBlock> splitIntoBlocks(const std::vector<glm::dvec3>& positions,
   const std::vector<std::array<std::int64_t, 3>>& triangles, std::size_t maxTriangles);
 

@@ -74,8 +74,8 @@ bool largestTriangle(const std::vector<glm::dvec3>& positions,
   for (const auto& t : triangles)
   {
     const glm::dvec3& a = positions[static_cast<size_t>(t[0])];
-    const glm::dvec3 n = glm::cross(positions[static_cast<size_t>(t[1])] - a,
-      positions[static_cast<size_t>(t[2])] - a);
+    const glm::dvec3 n = glm::cross(
+      positions[static_cast<size_t>(t[1])] - a, positions[static_cast<size_t>(t[2])] - a);
     const double area = glm::length(n);
     if (area > largest)
     {
@@ -97,11 +97,15 @@ void classifyShape(const std::vector<glm::dvec3>& positions,
   {
     return;
   }
-  result.planar = std::all_of(triangles.begin(), triangles.end(), [&](const auto& t) {
-    return std::all_of(t.begin(), t.end(), [&](std::int64_t i) {
-      return std::abs(glm::dot(positions[static_cast<size_t>(i)] - corner, normal)) <= tolerance;
+  result.planar = std::all_of(triangles.begin(), triangles.end(),
+    [&](const auto& t)
+    {
+      return std::all_of(t.begin(), t.end(),
+        [&](std::int64_t i) {
+          return std::abs(glm::dot(positions[static_cast<size_t>(i)] - corner, normal)) <=
+            tolerance;
+        });
     });
-  });
 }
 
 /// Does every (welded) vertex lie on the inner side of every triangle's plane? outward: +1 when
@@ -133,8 +137,8 @@ bool isConvex(const std::vector<glm::dvec3>& positions,
   for (const auto& t : triangles)
   {
     const glm::dvec3& a = positions[static_cast<size_t>(t[0])];
-    const glm::dvec3 n = glm::cross(positions[static_cast<size_t>(t[1])] - a,
-      positions[static_cast<size_t>(t[2])] - a);
+    const glm::dvec3 n = glm::cross(
+      positions[static_cast<size_t>(t[1])] - a, positions[static_cast<size_t>(t[2])] - a);
     const double area = glm::length(n);
     if (!(area > 0.0))
     {
@@ -153,8 +157,8 @@ bool isConvex(const std::vector<glm::dvec3>& positions,
 }
 } // namespace
 
-SurfaceClosure classifySurface(
-  const std::vector<glm::dvec3>& positions, const std::vector<std::array<std::int64_t, 3>>& triangles)
+SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
+  const std::vector<std::array<std::int64_t, 3>>& triangles)
 {
   SurfaceClosure result;
   std::vector<std::uint32_t> ids;

@@ -5,12 +5,12 @@
 // A ray that enters a closed surface leaves it again. If every edge of a mesh (its vertices welded
 // by position) is traversed as often in one direction as in the other (the oriented boundary of the
 // mesh is empty), then along any ray the faces the ray crosses toward the light and away from it
-// alternate in number, and a ray that crosses a face turned toward the light also crosses one turned
-// away. A map of only the faces turned away from the light (the exit layer; Wang & Molnar's
+// alternate in number, and a ray that crosses a face turned toward the light also crosses one
+// turned away. A map of only the faces turned away from the light (the exit layer; Wang & Molnar's
 // second-depth shadow maps) therefore shadows exactly the points the whole mesh shadows, with half
 // the fragments, and the lit side's own depth no longer competes with it (no acne on lit faces).
-// Open meshes (a sheet, a tube without caps, a mesh with one flipped triangle) fail the test and are
-// drawn with both sides.
+// Open meshes (a sheet, a tube without caps, a mesh with one flipped triangle) fail the test and
+// are drawn with both sides.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -52,11 +52,11 @@ constexpr double kMaximumConvexityWork = 1.0e6;
 /// is not finite or there are more than 2^32 positions.
 bool weldPositions(const std::vector<glm::dvec3>& positions, std::vector<std::uint32_t>& ids);
 
-/// Classify a triangle mesh (closed, volume, planar, convex). Vertices at bitwise-equal positions (+0 and -0 alike) are one vertex,
-/// so meshes whose points were split for normals or texture seams still close. Triangles with two
-/// equal (welded) corners are ignored; an index out of range or a non-finite position makes the mesh
-/// open (the safe answer: both sides are drawn).
-SurfaceClosure classifySurface(
-  const std::vector<glm::dvec3>& positions, const std::vector<std::array<std::int64_t, 3>>& triangles);
+/// Classify a triangle mesh (closed, volume, planar, convex). Vertices at bitwise-equal positions
+/// (+0 and -0 alike) are one vertex, so meshes whose points were split for normals or texture seams
+/// still close. Triangles with two equal (welded) corners are ignored; an index out of range or a
+/// non-finite position makes the mesh open (the safe answer: both sides are drawn).
+SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
+  const std::vector<std::array<std::int64_t, 3>>& triangles);
 
 } // namespace csm

@@ -74,10 +74,12 @@ void ConvexBody::clip(const Plane& plane, double epsilon)
     const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     const glm::dvec3 u = glm::normalize(glm::cross(n, helper));
     const glm::dvec3 v = glm::cross(n, u);
-    std::sort(cut.begin(), cut.end(), [&](const glm::dvec3& a, const glm::dvec3& b) {
-      return std::atan2(glm::dot(a - centre, v), glm::dot(a - centre, u)) <
-        std::atan2(glm::dot(b - centre, v), glm::dot(b - centre, u));
-    });
+    std::sort(cut.begin(), cut.end(),
+      [&](const glm::dvec3& a, const glm::dvec3& b)
+      {
+        return std::atan2(glm::dot(a - centre, v), glm::dot(a - centre, u)) <
+          std::atan2(glm::dot(b - centre, v), glm::dot(b - centre, u));
+      });
     Polygon face;
     for (const glm::dvec3& p : cut)
     {

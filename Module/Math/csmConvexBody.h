@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// A convex polyhedron as a list of planar faces, clipped by planes (the body B of Barroso & Celes 2007, §2.3).
-// Pure math: no VTK, no GL.
+// A convex polyhedron as a list of planar faces, clipped by planes (the body B of Barroso & Celes
+// 2007, §2.3). Pure math: no VTK, no GL.
 #pragma once
 
 #include <glm/vec3.hpp>

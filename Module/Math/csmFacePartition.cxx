@@ -71,7 +71,8 @@ ConvexBody frustum(const Pyramid& p, double d0, double d1)
 }
 
 /// The plane through the eye holding the side edge `edge` and the light direction y, facing the
-/// side where `inside` lies (Lloyd et al. 2006, §5.1: the planes through the face edges and the light).
+/// side where `inside` lies (Lloyd et al. 2006, §5.1: the planes through the face edges and the
+/// light).
 Plane wedgePlane(const glm::dvec3& edge, const glm::dvec3& y, const glm::dvec3& inside)
 {
   glm::dvec3 normal = glm::normalize(glm::cross(edge, y));
@@ -126,8 +127,8 @@ std::vector<glm::dvec3> lightSpacePoints(const std::vector<glm::dvec3>& cwsBody,
   return ls;
 }
 
-glm::dmat4 lightView(const glm::dvec3& x, const glm::dvec3& y, const glm::dvec3& z,
-  const glm::dvec3& wsEye)
+glm::dmat4 lightView(
+  const glm::dvec3& x, const glm::dvec3& y, const glm::dvec3& z, const glm::dvec3& wsEye)
 {
   glm::dmat4 m(1.0); // rows x, y, z: world -> light space with the eye at the origin
   for (int c = 0; c < 3; ++c)
@@ -139,8 +140,8 @@ glm::dmat4 lightView(const glm::dvec3& x, const glm::dvec3& y, const glm::dvec3&
 }
 } // namespace
 
-FacePartitioning computeFacePartitions(const Camera& camera, const glm::dvec3& wsLightDirection,
-  const FacePartitionSettings& settings)
+FacePartitioning computeFacePartitions(
+  const Camera& camera, const glm::dvec3& wsLightDirection, const FacePartitionSettings& settings)
 {
   FacePartitioning result;
   result.message = cameraError(camera);

@@ -52,7 +52,8 @@ struct FacePartitionSettings
   /// The warp of each piece; at gamma = 90 deg LiSPSM and Generalized give the same n'
   /// (n + sqrt(f n)), PSM n' = n, None an orthographic map per piece (Lloyd et al. 2006, §4.1).
   WarpMode warp = WarpMode::LiSPSM;
-  /// z-partitions per face (log splits, Lloyd et al. 2006, Eq. 15-16): 1 for FP+W, more for FP+ZP+W.
+  /// z-partitions per face (log splits, Lloyd et al. 2006, Eq. 15-16): 1 for FP+W, more for
+  /// FP+ZP+W.
   int k = 1;
 };
 
@@ -60,7 +61,7 @@ struct FacePartitionSettings
 struct FacePartition
 {
   FrustumFace face = FrustumFace::Bottom;
-  int zIndex = 0;          ///< 0 .. k-1, from the eye outward along the face
+  int zIndex = 0;           ///< 0 .. k-1, from the eye outward along the face
   glm::dvec3 wsMapX{ 0.0 }; ///< the map's s axis (unit, perpendicular to the light)
   glm::dvec3 wsMapZ{ 0.0 }; ///< the map's t axis: the bisector of the projected side edges
   /// vsNear, vsFar: the face's split depths s_i, s_i+1 (the body reaches nearer, down to the near
@@ -80,20 +81,20 @@ struct FacePartition
 struct FacePartitioning
 {
   Status status = Status::InvalidInput;
-  std::string message;       ///< why, when the status is not Ok
-  double gammaDeg = 0.0;     ///< angle between light and view direction, 0..180 (0: light from behind)
-  std::vector<double> splits; ///< split depths along the faces, s_0 = near .. s_k = far
+  std::string message;   ///< why, when the status is not Ok
+  double gammaDeg = 0.0; ///< angle between light and view direction, 0..180 (0: light from behind)
+  std::vector<double> splits;            ///< split depths along the faces, s_0 = near .. s_k = far
   std::vector<FacePartition> partitions; ///< face by face (Bottom, Right, Top, Left), near to far
-  double storageTotal = 0.0;   ///< sum of the partitions' storage factors
-  double storageOptimal = 0.0; ///< Lloyd et al. 2006, App. C: ln(f/n) / (2 tan theta)
+  double storageTotal = 0.0;             ///< sum of the partitions' storage factors
+  double storageOptimal = 0.0;           ///< Lloyd et al. 2006, App. C: ln(f/n) / (2 tan theta)
 };
 
 /// The face partitions of the camera's view frustum [vsNear, vsFar] for a directional light
 /// travelling along wsLightDirection (no scene clipping: the bodies are the frustum's partitions,
 /// as in the paper's analysis). InvalidInput, with a message and no partitions, for an invalid or
 /// parallel-projection camera, a zero or non-finite light direction, or k outside [1, 64].
-FacePartitioning computeFacePartitions(const Camera& camera, const glm::dvec3& wsLightDirection,
-  const FacePartitionSettings& settings);
+FacePartitioning computeFacePartitions(
+  const Camera& camera, const glm::dvec3& wsLightDirection, const FacePartitionSettings& settings);
 
 /// The partition a world point belongs to: the one whose smallest signed distance to its
 /// wsPlanes is largest (inside one, up to rounding, for points of the frustum). -1 when there

@@ -139,14 +139,14 @@ LightBasis lightBasis(const CameraFrame& frame, const glm::dvec3& wsLightDirecti
 {
   LightBasis ls;
   ls.y = glm::normalize(wsLightDirection);
-  ls.z = perpendicularPart(
-    frame.view, ls.y, perpendicularPart(frame.up, ls.y, perpendicular(ls.y)));
+  ls.z =
+    perpendicularPart(frame.view, ls.y, perpendicularPart(frame.up, ls.y, perpendicular(ls.y)));
   ls.x = glm::cross(ls.y, ls.z);
   return ls;
 }
 
-glm::dmat4 frameMatrix(const glm::dvec3& x, const glm::dvec3& y, const glm::dvec3& z,
-  const glm::dvec3& wsOrigin)
+glm::dmat4 frameMatrix(
+  const glm::dvec3& x, const glm::dvec3& y, const glm::dvec3& z, const glm::dvec3& wsOrigin)
 {
   return fromRows({ x, -glm::dot(x, wsOrigin) }, { y, -glm::dot(y, wsOrigin) },
     { z, -glm::dot(z, wsOrigin) }, { 0, 0, 0, 1 });
@@ -186,8 +186,8 @@ double clipEpsilon(const Camera& camera, const CameraFrame& frame, double vsDept
   return 1e-12 * (vsDepth + half.x + half.y);
 }
 
-double exitTowardLight(const glm::dvec3& p, const glm::dvec3& d, const glm::dvec3& lo,
-  const glm::dvec3& hi)
+double exitTowardLight(
+  const glm::dvec3& p, const glm::dvec3& d, const glm::dvec3& lo, const glm::dvec3& hi)
 {
   double t = kInf;
   for (int i = 0; i < 3; ++i)
@@ -204,8 +204,8 @@ double exitTowardLight(const glm::dvec3& p, const glm::dvec3& d, const glm::dvec
   return std::isfinite(t) ? std::max(t, 0.0) : 0.0;
 }
 
-glm::dmat4 fromRows(const glm::dvec4& r0, const glm::dvec4& r1, const glm::dvec4& r2,
-  const glm::dvec4& r3)
+glm::dmat4 fromRows(
+  const glm::dvec4& r0, const glm::dvec4& r1, const glm::dvec4& r2, const glm::dvec4& r3)
 {
   glm::dmat4 m;
   for (int c = 0; c < 4; ++c)

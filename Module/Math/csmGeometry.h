@@ -75,8 +75,8 @@ struct LightBasis
 LightBasis lightBasis(const CameraFrame& frame, const glm::dvec3& wsLightDirection);
 
 /// The world -> frame matrix of the orthonormal axes x, y, z (its rows) at wsOrigin.
-glm::dmat4 frameMatrix(const glm::dvec3& x, const glm::dvec3& y, const glm::dvec3& z,
-  const glm::dvec3& wsOrigin);
+glm::dmat4 frameMatrix(
+  const glm::dvec3& x, const glm::dvec3& y, const glm::dvec3& z, const glm::dvec3& wsOrigin);
 
 /// Half-widths of the view volume at a depth (perspective or parallel).
 glm::dvec2 halfSize(const Camera& camera, const CameraFrame& frame, double vsDepth);
@@ -91,12 +91,12 @@ std::array<glm::dvec3, 8> partitionCorners(
 double clipEpsilon(const Camera& camera, const CameraFrame& frame, double vsDepth);
 
 /// Parameter t >= 0 where the ray p - t d (toward the light) leaves the box [lo, hi].
-double exitTowardLight(const glm::dvec3& p, const glm::dvec3& d, const glm::dvec3& lo,
-  const glm::dvec3& hi);
+double exitTowardLight(
+  const glm::dvec3& p, const glm::dvec3& d, const glm::dvec3& lo, const glm::dvec3& hi);
 
 /// A matrix from its four rows.
-glm::dmat4 fromRows(const glm::dvec4& r0, const glm::dvec4& r1, const glm::dvec4& r2,
-  const glm::dvec4& r3);
+glm::dmat4 fromRows(
+  const glm::dvec4& r0, const glm::dvec4& r1, const glm::dvec4& r2, const glm::dvec4& r3);
 
 /// Corner i (0..7, bit 0: x, bit 1: y, bit 2: z at the maximum) of a box.
 glm::dvec3 boxCorner(const Bounds& box, int i);

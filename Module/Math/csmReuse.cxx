@@ -48,8 +48,7 @@ SlackedMap slackedMap(const MapSize& need, const MapSize& most, double slack)
 bool smallCameraStep(const Camera& before, const Camera& now, double vsDepth)
 {
   const double lengths = glm::length(before.wsDirection) * glm::length(now.wsDirection);
-  if (!(lengths > 0.0) || !std::isfinite(lengths) || !(vsDepth > 0.0) ||
-    !std::isfinite(vsDepth))
+  if (!(lengths > 0.0) || !std::isfinite(lengths) || !(vsDepth > 0.0) || !std::isfinite(vsDepth))
   {
     return false;
   }
@@ -73,13 +72,13 @@ bool keptMapServes(double errorRatio, const MapSize& keptSize, const MapSize& ne
   }
   // (Rounding: a map kept for the very view it was planned for has a ratio of 1.)
   constexpr double kRounding = 1e-9;
-  const double room = std::min(
-    double(keptSize.width) / need.width, double(keptSize.height) / need.height);
+  const double room =
+    std::min(double(keptSize.width) / need.width, double(keptSize.height) / need.height);
   return errorRatio <= room * (1.0 + kRounding);
 }
 
-MapReuse compareKeptMap(const glm::dmat4& wsKeptToClip, const Cascade& fresh,
-  const Camera& camera, const glm::dvec3& wsLightDirection, bool directional, double marginNdc)
+MapReuse compareKeptMap(const glm::dmat4& wsKeptToClip, const Cascade& fresh, const Camera& camera,
+  const glm::dvec3& wsLightDirection, bool directional, double marginNdc)
 {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   MapReuse reuse;
@@ -132,9 +131,8 @@ MapReuse compareKeptMap(const glm::dmat4& wsKeptToClip, const Cascade& fresh,
       freshMax = glm::max(freshMax, ndc);
     }
     const glm::dvec2 kept = ndcMax - ndcMin, planned = freshMax - freshMin;
-    reuse.errorRatio = kept.x > 0.0 && kept.y > 0.0
-      ? std::max(planned.x / kept.x, planned.y / kept.y)
-      : kInf;
+    reuse.errorRatio =
+      kept.x > 0.0 && kept.y > 0.0 ? std::max(planned.x / kept.x, planned.y / kept.y) : kInf;
     if (!std::isfinite(reuse.errorRatio))
     {
       reuse.errorRatio = kInf;

@@ -56,7 +56,7 @@ bool keptMapServes(double errorRatio, const MapSize& keptSize, const MapSize& ne
 /// Compare a kept world -> light clip matrix with the freshly planned cascade of the same light
 /// for the current camera. marginNdc: the band along the map's border that the lookup's filter
 /// reaches (PCF radius plus one texel, in NDC units: 2 (r + 1) / resolution).
-MapReuse compareKeptMap(const glm::dmat4& wsKeptToClip, const Cascade& fresh,
-  const Camera& camera, const glm::dvec3& wsLightDirection, bool directional, double marginNdc);
+MapReuse compareKeptMap(const glm::dmat4& wsKeptToClip, const Cascade& fresh, const Camera& camera,
+  const glm::dvec3& wsLightDirection, bool directional, double marginNdc);
 
 } // namespace csm

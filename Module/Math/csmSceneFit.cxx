@@ -93,8 +93,7 @@ bool footprintAcross(const WorldLightSpace& space, const std::vector<CasterLoad>
 } // namespace
 
 bool sceneFit(const glm::dvec3& wsLightDirection, const Bounds& sceneBounds,
-  const std::vector<CasterLoad>& casters, const std::vector<Bounds>* receiverParts,
-  SceneFit& fit)
+  const std::vector<CasterLoad>& casters, const std::vector<Bounds>* receiverParts, SceneFit& fit)
 {
   if (!lightDirectionError(wsLightDirection).empty() || !sceneBounds.isFinite() ||
     sceneBounds.isEmpty())
@@ -108,8 +107,7 @@ bool sceneFit(const glm::dvec3& wsLightDirection, const Bounds& sceneBounds,
   const bool partsGiven = receiverParts && !receiverParts->empty();
   const std::vector<Bounds> sceneOnly{ sceneBounds };
   glm::dvec2 lo, hi;
-  if (!footprintAcross(
-        space, casters, partsGiven ? *receiverParts : sceneOnly, partsGiven, lo, hi))
+  if (!footprintAcross(space, casters, partsGiven ? *receiverParts : sceneOnly, partsGiven, lo, hi))
   {
     return false;
   }

@@ -27,7 +27,6 @@ namespace csm
 /// stay for. False (fit unchanged) where no caster can shadow anything, a caster is screen-sized
 /// (its shadow's extent changes with the view) or the input is not finite.
 bool sceneFit(const glm::dvec3& wsLightDirection, const Bounds& sceneBounds,
-  const std::vector<CasterLoad>& casters, const std::vector<Bounds>* receiverParts,
-  SceneFit& fit);
+  const std::vector<CasterLoad>& casters, const std::vector<Bounds>* receiverParts, SceneFit& fit);
 
 } // namespace csm

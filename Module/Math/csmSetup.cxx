@@ -83,8 +83,7 @@ public:
   std::vector<glm::dvec3> body(
     double d0, double d1, const std::vector<Plane>* extra = nullptr) const
   {
-    ConvexBody partition =
-      ConvexBody::hexahedron(partitionCorners(this->Cam, this->Frame, d0, d1));
+    ConvexBody partition = ConvexBody::hexahedron(partitionCorners(this->Cam, this->Frame, d0, d1));
     const double epsilon = clipEpsilon(this->Cam, this->Frame, std::min(d1, this->Cam.vsFar));
     for (const Plane& plane : extra ? *extra : std::vector<Plane>())
     {
@@ -117,8 +116,8 @@ private:
 
 /// The view depth range [n, f] of the visible receivers, within the camera's; false when the
 /// view sees none of them.
-bool fitDepthRange(const ReceiverClipper& receivers, const Camera& camera,
-  const CameraFrame& frame, double& n, double& f)
+bool fitDepthRange(const ReceiverClipper& receivers, const Camera& camera, const CameraFrame& frame,
+  double& n, double& f)
 {
   const std::vector<glm::dvec3> visible = receivers.body(camera.vsNear, camera.vsFar);
   if (visible.empty())
@@ -166,8 +165,7 @@ std::vector<glm::dvec3> lightSpacePoints(const std::vector<glm::dvec3>& cwsBody,
     const glm::dvec3 cwsBoxMax = sceneBounds->wsMax - camera.wsPosition + grow;
     for (const glm::dvec3& p : cwsBody)
     {
-      lsPoints.push_back(
-        ls.coordinates(p - ls.y * exitTowardLight(p, ls.y, cwsBoxMin, cwsBoxMax)));
+      lsPoints.push_back(ls.coordinates(p - ls.y * exitTowardLight(p, ls.y, cwsBoxMin, cwsBoxMax)));
     }
   }
   const glm::dvec3 lsSize = lsMax - lsMin;
@@ -200,8 +198,8 @@ struct DirectionalFrame
   double heightPerDepth = 0.0; ///< a, b of Barroso & Celes 2007, §3.1 per unit depth
   glm::dmat4 wsToLs{ 1.0 };
 
-  DirectionalFrame(const Camera& cam, const glm::dvec3& wsLightDirection, const Settings& s,
-    const Bounds* bounds)
+  DirectionalFrame(
+    const Camera& cam, const glm::dvec3& wsLightDirection, const Settings& s, const Bounds* bounds)
     : camera(cam)
     , settings(s)
     , sceneBounds(bounds)
@@ -250,8 +248,7 @@ Cascade partitionCascade(
   }
   // The warp: a perspective along ls z with its centre n' before the body (Barroso & Celes
   // 2007, Fig. 4 and 6); orthographic where n' is so large that it only costs precision.
-  double warp =
-    camera.parallel ? kInf : nPrime(in.settings.warp, in.gammaFolded, in.shape(d0, d1));
+  double warp = camera.parallel ? kInf : nPrime(in.settings.warp, in.gammaFolded, in.shape(d0, d1));
   const double lsDepth = std::max(lsZMax - lsZMin, inflation(0.0, camera.vsNear));
   if (!(warp <= kOrthoRatio * lsDepth))
   {
@@ -322,8 +319,8 @@ void keepOrthographicDepthRange(std::vector<glm::dvec3>& lsPoints, bool eyeAtOri
     hi = glm::max(hi, p);
     eyeDistance = std::max(eyeDistance, glm::length(p));
   }
-  const double floor = orthographicDepthFloor(
-    std::max(hi.x - lo.x, hi.z - lo.z), eyeAtOrigin ? eyeDistance : 0.0);
+  const double floor =
+    orthographicDepthFloor(std::max(hi.x - lo.x, hi.z - lo.z), eyeAtOrigin ? eyeDistance : 0.0);
   if (lsPoints.empty() || !(hi.y - lo.y < floor))
   {
     return;
@@ -343,8 +340,8 @@ glm::dmat4 warpMatrix(double nPrime, double lsZMin)
   return fromRows({ 1, 0, 0, 0 }, { 0, 0, 0, -1 }, { 0, 1, 0, 0 }, { 0, 0, 1, -zCentre });
 }
 
-glm::dmat4 focusMatrix(const std::vector<glm::dvec3>& lsPoints, const glm::dmat4& lsToWarped,
-  bool quantizeExtent)
+glm::dmat4 focusMatrix(
+  const std::vector<glm::dvec3>& lsPoints, const glm::dmat4& lsToWarped, bool quantizeExtent)
 {
   glm::dvec3 lo(kInf), hi(-kInf);
   for (const glm::dvec3& p : lsPoints)

@@ -13,7 +13,8 @@ constexpr double kHalfPi = 1.57079632679489661923;
 
 double logSplit(double n, double f, int i, int k)
 {
-  // Barroso & Celes 2007, Eq. 5, Lloyd et al. 2006, Eq. 15-16: n (f/n)^(i/k), in log space so that f/n may exceed a double.
+  // Barroso & Celes 2007, Eq. 5, Lloyd et al. 2006, Eq. 15-16: n (f/n)^(i/k), in log space so that
+  // f/n may exceed a double.
   return std::exp(std::log(n) + (std::log(f) - std::log(n)) * double(i) / double(k));
 }
 }
@@ -45,13 +46,15 @@ std::vector<double> splitDepths(const SplitParameters& params, double n, double 
       const double lambda = std::clamp(params.lambda, 0.0, 1.0);
       for (int i = 1; i < k; ++i) // Vázquez: C_i = lambda C_log + (1 - lambda) C_uniform
       {
-        s[i] = lambda * logSplit(n, f, i, k) + (1.0 - lambda) * (n + (f - n) * double(i) / double(k));
+        s[i] =
+          lambda * logSplit(n, f, i, k) + (1.0 - lambda) * (n + (f - n) * double(i) / double(k));
       }
       break;
     }
     case SplitScheme::Adaptive:
     {
-      const double lambda = std::clamp(gamma / kHalfPi, 0.0, 1.0); // Barroso & Celes 2007, Eq. 19: lambda = gamma/(pi/2)
+      const double lambda = std::clamp(
+        gamma / kHalfPi, 0.0, 1.0); // Barroso & Celes 2007, Eq. 19: lambda = gamma/(pi/2)
       // Barroso & Celes 2007, Eq. 19, from the last partition backwards: n_i = f_{i-1} =
       //   lambda n (f_i/n)^((i-1)/i) + (1 - lambda) f_i / alpha.
       // Where alpha^(i-1) would not fit in [n, f_i], the self-similar split of [n, f_i] is the

@@ -9,9 +9,9 @@ namespace csm
 
 enum class SplitScheme
 {
-  Single,    ///< one partition [n, f], whatever k says
-  Uniform,   ///< n + (f - n) i / k
-  Log,       ///< self-similar partitions, Barroso & Celes 2007, Eq. 5 / Lloyd et al. 2006, Eq. 15-16
+  Single,  ///< one partition [n, f], whatever k says
+  Uniform, ///< n + (f - n) i / k
+  Log,     ///< self-similar partitions, Barroso & Celes 2007, Eq. 5 / Lloyd et al. 2006, Eq. 15-16
   Practical, ///< lambda log + (1 - lambda) uniform (Vázquez, parallel-split shadow maps)
   Adaptive   ///< Barroso & Celes, Barroso & Celes 2007, Eq. 19
 };
@@ -23,9 +23,10 @@ constexpr int kMaxSplits = 64;
 struct SplitParameters
 {
   SplitScheme scheme = SplitScheme::Adaptive;
-  int k = 2;            ///< number of partitions, >= 1
-  double lambda = 0.5;  ///< weight of the log splits in the practical scheme, [0, 1]
-  double alpha = 2.0;   ///< adaptive scheme: f_i / n_i of every partition but the first at gamma = 0, > 1
+  int k = 2;           ///< number of partitions, >= 1
+  double lambda = 0.5; ///< weight of the log splits in the practical scheme, [0, 1]
+  double alpha =
+    2.0; ///< adaptive scheme: f_i / n_i of every partition but the first at gamma = 0, > 1
 };
 
 /// Split depths s_0 = n < s_1 < ... < s_k = f along the view direction (k + 1 values; 2 for

@@ -39,8 +39,8 @@ struct SpotFrame
   glm::dvec3 cwsApex;
   double tanCone = 0.0;
 
-  SpotFrame(const Camera& camera, const glm::dvec3& wsLightPosition,
-    const glm::dvec3& wsLightAxis, double coneAngleDeg)
+  SpotFrame(const Camera& camera, const glm::dvec3& wsLightPosition, const glm::dvec3& wsLightAxis,
+    double coneAngleDeg)
   {
     this->w = glm::normalize(wsLightAxis);
     this->u = perpendicular(this->w);
@@ -51,8 +51,8 @@ struct SpotFrame
 };
 
 /// What the view needs: the visible scene inside the cone's bounding pyramid.
-ConvexBody litVisibleBody(const Camera& camera, const CameraFrame& frame,
-  const Bounds* sceneBounds, const SpotFrame& spot, double epsilon)
+ConvexBody litVisibleBody(const Camera& camera, const CameraFrame& frame, const Bounds* sceneBounds,
+  const SpotFrame& spot, double epsilon)
 {
   ConvexBody body =
     ConvexBody::hexahedron(partitionCorners(camera, frame, camera.vsNear, camera.vsFar));
@@ -64,8 +64,8 @@ ConvexBody litVisibleBody(const Camera& camera, const CameraFrame& frame,
     }
   }
   const double t = spot.tanCone;
-  const glm::dvec3 sideNormals[4] = { t * spot.w - spot.u, t * spot.w + spot.u,
-    t * spot.w - spot.v, t * spot.w + spot.v };
+  const glm::dvec3 sideNormals[4] = { t * spot.w - spot.u, t * spot.w + spot.u, t * spot.w - spot.v,
+    t * spot.w + spot.v };
   for (const glm::dvec3& normal : sideNormals)
   {
     body.clip({ normal, -glm::dot(normal, spot.cwsApex) }, epsilon);
@@ -76,9 +76,8 @@ ConvexBody litVisibleBody(const Camera& camera, const CameraFrame& frame,
 /// The map's near and far distances along the axis: the far one beyond the body's farthest
 /// point; the near one at the body (depthClamp) or at the nearest corner of the scene box
 /// (the casters), and at least 1e-3 of the far one.
-void spotDepthRange(const Camera& camera, const glm::dvec3& wsLightPosition,
-  const SpotFrame& spot, const Bounds* sceneBounds, bool depthClamp, double zMin, double zMax,
-  double& zNear, double& zFar)
+void spotDepthRange(const Camera& camera, const glm::dvec3& wsLightPosition, const SpotFrame& spot,
+  const Bounds* sceneBounds, bool depthClamp, double zMin, double zMax, double& zNear, double& zFar)
 {
   zFar = std::max(zMax, 1e-9 * (camera.vsFar + glm::length(spot.cwsApex))) * 1.01;
   zNear = 1e-3 * zFar;
@@ -171,12 +170,11 @@ ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosi
     cascade.wsBody.push_back(p + camera.wsPosition);
   }
   double zNear = 0.0, zFar = 0.0;
-  spotDepthRange(
-    camera, wsLightPosition, spot, sceneBounds, depthClamp, zMin, zMax, zNear, zFar);
+  spotDepthRange(camera, wsLightPosition, spot, sceneBounds, depthClamp, zMin, zMax, zNear, zFar);
   glm::dvec2 lo, hi;
   spotWindow(vertices, spot, zNear, lo, hi);
-  cascade.wsToClip = spotProjection(lo, hi, zNear, zFar) *
-    frameMatrix(spot.u, spot.v, spot.w, wsLightPosition);
+  cascade.wsToClip =
+    spotProjection(lo, hi, zNear, zFar) * frameMatrix(spot.u, spot.v, spot.w, wsLightPosition);
   cascade.vsNear = std::clamp(vsMin, camera.vsNear, camera.vsFar);
   cascade.vsFar = std::clamp(vsMax, camera.vsNear, camera.vsFar);
   if (!(cascade.vsFar > cascade.vsNear))

@@ -11,7 +11,8 @@
 //   cws camera-centred world space: world axes, origin at the eye (keeps numbers small far
 //       from the origin).
 //   vs  view space; vsDepth is the distance along the view direction.
-//   ls  light space (Lloyd et al. 2006, Fig. 3): origin at the eye, y along the light's direction of travel,
+//   ls  light space (Lloyd et al. 2006, Fig. 3): origin at the eye, y along the light's direction
+//   of travel,
 //       z the view direction projected onto the plane perpendicular to y, x = y cross z.
 //   clip the light's clip space: after division by w, the cascade's body lies in [-1,1]^3;
 //       NDC x is the shadow-map s axis (ls x), NDC y the t axis (ls z), NDC z the light depth.
@@ -39,9 +40,9 @@ struct Camera
   glm::dvec3 wsViewUp{ 0.0, 1.0, 0.0 };     ///< need not be orthogonal to the direction
   double vsNear = 0.1;                      ///< clipping range along the view direction
   double vsFar = 1000.0;
-  double fovyDeg = 30.0;  ///< full vertical field of view (perspective)
-  double aspect = 1.0;    ///< image width / height
-  bool parallel = false;  ///< parallel projection
+  double fovyDeg = 30.0;      ///< full vertical field of view (perspective)
+  double aspect = 1.0;        ///< image width / height
+  bool parallel = false;      ///< parallel projection
   double parallelScale = 1.0; ///< half the image height in world units (parallel projection)
 };
 
@@ -66,8 +67,8 @@ struct Bounds
 struct Settings
 {
   WarpMode warp = WarpMode::Generalized;
-  SplitParameters split;       ///< defaults: adaptive, k = 2, alpha = 2 (Barroso & Celes 2007, §4)
-  bool depthClamp = true;      ///< Lloyd et al. 2006, §6.4: fit the depth range to the receivers only
+  SplitParameters split;  ///< defaults: adaptive, k = 2, alpha = 2 (Barroso & Celes 2007, §4)
+  bool depthClamp = true; ///< Lloyd et al. 2006, §6.4: fit the depth range to the receivers only
   /// Orthographic cascades of WarpMode::None get a quantized width and height (focusMatrix), so
   /// that snapToTexels() can fix their texel grid in the world. Off for the analysis (the
   /// papers' storage factors); the render passes turn it on.
@@ -80,15 +81,16 @@ struct Settings
 
 struct Cascade
 {
-  double vsNear = 0.0;           ///< split depths of this cascade
+  double vsNear = 0.0; ///< split depths of this cascade
   double vsFar = 0.0;
-  double nPrime = 0.0;           ///< warp parameter; +infinity when orthographic
-  double gammaLimDeg = 0.0;      ///< Barroso & Celes 2007, Eq. 15 for this partition
-  glm::dmat4 wsToClip{ 1.0 };    ///< world -> light clip space
-  std::vector<glm::dvec3> wsBody;///< vertices of the receiver body (view partition ∩ scene)
-  double Mx = 0.0;               ///< Lloyd et al. 2006, Eq. 9-10 as in §4.4: maxima over wsBody
+  double nPrime = 0.0;            ///< warp parameter; +infinity when orthographic
+  double gammaLimDeg = 0.0;       ///< Barroso & Celes 2007, Eq. 15 for this partition
+  glm::dmat4 wsToClip{ 1.0 };     ///< world -> light clip space
+  std::vector<glm::dvec3> wsBody; ///< vertices of the receiver body (view partition ∩ scene)
+  double Mx = 0.0;                ///< Lloyd et al. 2006, Eq. 9-10 as in §4.4: maxima over wsBody
   double Mz = 0.0;
-  double storage = 0.0;          ///< Lloyd et al. 2006, Eq. 12: critical texels / image pixels = Mx Mz / aspect
+  double storage =
+    0.0; ///< Lloyd et al. 2006, Eq. 12: critical texels / image pixels = Mx Mz / aspect
   /// The map is turned a quarter (orientToTile): its s axis follows ls z and its t axis ls x, so
   /// that Mz gets the tile's width and Mx its height.
   bool mapTurned = false;
@@ -144,14 +146,15 @@ struct ShadowSetup
 {
   Status status = Status::InvalidInput;
   std::string message;
-  double gammaDeg = 0.0;     ///< angle between light and view direction, 0..180 (0: light from behind)
-  double gammaLimDeg = 0.0;  ///< Barroso & Celes 2007, Eq. 15 for the whole fitted frustum
-  double vsNear = 0.0;       ///< depth range the cascades cover (clipping range fitted to the scene)
+  double gammaDeg = 0.0; ///< angle between light and view direction, 0..180 (0: light from behind)
+  double gammaLimDeg = 0.0; ///< Barroso & Celes 2007, Eq. 15 for the whole fitted frustum
+  double vsNear = 0.0;      ///< depth range the cascades cover (clipping range fitted to the scene)
   double vsFar = 0.0;
   std::vector<double> splits;    ///< split depths, vsNear .. vsFar
   std::vector<Cascade> cascades; ///< the non-empty cascades, near to far
   double storageTotal = 0.0;     ///< sum of the cascades' storage factors
-  double storageOptimal = 0.0;   ///< Lloyd et al. 2006, App. C: ln(f/n) / (2 tan theta); NaN for parallel projection
+  double storageOptimal =
+    0.0; ///< Lloyd et al. 2006, App. C: ln(f/n) / (2 tan theta); NaN for parallel projection
   /// With a SceneFit: the farthest cascade with the scene-fitted map instead (0 or 1 of them).
   std::vector<Cascade> sceneFitted;
 };

@@ -66,8 +66,8 @@ double windowDepthFromViewDepth(double vsDepth, double vsNear, double vsFar, boo
   {
     return (vsDepth - vsNear) / (vsFar - vsNear);
   }
-  const double ndc = (vsFar + vsNear) / (vsFar - vsNear) -
-    2.0 * vsFar * vsNear / ((vsFar - vsNear) * vsDepth);
+  const double ndc =
+    (vsFar + vsNear) / (vsFar - vsNear) - 2.0 * vsFar * vsNear / ((vsFar - vsNear) * vsDepth);
   return 0.5 * (ndc + 1.0);
 }
 
@@ -99,8 +99,8 @@ double reach(const Camera& camera, double d)
 }
 }
 
-DepthRange carryDepthRange(const Camera& measuredBy, const DepthRange& measured,
-  const Camera& camera)
+DepthRange carryDepthRange(
+  const Camera& measuredBy, const DepthRange& measured, const Camera& camera)
 {
   DepthRange carried;
   if (measured.isEmpty() || !std::isfinite(measured.vsNear) || !std::isfinite(measured.vsFar) ||
@@ -129,8 +129,8 @@ DepthRange carryDepthRange(const Camera& measuredBy, const DepthRange& measured,
   return carried;
 }
 
-bool depthRangeHolds(const DepthRange& covered, const WindowDepthRange& measured,
-  const Camera& camera)
+bool depthRangeHolds(
+  const DepthRange& covered, const WindowDepthRange& measured, const Camera& camera)
 {
   if (measured.isEmpty())
   {

@@ -61,13 +61,13 @@ DepthRange viewDepthRange(const WindowDepthRange& window, const Camera& camera);
 /// measured is empty, or the view direction turned by more than kVisibleDepthMaximumTurnDeg
 /// (the camera jumped: fit to the scene's boxes instead). Points that were not visible before
 /// may land outside: depthRangeHolds() tells, once the frame is drawn.
-DepthRange carryDepthRange(const Camera& measuredBy, const DepthRange& measured,
-  const Camera& camera);
+DepthRange carryDepthRange(
+  const Camera& measuredBy, const DepthRange& measured, const Camera& camera);
 
 /// Did every visible sample of a frame (window depths measured, as camera wrote them) fall in
 /// the view depths covered (the cascades' range), up to kWindowDepthTolerance? True for an empty
 /// measurement (nothing visible).
-bool depthRangeHolds(const DepthRange& covered, const WindowDepthRange& measured,
-  const Camera& camera);
+bool depthRangeHolds(
+  const DepthRange& covered, const WindowDepthRange& measured, const Camera& camera);
 
 } // namespace csm

@@ -26,7 +26,8 @@ double rOfGamma(double gamma, double gammaLimit)
     return 1.0;
   }
   const double u = std::clamp(gamma / gammaLimit, 0.0, 1.0);
-  // Barroso & Celes 2007, Eq. 18: [1 + sin((u - 1) pi/2)]^2 = [1 - cos(u pi/2)]^2 = [2 sin^2(u pi/4)]^2
+  // Barroso & Celes 2007, Eq. 18: [1 + sin((u - 1) pi/2)]^2 = [1 - cos(u pi/2)]^2 = [2 sin^2(u
+  // pi/4)]^2
   const double s = std::sin(u * kPi / 4.0);
   const double base = 2.0 * s * s;
   return base * base;
@@ -61,7 +62,8 @@ double nPrime(WarpMode mode, double gamma, const PartitionShape& p)
     case WarpMode::LiSPSM:
     {
       const double s = std::sin(gamma);
-      const double value = (p.n + std::sqrt(p.f * p.n)) / s; // Wimmer; Barroso & Celes 2007, §2.3 at gamma = pi/2
+      const double value =
+        (p.n + std::sqrt(p.f * p.n)) / s; // Wimmer; Barroso & Celes 2007, §2.3 at gamma = pi/2
       return (s > 0.0 && std::isfinite(value)) ? value : kInf;
     }
     case WarpMode::Generalized:

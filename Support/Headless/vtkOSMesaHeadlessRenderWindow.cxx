@@ -56,9 +56,9 @@ bool vtkOSMesaHeadlessRenderWindow::CreateContext()
   }
   // Core profile, 3.2 asked (VTK's minimum); Mesa's llvmpipe gives its highest, 4.5. The depth
   // and stencil of this default framebuffer are never used: VTK renders into its own FBOs.
-  const int attributes[] = { OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24,
-    OSMESA_STENCIL_BITS, 8, OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-    OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 2, 0 };
+  const int attributes[] = { OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_STENCIL_BITS,
+    8, OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
+    OSMESA_CONTEXT_MINOR_VERSION, 2, 0 };
   this->Context = OSMesaCreateContextAttribs(attributes, nullptr);
   if (!this->Context)
   {
@@ -220,10 +220,9 @@ protected:
 };
 
 csmHeadlessFactory* Factory = nullptr;
-const std::pair<const char*, const char*> Overrides[] = {
-  { "vtkRenderWindow", "vtkOSMesaHeadlessRenderWindow" },
-  { "vtkRenderWindowInteractor", "vtkGenericRenderWindowInteractor" }
-};
+const std::pair<const char*, const char*> Overrides[] = { { "vtkRenderWindow",
+                                                            "vtkOSMesaHeadlessRenderWindow" },
+  { "vtkRenderWindowInteractor", "vtkGenericRenderWindowInteractor" } };
 
 bool UseOSMesaWindow(bool use)
 {

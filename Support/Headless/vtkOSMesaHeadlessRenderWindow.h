@@ -62,7 +62,7 @@ protected:
 private:
   bool CreateContext();
 
-  void* Context = nullptr; // OSMesaContext
+  void* Context = nullptr;           // OSMesaContext
   std::vector<unsigned char> Buffer; // the context's own colour buffer (RGBA), never read
   int BufferSize[2] = { 0, 0 };
   bool Refused = false; // wrong link order or no context: reported once, nothing rendered

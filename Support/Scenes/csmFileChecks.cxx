@@ -263,7 +263,7 @@ std::string CheckOutputFile(const std::string& path)
     return "'" + path + "' is a directory";
   if (vtksys::SystemTools::FileExists(path))
     return access(path.c_str(), W_OK) == 0 ? std::string()
-                                            : "cannot write '" + path + "': " + std::strerror(errno);
+                                           : "cannot write '" + path + "': " + std::strerror(errno);
   const std::string folder = vtksys::SystemTools::GetFilenamePath(path);
   const std::string error = CheckOutputFolder(folder.empty() ? "." : folder);
   return error.empty() ? error : "cannot write '" + path + "': " + error;
@@ -311,7 +311,8 @@ std::string CheckReaderOutput(vtkDataObject* data)
       " points have coordinates that are not finite (NaN or infinity)";
   if (auto* poly = vtkPolyData::SafeDownCast(set))
   {
-    for (vtkCellArray* cells : { poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips() })
+    for (vtkCellArray* cells :
+      { poly->GetVerts(), poly->GetLines(), poly->GetPolys(), poly->GetStrips() })
     {
       const std::string error = checkCells(cells, count);
       if (!error.empty())

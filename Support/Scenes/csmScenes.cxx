@@ -47,9 +47,18 @@ namespace
 {
 using Vec = std::array<double, 3>;
 
-Vec operator+(const Vec& a, const Vec& b) { return { a[0] + b[0], a[1] + b[1], a[2] + b[2] }; }
-Vec operator-(const Vec& a, const Vec& b) { return { a[0] - b[0], a[1] - b[1], a[2] - b[2] }; }
-Vec operator*(double s, const Vec& a) { return { s * a[0], s * a[1], s * a[2] }; }
+Vec operator+(const Vec& a, const Vec& b)
+{
+  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+}
+Vec operator-(const Vec& a, const Vec& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+Vec operator*(double s, const Vec& a)
+{
+  return { s * a[0], s * a[1], s * a[2] };
+}
 
 struct Bar
 {
@@ -87,7 +96,8 @@ public:
     for (int i = 0; i < sides; ++i)
     {
       const vtkIdType j = (i + 1) % sides;
-      const vtkIdType a0 = base + 2 * i, a1 = base + 2 * i + 1, b0 = base + 2 * j, b1 = base + 2 * j + 1;
+      const vtkIdType a0 = base + 2 * i, a1 = base + 2 * i + 1, b0 = base + 2 * j,
+                      b1 = base + 2 * j + 1;
       const vtkIdType t1[3] = { a0, b0, b1 };
       const vtkIdType t2[3] = { a0, b1, a1 };
       this->Polys->InsertNextCell(3, t1);
@@ -110,8 +120,8 @@ public:
 
   void AddBox(const Vec& lo, const Vec& hi)
   {
-    static const int faces[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 },
-      { 2, 6, 7, 3 }, { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
+    static const int faces[6][4] = { { 0, 2, 3, 1 }, { 4, 5, 7, 6 }, { 0, 1, 5, 4 }, { 2, 6, 7, 3 },
+      { 0, 4, 6, 2 }, { 1, 3, 7, 5 } };
     const vtkIdType base = this->Points->GetNumberOfPoints();
     for (int i = 0; i < 8; ++i)
     {
@@ -197,8 +207,8 @@ void Tower(std::vector<Bar>& bars, const Vec& base, double width, double top, do
   }
 }
 
-vtkSmartPointer<vtkActor> MakeActor(vtkPolyData* data, double r, double g, double b,
-  double specular = 0.3)
+vtkSmartPointer<vtkActor> MakeActor(
+  vtkPolyData* data, double r, double g, double b, double specular = 0.3)
 {
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputData(data);
@@ -211,8 +221,8 @@ vtkSmartPointer<vtkActor> MakeActor(vtkPolyData* data, double r, double g, doubl
   return actor;
 }
 
-vtkSmartPointer<vtkPolyData> Ground(double x0, double x1, double z0, double z1, double y,
-  double offset = 0.0, double thickness = 0.5)
+vtkSmartPointer<vtkPolyData> Ground(
+  double x0, double x1, double z0, double z1, double y, double offset = 0.0, double thickness = 0.5)
 {
   Builder builder(offset);
   builder.AddBox({ x0, y - thickness, z0 }, { x1, y, z1 });
@@ -221,8 +231,8 @@ vtkSmartPointer<vtkPolyData> Ground(double x0, double x1, double z0, double z1, 
 
 void Finish(Scene& scene)
 {
-  double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
-    VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  double b[6] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX,
+    -VTK_DOUBLE_MAX };
   scene.Triangles = 0;
   scene.Lines = 0;
   for (const auto& actor : scene.Actors)
@@ -259,7 +269,7 @@ long long CountTriangles(vtkPolyData* data)
 
 namespace
 {
-constexpr int kMaxBarSides = 4096; // the finest tessellation of a bar
+constexpr int kMaxBarSides = 4096;                  // the finest tessellation of a bar
 constexpr long long kPlatformBoxTriangles = 5 * 12; // the sea and four deck boxes
 constexpr double deck1 = 28.0, deck2 = 38.0;        // heights of the platform's decks
 
@@ -296,19 +306,25 @@ void PlatformBars(std::vector<Bar>& heavy, std::vector<Bar>& thin)
     for (double z = -15.0; z <= 15.0; z += 7.5)
       heavy.push_back({ { x, deck1 + 1.5, z }, { x, deck2, z }, 0.35 });
   // Handrails around both decks: posts every 1.5 m, top and knee rails.
-  auto handrail = [&](double half, double y) {
+  auto handrail = [&](double half, double y)
+  {
     for (int side = 0; side < 4; ++side)
     {
       for (double s = -half; s < half; s += 1.5)
       {
         const double s2 = std::min(half, s + 1.5);
-        auto at = [&](double t, double h) -> Vec {
+        auto at = [&](double t, double h) -> Vec
+        {
           switch (side)
           {
-            case 0: return { t, y + h, -half };
-            case 1: return { half, y + h, t };
-            case 2: return { -t, y + h, half };
-            default: return { -half, y + h, -t };
+            case 0:
+              return { t, y + h, -half };
+            case 1:
+              return { half, y + h, t };
+            case 2:
+              return { -t, y + h, half };
+            default:
+              return { -half, y + h, -t };
           }
         };
         thin.push_back({ at(s, 0.0), at(s, 1.1), 0.03 });
@@ -352,7 +368,6 @@ void PlatformBars(std::vector<Bar>& heavy, std::vector<Bar>& thin)
     for (double y = deck1 + 2.5; y <= deck1 + 5.0; y += 1.2)
       thin.push_back({ { -16.0, y, z - 0.6 }, { 14.0, y, z - 0.6 }, 0.25 });
   }
-
 }
 } // namespace
 
@@ -368,8 +383,8 @@ namespace
 {
 /// The platform's parts that stay triangles (sea, decks, modules), its default view and bounds,
 /// around the bar actors of Platform() or PlatformBeams().
-Scene PlatformAround(const std::string& name, std::vector<vtkSmartPointer<vtkActor>> bars,
-  double offset)
+Scene PlatformAround(
+  const std::string& name, std::vector<vtkSmartPointer<vtkActor>> bars, double offset)
 {
   Builder decks(offset);
   decks.AddBox({ -20.0, deck1, -20.0 }, { 20.0, deck1 + 1.5, 20.0 });
@@ -400,7 +415,8 @@ vtkSmartPointer<vtkPolyData> BarLines(const std::vector<Bar>& bars, double offse
   vtkNew<vtkCellArray> lines;
   for (const Bar& bar : bars)
   {
-    const vtkIdType ids[2] = { points->InsertNextPoint(bar.a[0] + offset, bar.a[1], bar.a[2] + offset),
+    const vtkIdType ids[2] = { points->InsertNextPoint(
+                                 bar.a[0] + offset, bar.a[1], bar.a[2] + offset),
       points->InsertNextPoint(bar.b[0] + offset, bar.b[1], bar.b[2] + offset) };
     lines->InsertNextCell(2, ids);
   }
@@ -488,9 +504,11 @@ public:
   void Triangle(const Vec& a, const Vec& b, const Vec& c, const Vec& outward)
   {
     const Vec u = b - a, v = c - a;
-    const Vec n = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0] };
+    const Vec n = { u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+      u[0] * v[1] - u[1] * v[0] };
     const bool flip = vtkMath::Dot(n.data(), outward.data()) < 0.0;
-    const vtkIdType ids[3] = { this->Point(a), this->Point(flip ? c : b), this->Point(flip ? b : c) };
+    const vtkIdType ids[3] = { this->Point(a), this->Point(flip ? c : b),
+      this->Point(flip ? b : c) };
     this->Polys->InsertNextCell(3, ids);
   }
 
@@ -560,10 +578,12 @@ Scene Bracket()
   for (size_t i = 1; i + 1 < profile.size(); ++i)
   {
     solid.Triangle(at(profile[0], 0), at(profile[i], 0), at(profile[i + 1], 0), { 0, 0, -1 });
-    solid.Triangle(at(profile[0], depth), at(profile[i], depth), at(profile[i + 1], depth), { 0, 0, 1 });
+    solid.Triangle(
+      at(profile[0], depth), at(profile[i], depth), at(profile[i + 1], depth), { 0, 0, 1 });
   }
   // The flat sides without holes: the lower leg's end, the upright leg's top.
-  solid.Quad(at(profile[1], 0), at(profile[2], 0), at(profile[2], depth), at(profile[1], depth), { 1, 0, 0 });
+  solid.Quad(at(profile[1], 0), at(profile[2], 0), at(profile[2], depth), at(profile[1], depth),
+    { 1, 0, 0 });
   solid.Quad({ t, lv, 0 }, { 0, lv, 0 }, { 0, lv, depth }, { t, lv, depth }, { 0, 1, 0 });
   // The fillet: one strip of quads per facet, outward toward the arc's centre.
   for (int i = 0; i < filletFacets; ++i)
@@ -574,7 +594,8 @@ Scene Bracket()
     solid.Quad(at(p, 0), at(q, 0), at(q, depth), at(p, depth), outward);
   }
   // The holes: circles in each leg's two faces, joined by their walls.
-  auto circle = [&](int axis, double level, double c0, double c1) {
+  auto circle = [&](int axis, double level, double c0, double c1)
+  {
     // axis 1: a hole along y in the plane y = level around (x, z) = (c0, c1); axis 0: along x
     // around (y, z) = (c0, c1). The points go counter-clockwise in the plane's own (u, v).
     std::vector<Vec> points;
@@ -590,9 +611,11 @@ Scene Bracket()
   const auto outer = circle(0, 0.0, vy, hz), inner = circle(0, t, vy, hz);
   // Corners in the order of each circle's (u, v): (+, +), (-, +), (-, -), (+, -) about its centre.
   const Vec bottomCorners[4] = { { lh, 0, depth }, { 0, 0, depth }, { 0, 0, 0 }, { lh, 0, 0 } };
-  const Vec topCorners[4] = { { lh, t, depth }, { t + r, t, depth }, { t + r, t, 0 }, { lh, t, 0 } };
+  const Vec topCorners[4] = { { lh, t, depth }, { t + r, t, depth }, { t + r, t, 0 },
+    { lh, t, 0 } };
   const Vec outerCorners[4] = { { 0, lv, depth }, { 0, 0, depth }, { 0, 0, 0 }, { 0, lv, 0 } };
-  const Vec innerCorners[4] = { { t, lv, depth }, { t, t + r, depth }, { t, t + r, 0 }, { t, lv, 0 } };
+  const Vec innerCorners[4] = { { t, lv, depth }, { t, t + r, depth }, { t, t + r, 0 },
+    { t, lv, 0 } };
   solid.PlateWithHole(bottomCorners, bottom, { 0, -1, 0 });
   solid.PlateWithHole(topCorners, top, { 0, 1, 0 });
   solid.PlateWithHole(outerCorners, outer, { -1, 0, 0 });
@@ -600,9 +623,11 @@ Scene Bracket()
   for (int k = 0; k < holeFacets; ++k)
   {
     const int m = (k + 1) % holeFacets;
-    const Vec toAxisH = { hx - 0.5 * (top[k][0] + top[m][0]), 0, hz - 0.5 * (top[k][2] + top[m][2]) };
+    const Vec toAxisH = { hx - 0.5 * (top[k][0] + top[m][0]), 0,
+      hz - 0.5 * (top[k][2] + top[m][2]) };
     solid.Quad(bottom[k], bottom[m], top[m], top[k], toAxisH);
-    const Vec toAxisV = { 0, vy - 0.5 * (inner[k][1] + inner[m][1]), hz - 0.5 * (inner[k][2] + inner[m][2]) };
+    const Vec toAxisV = { 0, vy - 0.5 * (inner[k][1] + inner[m][1]),
+      hz - 0.5 * (inner[k][2] + inner[m][2]) };
     solid.Quad(outer[k], outer[m], inner[m], inner[k], toAxisV);
   }
   Scene scene;
@@ -785,13 +810,14 @@ bool FromFile(const std::string& path, Scene& scene, std::string& error)
   {
     // A named pipe would block the checks and the reader; a device may never end.
     error = "cannot read '" + path + "': it is " +
-      (S_ISFIFO(status.st_mode) ? "a named pipe"
+      (S_ISFIFO(status.st_mode)      ? "a named pipe"
           : S_ISSOCK(status.st_mode) ? "a socket"
                                      : "a device") +
       ", not a regular file";
     return false;
   }
-  const std::string ext = vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));
+  const std::string ext =
+    vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));
   const char* const formats[] = { ".vtp", ".vtk", ".stl", ".ply", ".obj", ".glb", ".gltf" };
   if (std::find(std::begin(formats), std::end(formats), ext) == std::end(formats))
   {

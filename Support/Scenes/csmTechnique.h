@@ -27,31 +27,31 @@ struct ShadowOptions
 
   std::string Technique = "csm"; ///< csm | vtk | none
   // Set by the constructors:
-  int Warp;                      ///< vtkCascadedShadowMapPlanner::WarpModes
-  int Partition;                 ///< vtkCascadedShadowMapPlanner::SplitSchemes
+  int Warp;      ///< vtkCascadedShadowMapPlanner::WarpModes
+  int Partition; ///< vtkCascadedShadowMapPlanner::SplitSchemes
   int Cascades;
   double Lambda;
   double Alpha;
-  int Resolution;                ///< also VTK's pass's, for technique vtk
-  double ErrorTarget;            ///< resolution from need (0: always Resolution)
-  bool AdaptiveCascades;         ///< Cascades: the most; fewer where they meet ErrorTarget
-  bool CullClosedCasters;        ///< closed casters drawn into the maps from behind
-  bool CompactCasters;           ///< casters drawn into the maps from compact spatial blocks
+  int Resolution;                   ///< also VTK's pass's, for technique vtk
+  double ErrorTarget;               ///< resolution from need (0: always Resolution)
+  bool AdaptiveCascades;            ///< Cascades: the most; fewer where they meet ErrorTarget
+  bool CullClosedCasters;           ///< closed casters drawn into the maps from behind
+  bool CompactCasters;              ///< casters drawn into the maps from compact spatial blocks
   bool CullCastersWithoutReceivers; ///< casters that shadow nothing left out of the maps
-  bool VisibleDepthFit;           ///< cascades fitted to the depths the view has samples at
-  bool SceneFittedCascades;       ///< the farthest cascade may be a map fixed in the world
-  int FacePartitions;            ///< 0 cascades; 1 FP+W, 2 FP+ZP+W (z-partitions per face)
-  bool CameraSpace;              ///< camera space shadow maps (general case)
-  double CameraSpaceFocus;       ///< their focus range, a view depth (0: automatic)
+  bool VisibleDepthFit;             ///< cascades fitted to the depths the view has samples at
+  bool SceneFittedCascades;         ///< the farthest cascade may be a map fixed in the world
+  int FacePartitions;               ///< 0 cascades; 1 FP+W, 2 FP+ZP+W (z-partitions per face)
+  bool CameraSpace;                 ///< camera space shadow maps (general case)
+  double CameraSpaceFocus;          ///< their focus range, a view depth (0: automatic)
   int PCF;
-  int Kernel;                    ///< vtkCascadedShadowMapPass::Kernels
+  int Kernel; ///< vtkCascadedShadowMapPass::Kernels
   double ConstantBias;
   double SlopeBias;
   double ClosedSurfaceBiasFactor; ///< share of the biases for closed surfaces drawn from behind
   double Blend;
   bool DepthClamp;
   double Darkness;
-  int Debug;                     ///< vtkCascadedShadowMapPass::DebugModes
+  int Debug; ///< vtkCascadedShadowMapPass::DebugModes
 };
 
 struct Installed

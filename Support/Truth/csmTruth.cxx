@@ -30,9 +30,9 @@ struct RayScene::Internals
 {
   RTCDevice Device = nullptr;
   RTCScene Scene = nullptr;
-  double Origin[3] = { 0, 0, 0 }; // world position of the Embree origin
-  double Scale = 1.0;             // size of the scene, for ray offsets
-  bool Tubes = false;             // the scene holds tubes sized for one camera
+  double Origin[3] = { 0, 0, 0 };       // world position of the Embree origin
+  double Scale = 1.0;                   // size of the scene, for ray offsets
+  bool Tubes = false;                   // the scene holds tubes sized for one camera
   std::vector<unsigned> TubeGeometries; // Embree geometry ids of the tubes
   ~Internals()
   {
@@ -158,7 +158,8 @@ long long RayScene::Build(vtkRenderer* renderer, int height)
     return 0;
   for (int i = 0; i < 3; ++i)
     in.Origin[i] = 0.5 * (bounds[2 * i] + bounds[2 * i + 1]);
-  in.Scale = std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-9 });
+  in.Scale =
+    std::max({ bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-9 });
   in.Scene = rtcNewScene(in.Device);
   long long triangles = 0;
   double pixel[2];
@@ -173,8 +174,8 @@ long long RayScene::Build(vtkRenderer* renderer, int height)
     auto* data = vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0));
     if (!data)
       continue;
-    const long long tubes = AddTubes(
-      in.Device, in.Scene, actor, data, renderer, pixel, in.Origin, in.TubeGeometries);
+    const long long tubes =
+      AddTubes(in.Device, in.Scene, actor, data, renderer, pixel, in.Origin, in.TubeGeometries);
     in.Tubes = in.Tubes || tubes > 0;
     triangles += tubes;
     vtkNew<vtkTriangleFilter> triangulate;
@@ -316,8 +317,8 @@ bool RayScene::Occluded(const Surface& s, const double lightDirection[3]) const
   return ray.tfar < 0.0f; // Embree sets tfar to -inf on a hit
 }
 
-std::vector<char> ComparablePixels(const std::vector<Surface>& surfaces, int width, int height,
-  const double lightDirection[3])
+std::vector<char> ComparablePixels(
+  const std::vector<Surface>& surfaces, int width, int height, const double lightDirection[3])
 {
   std::vector<char> ok(surfaces.size(), 0);
   const double l = std::sqrt(lightDirection[0] * lightDirection[0] +
@@ -331,7 +332,8 @@ std::vector<char> ComparablePixels(const std::vector<Surface>& surfaces, int wid
       if (!s.Hit)
         continue;
       const double facing = -(s.Normal[0] * lightDirection[0] + s.Normal[1] * lightDirection[1] +
-                               s.Normal[2] * lightDirection[2]) / l;
+                              s.Normal[2] * lightDirection[2]) /
+        l;
       if (facing <= 0.05)
         continue;
       bool edge = false;

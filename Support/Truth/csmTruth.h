@@ -66,15 +66,18 @@ struct Classification
   long Considered = 0;  ///< visible pixels that face the light, away from silhouettes
   long FalseShadow = 0; ///< factor < 0.5 but lit (acne, widened shadows)
   long FalseLight = 0;  ///< factor >= 0.5 but occluded (leaks, peter-panning, lost thin casters)
-  double MismatchPct() const { return Considered ? 100.0 * (FalseShadow + FalseLight) / Considered : 0.0; }
+  double MismatchPct() const
+  {
+    return Considered ? 100.0 * (FalseShadow + FalseLight) / Considered : 0.0;
+  }
   double FalseShadowPct() const { return Considered ? 100.0 * FalseShadow / Considered : 0.0; }
   double FalseLightPct() const { return Considered ? 100.0 * FalseLight / Considered : 0.0; }
 };
 
 /// Pixels to compare: hit, facing the light (n . -L > 0.05), and not on a silhouette (no
 /// 4-neighbour whose hit is more than 2% farther or nearer).
-std::vector<char> ComparablePixels(const std::vector<Surface>& surfaces, int width, int height,
-  const double lightDirection[3]);
+std::vector<char> ComparablePixels(
+  const std::vector<Surface>& surfaces, int width, int height, const double lightDirection[3]);
 
 /// One pixel against the truth: not compared, classified right (lit or shadowed), or wrong.
 enum class PixelClass

@@ -28,7 +28,10 @@ const double kDown[3] = { 0.0, -1.0, 0.0 };
 // on black, lit from straight above and seen from aside.
 struct Fixture : csmTest::BoxOverPlane
 {
-  Fixture() : csmTest::BoxOverPlane(Settings()) {}
+  Fixture()
+    : csmTest::BoxOverPlane(Settings())
+  {
+  }
   static csmTest::BoxOverPlaneSettings Settings()
   {
     csmTest::BoxOverPlaneSettings s;
@@ -117,9 +120,11 @@ TEST(Truth, OurPassMisclassifiesUnderHalfAPercent)
 TEST(Truth, GrazingShadowsStayInPlace)
 {
   const double degrees = 5.0, t = std::tan(degrees * M_PI / 180.0);
-  const double light[3] = { 0.0, -std::sin(degrees * M_PI / 180.0), std::cos(degrees * M_PI / 180.0) };
+  const double light[3] = { 0.0, -std::sin(degrees * M_PI / 180.0),
+    std::cos(degrees * M_PI / 180.0) };
   vtkNew<vtkRenderer> renderer;
-  auto add = [&](double x0, double x1, double y0, double y1, double z0, double z1) {
+  auto add = [&](double x0, double x1, double y0, double y1, double z0, double z1)
+  {
     vtkNew<vtkCubeSource> cube;
     cube->SetBounds(x0, x1, y0, y1, z0, z1);
     vtkNew<vtkPolyDataMapper> mapper;

@@ -30,7 +30,8 @@ void frame(benchmark::State& state, csm::WarpMode warp, csm::SplitScheme scheme,
     // Move the light a little every frame so no two frames are the same.
     const double a = 0.001 * (step++ % 1000);
     const glm::dvec3 light(0.3 + a, -1.0, -0.4 + a);
-    csm::ShadowSetup setup = csm::computeShadowSetup(camera, light, bounds ? &scene : nullptr, settings);
+    csm::ShadowSetup setup =
+      csm::computeShadowSetup(camera, light, bounds ? &scene : nullptr, settings);
     benchmark::DoNotOptimize(setup);
   }
 }
@@ -49,11 +50,23 @@ void UniformSingleWithScene(benchmark::State& state)
 }
 }
 
-BENCHMARK(GeneralizedAdaptiveWithScene)->Arg(1)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMicrosecond)
-  ->Repetitions(5)->ReportAggregatesOnly(true);
-BENCHMARK(GeneralizedAdaptiveFrustumOnly)->Arg(4)->Unit(benchmark::kMicrosecond)
-  ->Repetitions(5)->ReportAggregatesOnly(true);
-BENCHMARK(UniformSingleWithScene)->Arg(1)->Unit(benchmark::kMicrosecond)
-  ->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(GeneralizedAdaptiveWithScene)
+  ->Arg(1)
+  ->Arg(2)
+  ->Arg(4)
+  ->Arg(8)
+  ->Unit(benchmark::kMicrosecond)
+  ->Repetitions(5)
+  ->ReportAggregatesOnly(true);
+BENCHMARK(GeneralizedAdaptiveFrustumOnly)
+  ->Arg(4)
+  ->Unit(benchmark::kMicrosecond)
+  ->Repetitions(5)
+  ->ReportAggregatesOnly(true);
+BENCHMARK(UniformSingleWithScene)
+  ->Arg(1)
+  ->Unit(benchmark::kMicrosecond)
+  ->Repetitions(5)
+  ->ReportAggregatesOnly(true);
 
 BENCHMARK_MAIN();

@@ -105,7 +105,8 @@ long DifferingPixels(vtkImageData* a, vtkImageData* b, int tolerance)
     bool off = false;
     for (int c = 0; c < 3 && c < nc; ++c)
     {
-      off = off || std::abs(int(pa->GetValue(nc * i + c)) - int(pb->GetValue(nc * i + c))) > tolerance;
+      off =
+        off || std::abs(int(pa->GetValue(nc * i + c)) - int(pb->GetValue(nc * i + c))) > tolerance;
     }
     count += off;
   }
@@ -150,12 +151,14 @@ vtkSmartPointer<vtkActor> GroundPlane(double halfWidth, int resolution)
 }
 
 BoxOverPlane::BoxOverPlane(int width, int height)
-  : BoxOverPlane([width, height]() {
-    BoxOverPlaneSettings settings;
-    settings.Size[0] = width;
-    settings.Size[1] = height;
-    return settings;
-  }())
+  : BoxOverPlane(
+      [width, height]()
+      {
+        BoxOverPlaneSettings settings;
+        settings.Size[0] = width;
+        settings.Size[1] = height;
+        return settings;
+      }())
 {
 }
 

@@ -50,8 +50,8 @@ struct ErrorCounter
   explicit ErrorCounter(vtkObject* object)
   {
     this->Command->SetClientData(this);
-    this->Command->SetCallback(
-      [](vtkObject*, unsigned long, void* self, void*) { ++static_cast<ErrorCounter*>(self)->Count; });
+    this->Command->SetCallback([](vtkObject*, unsigned long, void* self, void*)
+      { ++static_cast<ErrorCounter*>(self)->Count; });
     object->AddObserver(vtkCommand::ErrorEvent, this->Command);
   }
 };

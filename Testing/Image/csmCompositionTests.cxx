@@ -148,8 +148,8 @@ vtkSmartPointer<vtkRenderPass> ShadowChain()
 
 /// Pixels whose brightness (R + G + B) differs by more than `levels`, and of them those that lie
 /// in a flat region of `reference` (its 3x3 neighbourhood's brightness within `flat` levels).
-void ChangedPixels(vtkImageData* a, vtkImageData* b, vtkImageData* reference, int levels,
-  int flat, long& changed, long& changedInFlat)
+void ChangedPixels(vtkImageData* a, vtkImageData* b, vtkImageData* reference, int levels, int flat,
+  long& changed, long& changedInFlat)
 {
   changed = changedInFlat = 0;
   int dims[3];
@@ -158,9 +158,8 @@ void ChangedPixels(vtkImageData* a, vtkImageData* b, vtkImageData* reference, in
   auto* pb = vtkUnsignedCharArray::SafeDownCast(b->GetPointData()->GetScalars());
   auto* pr = vtkUnsignedCharArray::SafeDownCast(reference->GetPointData()->GetScalars());
   const int n = pa->GetNumberOfComponents();
-  auto brightness = [n](vtkUnsignedCharArray* p, vtkIdType i) {
-    return int(p->GetValue(n * i)) + p->GetValue(n * i + 1) + p->GetValue(n * i + 2);
-  };
+  auto brightness = [n](vtkUnsignedCharArray* p, vtkIdType i)
+  { return int(p->GetValue(n * i)) + p->GetValue(n * i + 1) + p->GetValue(n * i + 2); };
   for (int y = 1; y + 1 < dims[1]; ++y)
   {
     for (int x = 1; x + 1 < dims[0]; ++x)
@@ -189,8 +188,8 @@ long SaturatedPixels(vtkImageData* image)
   const int n = p->GetNumberOfComponents();
   long count = 0;
   for (vtkIdType i = 0; i < p->GetNumberOfTuples(); ++i)
-    count += p->GetValue(n * i) == 255 || p->GetValue(n * i + 1) == 255 ||
-      p->GetValue(n * i + 2) == 255;
+    count +=
+      p->GetValue(n * i) == 255 || p->GetValue(n * i + 1) == 255 || p->GetValue(n * i + 2) == 255;
   return count;
 }
 
@@ -234,16 +233,15 @@ std::vector<char> Silhouette(Scene& scene, vtkActor* actor)
 }
 
 /// Pixels of the mask whose brightness differs by more than `levels` from both a's and b's.
-long DifferingFromBoth(vtkImageData* image, vtkImageData* a, vtkImageData* b,
-  const std::vector<char>& mask, int levels)
+long DifferingFromBoth(
+  vtkImageData* image, vtkImageData* a, vtkImageData* b, const std::vector<char>& mask, int levels)
 {
   auto* p = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
   auto* pa = vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetScalars());
   auto* pb = vtkUnsignedCharArray::SafeDownCast(b->GetPointData()->GetScalars());
   const int n = p->GetNumberOfComponents();
-  auto brightness = [n](vtkUnsignedCharArray* q, vtkIdType i) {
-    return int(q->GetValue(n * i)) + q->GetValue(n * i + 1) + q->GetValue(n * i + 2);
-  };
+  auto brightness = [n](vtkUnsignedCharArray* q, vtkIdType i)
+  { return int(q->GetValue(n * i)) + q->GetValue(n * i + 1) + q->GetValue(n * i + 2); };
   long count = 0;
   for (vtkIdType i = 0; i < p->GetNumberOfTuples() && i < vtkIdType(mask.size()); ++i)
     count += mask[i] && std::abs(brightness(p, i) - brightness(pa, i)) > levels &&
@@ -278,7 +276,8 @@ struct Result
 Result SSAO(Scene& scene)
 {
   Result r;
-  auto ssaoOf = [](vtkRenderPass* delegate) {
+  auto ssaoOf = [](vtkRenderPass* delegate)
+  {
     auto ssao = vtkSmartPointer<vtkSSAOPass>::New();
     ssao->SetRadius(0.6);
     ssao->SetBias(0.01);
@@ -344,7 +343,8 @@ Result ToneMapping(Scene& scene)
 {
   Result r;
   scene.Sun->SetIntensity(2.5);
-  auto toneOf = [](vtkRenderPass* delegate) {
+  auto toneOf = [](vtkRenderPass* delegate)
+  {
     auto tone = vtkSmartPointer<vtkToneMappingPass>::New();
     tone->SetToneMappingType(vtkToneMappingPass::Reinhard);
     tone->SetDelegatePass(delegate);
@@ -364,8 +364,8 @@ Result ToneMapping(Scene& scene)
   const long saturatedBefore = SaturatedPixels(withoutOther);
   const long saturatedAfter = SaturatedPixels(r.Composed);
   std::printf("shadowed_pixels (tone mapping with ours against tone mapping alone): %ld\n", shadow);
-  std::printf("saturated_pixels: %ld without tone mapping, %ld with\n", saturatedBefore,
-    saturatedAfter);
+  std::printf(
+    "saturated_pixels: %ld without tone mapping, %ld with\n", saturatedBefore, saturatedAfter);
   r.Expect(shadow >= 1000, "the shadows darken at least 1000 pixels under tone mapping");
   r.Expect(saturatedBefore >= 10000, "the lit ground saturates without tone mapping");
   r.Expect(saturatedAfter <= saturatedBefore / 100, "tone mapping keeps the lit ground below 255");
@@ -421,11 +421,12 @@ Result DepthPeeling(Scene& scene)
   const long blended = DifferingFromBoth(r.Composed, opaqueBox, withoutBox, boxPixels, 8);
   std::printf("depth peeling used: %s\n", peeled ? "yes" : "no");
   std::printf("shadowed_pixels (ours against none, depth peeling): %ld, on the translucent box: "
-              "%ld of its %ld\n", shadow, received, boxArea);
-  std::printf("pixels outside the box it darkens: translucent %ld, opaque %ld\n",
-    castTranslucent, castOpaque);
-  std::printf("box pixels blended (unlike both the opaque box's and those without it): %ld\n",
-    blended);
+              "%ld of its %ld\n",
+    shadow, received, boxArea);
+  std::printf("pixels outside the box it darkens: translucent %ld, opaque %ld\n", castTranslucent,
+    castOpaque);
+  std::printf(
+    "box pixels blended (unlike both the opaque box's and those without it): %ld\n", blended);
   r.Expect(peeled, "the renderer used depth peeling under the shadow pass");
   r.Expect(shadow >= 1000, "the shadows darken at least 1000 pixels with depth peeling");
   r.Expect(received >= 500, "the translucent box receives the sphere's shadow (>= 500 pixels)");

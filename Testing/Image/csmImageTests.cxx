@@ -5,23 +5,23 @@
 // (vtkTesting), then renders it again without shadows and counts the pixels the shadows
 // darkened: a scene where shadows must appear must have at least the expected count.
 #include "csmScenes.h"
-#include "csmTestHelpers.h"
 #include "csmTechnique.h"
+#include "csmTestHelpers.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
+#include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkCascadedShadowMapPass.h"
 #include "vtkCellArray.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
 #include "vtkMath.h"
+#include "vtkNew.h"
 #include "vtkPNGWriter.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
-#include "vtkCascadedShadowMapBakerPass.h"
-#include "vtkCascadedShadowMapPass.h"
-#include "vtkImageData.h"
-#include "vtkLight.h"
-#include "vtkNew.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkTesting.h"
@@ -29,14 +29,14 @@
 
 #include <array>
 #include <cmath>
-#include <memory>
-#include <vector>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -111,7 +111,7 @@ struct Impostors
 {
   std::vector<std::array<double, 6>> Segments; // tubes: end points
   std::vector<std::array<double, 3>> Centres;  // spheres
-  double Pixels = 1.0;                          // line width or point size
+  double Pixels = 1.0;                         // line width or point size
 };
 
 vtkSmartPointer<vtkActor> GroundPlane()
@@ -143,7 +143,8 @@ double PixelWorld(vtkRenderer* renderer, int height, const double p[3])
   double eye[3], dir[3];
   camera->GetPosition(eye);
   camera->GetDirectionOfProjection(dir);
-  const double depth = (p[0] - eye[0]) * dir[0] + (p[1] - eye[1]) * dir[1] + (p[2] - eye[2]) * dir[2];
+  const double depth =
+    (p[0] - eye[0]) * dir[0] + (p[1] - eye[1]) * dir[1] + (p[2] - eye[2]) * dir[2];
   return 2.0 * depth * std::tan(0.5 * camera->GetViewAngle() * M_PI / 180.0) / height;
 }
 
@@ -186,7 +187,8 @@ std::vector<char> ImpostorShadowPixels(Test& t, const Impostors& scene)
   double toLight[3] = { -kImpostorLight[0], -kImpostorLight[1], -kImpostorLight[2] };
   vtkMath::Normalize(toLight);
   // Screen positions of the casters, for the coverage test.
-  auto toDisplay = [ren](const double* p, double out[2]) {
+  auto toDisplay = [ren](const double* p, double out[2])
+  {
     ren->SetWorldPoint(p[0], p[1], p[2], 1.0);
     ren->WorldToDisplay();
     const double* d = ren->GetDisplayPoint();
@@ -270,7 +272,8 @@ std::vector<char> ImpostorShadowPixels(Test& t, const Impostors& scene)
         const double along = vtkMath::Dot(w, toLight);
         if (along <= 0.0)
           continue;
-        double off[3] = { w[0] - along * toLight[0], w[1] - along * toLight[1], w[2] - along * toLight[2] };
+        double off[3] = { w[0] - along * toLight[0], w[1] - along * toLight[1],
+          w[2] - along * toLight[2] };
         const double r = half * PixelWorld(ren, t.Height, c.data());
         shadowed = shadowed || vtkMath::Dot(off, off) <= r * r;
       }
@@ -343,17 +346,20 @@ void SphereField(Test& t, double pixels)
 std::map<std::string, std::function<void(Test&)>> Cases()
 {
   std::map<std::string, std::function<void(Test&)>> cases;
-  cases["TestPlatformPerpendicular"] = [](Test& t) {
+  cases["TestPlatformPerpendicular"] = [](Test& t)
+  {
     Platform(t);
     LightAtGamma(t, 90.0);
     t.MinShadowPixels = 8000;
   };
-  cases["TestPlatformNearlyBehind"] = [](Test& t) {
+  cases["TestPlatformNearlyBehind"] = [](Test& t)
+  {
     Platform(t);
     LightAtGamma(t, 2.0); // light almost along the view: shadows mostly hidden behind casters
     t.MinShadowPixels = 200;
   };
-  cases["TestPlatformFacePartitions"] = [](Test& t) {
+  cases["TestPlatformFacePartitions"] = [](Test& t)
+  {
     // Face partitioning (FP+W, Lloyd et al. 2006, §5.1), the comparison technique, where it is
     // meant to help: the light 15 degrees from behind the viewer, four face partitions.
     Platform(t);
@@ -362,7 +368,8 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     t.Options.FacePartitions = 1;
     t.MinShadowPixels = 3000;
   };
-  cases["TestPlatformCameraSpace"] = [](Test& t) {
+  cases["TestPlatformCameraSpace"] = [](Test& t)
+  {
     // Camera space shadow maps (Kolić & Mihajlović), the general case, the comparison
     // technique: one map, the light 60 degrees from the view.
     Platform(t);
@@ -371,7 +378,8 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     t.Options.CameraSpace = true;
     t.MinShadowPixels = 3000;
   };
-  cases["TestPlatformCameraSpaceSpot"] = [](Test& t) {
+  cases["TestPlatformCameraSpaceSpot"] = [](Test& t)
+  {
     // Camera space shadow maps for a spot light (Kolić & Mihajlović §6.2): above and behind the
     // camera (95, 75, 120), the casters projected from it onto the plane in the view.
     Platform(t);
@@ -389,7 +397,8 @@ std::map<std::string, std::function<void(Test&)>> Cases()
   };
   // Low camera looking up at the derrick; the light comes from behind it toward the camera
   // and down: light and view directions nearly opposite (dueling frusta).
-  auto duelingFrusta = [](Test& t) {
+  auto duelingFrusta = [](Test& t)
+  {
     Platform(t);
     vtkCamera* camera = t.Renderer->GetActiveCamera();
     camera->SetPosition(100.0, 5.0, 125.0);
@@ -402,14 +411,16 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     t.MinShadowPixels = 8000;
   };
   cases["TestPlatformDuelingFrusta"] = duelingFrusta;
-  cases["TestPlatformCameraSpaceDueling"] = [duelingFrusta](Test& t) {
+  cases["TestPlatformCameraSpaceDueling"] = [duelingFrusta](Test& t)
+  {
     // Camera space shadow maps' dueling frustum case (Kolić & Mihajlović, Fig. 2): the view of
     // TestPlatformDuelingFrusta, four maps through the point t.
     duelingFrusta(t);
     t.Options.Cascades = 4;
     t.Options.CameraSpace = true;
   };
-  cases["TestTowersLongRange"] = [](Test& t) {
+  cases["TestTowersLongRange"] = [](Test& t)
+  {
     csmScenes::Install(csmScenes::Towers(), t.Renderer, double(t.Width) / t.Height);
     const double d[3] = { 0.8, -1.0, 0.25 };
     AddDirectional(t.Renderer, d, 0.85);
@@ -417,14 +428,16 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     t.Options.Cascades = 4;
     t.MinShadowPixels = 3000;
   };
-  cases["TestPlatformWide"] = [](Test& t) {
+  cases["TestPlatformWide"] = [](Test& t)
+  {
     t.Width = 800;
     t.Height = 300;
     Platform(t);
     LightAtGamma(t, 60.0);
     t.MinShadowPixels = 5000;
   };
-  cases["TestPlatformThreeLights"] = [](Test& t) {
+  cases["TestPlatformThreeLights"] = [](Test& t)
+  {
     Platform(t);
     const double key[3] = { -0.45, -1.0, -0.35 };
     const double second[3] = { 0.7, -0.6, -0.2 };
@@ -441,7 +454,8 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     AddFill(t.Renderer, 0.15);
     t.MinShadowPixels = 8000;
   };
-  cases["TestPlatformParallel"] = [](Test& t) {
+  cases["TestPlatformParallel"] = [](Test& t)
+  {
     Platform(t);
     t.Renderer->GetActiveCamera()->ParallelProjectionOn();
     t.Renderer->GetActiveCamera()->SetParallelScale(55.0);
@@ -449,12 +463,14 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     LightAtGamma(t, 70.0);
     t.MinShadowPixels = 8000;
   };
-  cases["TestPlatformFarFromOrigin"] = [](Test& t) {
+  cases["TestPlatformFarFromOrigin"] = [](Test& t)
+  {
     Platform(t, 1.0e6);
     LightAtGamma(t, 90.0);
     t.MinShadowPixels = 8000;
   };
-  cases["TestPlatformDebugCascades"] = [](Test& t) {
+  cases["TestPlatformDebugCascades"] = [](Test& t)
+  {
     Platform(t);
     LightAtGamma(t, 60.0);
     t.Options.Cascades = 3;
@@ -462,25 +478,30 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     t.Options.Debug = vtkCascadedShadowMapPass::DEBUG_CASCADES;
     t.MinShadowPixels = 0; // the debug colours replace the shading
   };
-  cases["TestPlatformDebugError"] = [](Test& t) {
+  cases["TestPlatformDebugError"] = [](Test& t)
+  {
     Platform(t);
     LightAtGamma(t, 60.0);
     t.Options.Debug = vtkCascadedShadowMapPass::DEBUG_ERROR;
     t.MinShadowPixels = 0;
   };
-  cases["TestTubeLattice"] = [](Test& t) {
+  cases["TestTubeLattice"] = [](Test& t)
+  {
     TubeLattice(t, 12.0);
     t.MinShadowPixels = 3000;
   };
-  cases["TestWideLineLattice"] = [](Test& t) {
+  cases["TestWideLineLattice"] = [](Test& t)
+  {
     TubeLattice(t, 12.0, false);
     t.MinShadowPixels = 3000;
   };
-  cases["TestSphereField"] = [](Test& t) {
+  cases["TestSphereField"] = [](Test& t)
+  {
     SphereField(t, 30.0);
     t.MinShadowPixels = 3000;
   };
-  cases["TestEngineCAD"] = [](Test& t) {
+  cases["TestEngineCAD"] = [](Test& t)
+  {
     csmScenes::Scene scene;
     std::string error;
     const char* file = CSM_ENGINE_MODEL; // from CMake

@@ -44,7 +44,8 @@ int main(int argc, char* argv[])
   vtkNew<vtkCubeSource> box;
   box->SetBounds(-1, 1, 2, 4, -1, 1);
   vtkNew<vtkRenderer> renderer;
-  for (vtkAlgorithm* source : { static_cast<vtkAlgorithm*>(ground), static_cast<vtkAlgorithm*>(box) })
+  for (vtkAlgorithm* source :
+    { static_cast<vtkAlgorithm*>(ground), static_cast<vtkAlgorithm*>(box) })
   {
     vtkNew<vtkPolyDataMapper> mapper;
     mapper->SetInputConnection(source->GetOutputPort());

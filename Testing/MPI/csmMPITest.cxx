@@ -16,6 +16,7 @@
 #include "vtkImageData.h"
 #include "vtkMPIController.h"
 #include "vtkNew.h"
+#include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -25,7 +26,6 @@
 #include "vtkTesting.h"
 #include "vtkTrivialProducer.h"
 #include "vtkUnsignedCharArray.h"
-#include "vtkPNGWriter.h"
 
 #include <algorithm>
 #include <chrono>
@@ -174,8 +174,11 @@ int main(int argc, char* argv[])
       const auto start = std::chrono::steady_clock::now();
       view.Window->Render();
       view.Window->WaitForCompletion();
-      frame.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-      combine.push_back(1000.0 * pass->GetShadowMapBakerPass()->GetLastFrameStatistics().CombineSeconds);
+      frame.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+          .count());
+      combine.push_back(
+        1000.0 * pass->GetShadowMapBakerPass()->GetLastFrameStatistics().CombineSeconds);
     }
     view.Renderer->GetActiveCamera()->Azimuth(-15.0);
     view.Window->Render();
@@ -188,8 +191,8 @@ int main(int argc, char* argv[])
     {
       std::sort(combine.begin() + 1, combine.end());
       std::sort(frame.begin() + 1, frame.end());
-      std::printf("ranks: %d  median_frame_ms: %.1f  median_combine_ms: %.1f\n", ranks,
-        frame[3], combine[3]);
+      std::printf(
+        "ranks: %d  median_frame_ms: %.1f  median_combine_ms: %.1f\n", ranks, frame[3], combine[3]);
       // The whole scene in one process: the reference.
       View single([](int) { return true; });
       vtkCascadedShadowMapBakerPass* singleBaker =

@@ -13,7 +13,7 @@
 
 namespace
 {
-using csmMathTest::camera; // eye at the origin looking down -z, up +y
+using csmMathTest::camera;  // eye at the origin looking down -z, up +y
 using csmMathTest::lightAt; // gammaDeg: 0 light from behind, 90 overhead, 180 facing
 using csmMathTest::settings;
 } // namespace

@@ -15,7 +15,7 @@
 
 namespace
 {
-using csmMathTest::camera; // eye at the origin looking down -z, up +y
+using csmMathTest::camera;  // eye at the origin looking down -z, up +y
 using csmMathTest::lightAt; // gammaDeg: 0 light from behind, 90 overhead, 180 facing
 using csmMathTest::settings;
 using csmMathTest::toNdc;
@@ -89,8 +89,8 @@ TEST(Steps, MapsTurnToTheirTilesWhereTheLongSideServesTheLargerError)
   // cross-section, a third wider than high, so its error along the image's width is the larger.
   const csm::Camera cam = camera(5.0, 6000.0, 50.0, 4.0 / 3.0);
   const glm::dvec3 light = lightAt(cam, 0.0);
-  const csm::ShadowSetup plain =
-    csm::computeShadowSetup(cam, light, nullptr, settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 5));
+  const csm::ShadowSetup plain = csm::computeShadowSetup(
+    cam, light, nullptr, settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 5));
   ASSERT_EQ(plain.status, csm::Status::Ok);
   ASSERT_EQ(plain.cascades.size(), 5u);
   const csm::MapSize tile(1638, 2048); // a tall tile (five in a row of four full maps)

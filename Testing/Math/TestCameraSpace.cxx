@@ -7,8 +7,8 @@
 #include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 namespace
@@ -79,8 +79,8 @@ TEST(CameraSpace, TheFrustumLandsInTheMapAndRaysKeepTheirOrder)
         const csm::CameraSpaceMap map = csm::computeCameraSpaceMap(cam, L);
         ASSERT_EQ(map.status, csm::Status::Ok) << "gamma " << gamma << ": " << map.message;
         EXPECT_EQ(map.lightFromFront, gamma > 90.0);
-        const RayCheck check =
-          checkRays(cam, L, 1e-9, [&](const glm::dvec3&) -> const glm::dmat4& { return map.wsToClip; });
+        const RayCheck check = checkRays(
+          cam, L, 1e-9, [&](const glm::dvec3&) -> const glm::dmat4& { return map.wsToClip; });
         EXPECT_EQ(check.outside, 0) << "gamma " << gamma << " sideways " << sideways;
         EXPECT_EQ(check.moving, 0) << "gamma " << gamma << " sideways " << sideways;
         EXPECT_EQ(check.unordered, 0) << "gamma " << gamma << " sideways " << sideways;
@@ -106,7 +106,8 @@ TEST(CameraSpace, TheFocusRangeTakesHalfTheMap)
       {
         const glm::dvec3 L = lightAt(gamma, sideways);
         // NDC t of P's points at view depth d (P holds the rolled right axis: one t per depth).
-        auto tAt = [&](const csm::CameraSpaceMap& map, double d) {
+        auto tAt = [&](const csm::CameraSpaceMap& map, double d)
+        {
           const glm::dvec3 n(map.wsPlane);
           const glm::dvec3 across = glm::normalize(n - glm::dot(n, view) * view);
           const glm::dvec3 onAxis = cam.wsPosition + view * d;
@@ -151,16 +152,16 @@ TEST(CameraSpace, ASpotLightsRaysKeepTheirTexelAndOrder)
   {
     const glm::dvec3 view = glm::normalize(cam.wsDirection);
     // Above and behind, above the eye, high above and a little behind, to the side and behind.
-    const glm::dvec3 offsets[] = { { 0.0, 40.0, 30.0 }, { 5.0, 60.0, 0.0 },
-      { -10.0, 150.0, 20.0 }, { 120.0, 20.0, 10.0 } };
+    const glm::dvec3 offsets[] = { { 0.0, 40.0, 30.0 }, { 5.0, 60.0, 0.0 }, { -10.0, 150.0, 20.0 },
+      { 120.0, 20.0, 10.0 } };
     for (const glm::dvec3& offset : offsets)
     {
       const glm::dvec3 light = cam.wsPosition + offset;
       for (double focus : { 0.0, std::sqrt(cam.vsNear * cam.vsFar) })
       {
         const csm::CameraSpaceMap map = csm::computeCameraSpaceSpot(cam, light, focus);
-        ASSERT_EQ(map.status, csm::Status::Ok) << offset.x << "," << offset.y << "," << offset.z
-                                               << ": " << map.message;
+        ASSERT_EQ(map.status, csm::Status::Ok)
+          << offset.x << "," << offset.y << "," << offset.z << ": " << map.message;
         EXPECT_EQ(map.pushBack > 0.0, focus > 0.0);
         EXPECT_GT(map.wMin, 0.0);
         const RayCheck check = checkRays(
@@ -176,8 +177,7 @@ TEST(CameraSpace, ASpotLightsRaysKeepTheirTexelAndOrder)
       csm::Status::InvalidInput);
     EXPECT_EQ(csm::computeCameraSpaceSpot(cam, cam.wsPosition - view * 20.0).status,
       csm::Status::InvalidInput);
-    const csm::CameraSpaceMap bad =
-      csm::computeCameraSpaceSpot(cam, { std::nan(""), 0.0, 0.0 });
+    const csm::CameraSpaceMap bad = csm::computeCameraSpaceSpot(cam, { std::nan(""), 0.0, 0.0 });
     EXPECT_EQ(bad.status, csm::Status::InvalidInput);
     EXPECT_FALSE(bad.message.empty());
   }
@@ -196,8 +196,8 @@ TEST(CameraSpace, DuelingFrustaAndBadInputAreRefused)
     EXPECT_EQ(map.status, csm::Status::InvalidInput);
     EXPECT_NE(map.message.find("dueling"), std::string::npos) << map.message;
   }
-  EXPECT_EQ(csm::computeCameraSpaceMap(cam, { std::nan(""), -1.0, 0.0 }).status,
-    csm::Status::InvalidInput);
+  EXPECT_EQ(
+    csm::computeCameraSpaceMap(cam, { std::nan(""), -1.0, 0.0 }).status, csm::Status::InvalidInput);
   EXPECT_EQ(csm::computeCameraSpaceMap(cam, { 0.0, 0.0, 0.0 }).status, csm::Status::InvalidInput);
   csm::Camera parallel = cam;
   parallel.parallel = true;
@@ -219,22 +219,24 @@ TEST(CameraSpace, DuelingFacesCoverTheFrustumAndRaysKeepTheirOrder)
         const glm::dvec3 L = lightAt(gamma, sideways);
         const std::vector<csm::CameraSpaceFace> faces = csm::computeCameraSpaceDueling(cam, L);
         ASSERT_EQ(faces.size(), 4u) << "gamma " << gamma;
-        const RayCheck check = checkRays(cam, L, 1e-6, [&](const glm::dvec3& p) -> const glm::dmat4& {
-          size_t chosen = 0;
-          double best = -1e300;
-          for (size_t k = 0; k < faces.size(); ++k)
+        const RayCheck check = checkRays(cam, L, 1e-6,
+          [&](const glm::dvec3& p) -> const glm::dmat4&
           {
-            double distance = 1e300;
-            for (const glm::dvec4& plane : faces[k].wsPlanes)
-              distance = std::min(distance, glm::dot(glm::dvec3(plane), p) + plane.w);
-            if (distance > best)
+            size_t chosen = 0;
+            double best = -1e300;
+            for (size_t k = 0; k < faces.size(); ++k)
             {
-              best = distance;
-              chosen = k;
+              double distance = 1e300;
+              for (const glm::dvec4& plane : faces[k].wsPlanes)
+                distance = std::min(distance, glm::dot(glm::dvec3(plane), p) + plane.w);
+              if (distance > best)
+              {
+                best = distance;
+                chosen = k;
+              }
             }
-          }
-          return faces[chosen].wsToClip;
-        });
+            return faces[chosen].wsToClip;
+          });
         EXPECT_EQ(check.outside, 0) << "gamma " << gamma << " sideways " << sideways;
         EXPECT_EQ(check.moving, 0) << "gamma " << gamma << " sideways " << sideways;
         EXPECT_EQ(check.unordered, 0) << "gamma " << gamma << " sideways " << sideways;
@@ -254,7 +256,8 @@ TEST(CameraSpace, AFocusBeyondReachIsClampedToTheFarthestFocus)
 {
   csm::Camera moved = camera(0.5, 300.0, 50.0, 1.5);
   moved.wsPosition = { 40.0, -7.0, 1200.0 };
-  auto floatSafe = [](const glm::dmat4& m) {
+  auto floatSafe = [](const glm::dmat4& m)
+  {
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 4; ++r)
         if (!(std::abs(m[c][r]) < 1e30))
@@ -269,7 +272,8 @@ TEST(CameraSpace, AFocusBeyondReachIsClampedToTheFarthestFocus)
       for (double sideways : { 0.0, 0.5 })
       {
         const glm::dvec3 L = lightAt(gamma, sideways);
-        auto tAt = [&](const csm::CameraSpaceMap& map, double d) {
+        auto tAt = [&](const csm::CameraSpaceMap& map, double d)
+        {
           const glm::dvec3 n(map.wsPlane);
           const glm::dvec3 across = glm::normalize(n - glm::dot(n, view) * view);
           const glm::dvec3 onAxis = cam.wsPosition + view * d;
@@ -309,7 +313,7 @@ TEST(CameraSpace, AFocusBeyondReachIsClampedToTheFarthestFocus)
     EXPECT_GT(spot.vsFocus, cam.vsNear);
     EXPECT_LT(spot.vsFocus, cam.vsFar);
     EXPECT_TRUE(floatSafe(spot.wsToClip));
-    EXPECT_FALSE(csm::computeCameraSpaceSpot(cam, light, std::sqrt(cam.vsNear * cam.vsFar))
-                   .focusClamped);
+    EXPECT_FALSE(
+      csm::computeCameraSpaceSpot(cam, light, std::sqrt(cam.vsNear * cam.vsFar)).focusClamped);
   }
 }

@@ -17,7 +17,7 @@
 
 namespace
 {
-using csmMathTest::camera; // eye at the origin looking down -z, up +y
+using csmMathTest::camera;  // eye at the origin looking down -z, up +y
 using csmMathTest::lightAt; // gammaDeg: 0 light from behind, 90 overhead, 180 facing
 using csmMathTest::settings;
 } // namespace
@@ -46,10 +46,11 @@ TEST(Steps, EachCountTakesTheBetterOfEq19AndTheLogSplits)
       const double logSplits = csm::predictedError(
         csm::computeShadowSetup(view, light, nullptr, logSettings, nullptr), 600.0, 2048);
       const double e = csm::predictedError(chosen, 600.0, 2048);
-      EXPECT_NEAR(e / std::min(eq19, logSplits), 1.0, 1e-12) << "f/n " << ratio << " gamma " << gamma;
+      EXPECT_NEAR(e / std::min(eq19, logSplits), 1.0, 1e-12)
+        << "f/n " << ratio << " gamma " << gamma;
       if (ratio >= 1200.0 && gamma == 0.0)
       {
-        EXPECT_EQ(chosen.cascades.size(), 4u); // every step cuts the error here
+        EXPECT_EQ(chosen.cascades.size(), 4u);       // every step cuts the error here
         EXPECT_LT(e, 0.1 * eq19) << "f/n " << ratio; // 7.8 against 200 at f/n 1200 (Mx)
       }
     }
@@ -85,9 +86,8 @@ TEST(Steps, CascadeCountFromTheErrorModel)
     csm::computeShadowSetup(midView, lightAt(midView, 0.0), nullptr, fewer, nullptr);
   EXPECT_GT(enough.cascades.size(), 2u);
   EXPECT_LE(csm::predictedError(enough, 600.0, 2048), 1.5);
-  EXPECT_GT(csm::predictedError(oneFewer, 600.0,
-              csm::ceilingsForCount(fewer.split.k, 8, 2048)),
-    1.5);
+  EXPECT_GT(
+    csm::predictedError(oneFewer, 600.0, csm::ceilingsForCount(fewer.split.k, 8, 2048)), 1.5);
   std::printf("cascades: overhead f/n 10: %zu (error %.3f); behind f/n 100: %zu (error %.3f, "
               "with one fewer %.3f); behind f/n 1e4: %zu (error %.1f)\n",
     overhead.cascades.size(), csm::predictedError(overhead, 600.0, 2048), enough.cascades.size(),
@@ -107,12 +107,12 @@ TEST(Steps, CascadeCountWhereNoneMeetsTheTarget)
     longView, lightAt(longView, 0.0), nullptr, settingsUpTo8, nullptr, 600.0, 2048, 1e-6, 0);
   const int kMost = static_cast<int>(most.cascades.size());
   EXPECT_GT(kMost, 4);
-  auto errorAt = [&](int k) {
+  auto errorAt = [&](int k)
+  {
     auto s = settingsUpTo8;
     s.split.k = k;
-    return csm::predictedError(
-      csm::computeShadowSetupForError(longView, lightAt(longView, 0.0), nullptr, s, nullptr, 600.0,
-        2048, 1e-6, 0),
+    return csm::predictedError(csm::computeShadowSetupForError(longView, lightAt(longView, 0.0),
+                                 nullptr, s, nullptr, 600.0, 2048, 1e-6, 0),
       600.0, csm::ceilingsForCount(k, 8, 2048));
   };
   const double eMost = csm::predictedError(most, 600.0, csm::ceilingsForCount(kMost, 8, 2048));
@@ -121,10 +121,10 @@ TEST(Steps, CascadeCountWhereNoneMeetsTheTarget)
   {
     auto next = settingsUpTo8;
     next.split.k = kMost + 1;
-    const double eNext = csm::predictedError(
-      csm::computeShadowSetupForCount(longView, lightAt(longView, 0.0), nullptr, next, nullptr,
-        kMost + 1, csm::ceilingsForCount(kMost + 1, 8, 2048)),
-      600.0, csm::ceilingsForCount(kMost + 1, 8, 2048));
+    const double eNext =
+      csm::predictedError(csm::computeShadowSetupForCount(longView, lightAt(longView, 0.0), nullptr,
+                            next, nullptr, kMost + 1, csm::ceilingsForCount(kMost + 1, 8, 2048)),
+        600.0, csm::ceilingsForCount(kMost + 1, 8, 2048));
     EXPECT_GE(eNext, csm::kCountHysteresis * eMost);
   }
   std::printf("unreachable target, f/n 1e4, light behind: %d cascades (error %.2f; four: %.2f)\n",
@@ -134,12 +134,12 @@ TEST(Steps, CascadeCountWhereNoneMeetsTheTarget)
   {
     auto fewer = settingsUpTo8;
     fewer.split.k = kMost - 1;
-    const double eFewer = csm::predictedError(
-      csm::computeShadowSetupForCount(longView, lightAt(longView, 0.0), nullptr, fewer, nullptr,
-        kMost - 1, csm::ceilingsForCount(kMost - 1, 8, 2048)),
-      600.0, csm::ceilingsForCount(kMost - 1, 8, 2048));
-    const csm::ShadowSetup kept = csm::computeShadowSetupForError(longView,
-      lightAt(longView, 0.0), nullptr, settingsUpTo8, nullptr, 600.0, 2048, 1e-6, kMost - 1);
+    const double eFewer =
+      csm::predictedError(csm::computeShadowSetupForCount(longView, lightAt(longView, 0.0), nullptr,
+                            fewer, nullptr, kMost - 1, csm::ceilingsForCount(kMost - 1, 8, 2048)),
+        600.0, csm::ceilingsForCount(kMost - 1, 8, 2048));
+    const csm::ShadowSetup kept = csm::computeShadowSetupForError(longView, lightAt(longView, 0.0),
+      nullptr, settingsUpTo8, nullptr, 600.0, 2048, 1e-6, kMost - 1);
     EXPECT_EQ(kept.cascades.size(),
       static_cast<size_t>(eFewer * csm::kCountHysteresis <= eMost ? kMost - 1 : kMost));
   }
@@ -165,15 +165,21 @@ TEST(Steps, CascadeCountKeepsAPreviousCountWithinTheMargin)
     1000.0, csm::ceilingsForCount(2, 2, 2048));
   ASSERT_LT(e2, e1);
   const double target = e1 / 0.9; // one cascade meets it, not by the hysteresis margin
-  EXPECT_EQ(csm::computeShadowSetupForError(mid, light, nullptr, two, nullptr, 1000.0, 2048,
-              target, 0).cascades.size(), 1u);
-  EXPECT_EQ(csm::computeShadowSetupForError(mid, light, nullptr, two, nullptr, 1000.0, 2048,
-              target, 2).cascades.size(), 2u);
-  EXPECT_EQ(csm::computeShadowSetupForError(mid, light, nullptr, two, nullptr, 1000.0, 2048,
-              e1 / 0.7, 2).cascades.size(), 1u);
+  EXPECT_EQ(
+    csm::computeShadowSetupForError(mid, light, nullptr, two, nullptr, 1000.0, 2048, target, 0)
+      .cascades.size(),
+    1u);
+  EXPECT_EQ(
+    csm::computeShadowSetupForError(mid, light, nullptr, two, nullptr, 1000.0, 2048, target, 2)
+      .cascades.size(),
+    2u);
+  EXPECT_EQ(
+    csm::computeShadowSetupForError(mid, light, nullptr, two, nullptr, 1000.0, 2048, e1 / 0.7, 2)
+      .cascades.size(),
+    1u);
   // Bad input: the same message as a plain plan, no cascades.
-  const csm::ShadowSetup bad = csm::computeShadowSetupForError(mid,
-    glm::dvec3(std::nan(""), 1.0, 0.0), nullptr, two, nullptr, 1000.0, 2048, 1.0, 0);
+  const csm::ShadowSetup bad = csm::computeShadowSetupForError(
+    mid, glm::dvec3(std::nan(""), 1.0, 0.0), nullptr, two, nullptr, 1000.0, 2048, 1.0, 0);
   EXPECT_EQ(bad.status, csm::Status::InvalidInput);
   EXPECT_TRUE(bad.cascades.empty());
 }
@@ -218,12 +224,14 @@ TEST(Steps, CascadeCountWeighsCasterPassesAgainstTexels)
               "%.0f %.0f\n",
     error[1], error[2], error[3], error[4], target, texels[1], texels[2], texels[3], texels[4]);
   ASSERT_GT(texels[1], texels[4]); // more cascades need fewer texels here
-  auto countFor = [&](const std::vector<csm::CasterLoad>* casters, int previous = 0) {
-    return static_cast<int>(csm::computeShadowSetupForError(view, light, nullptr, upTo4, nullptr,
-      height, 2048, target, previous, casters)
+  auto countFor = [&](const std::vector<csm::CasterLoad>* casters, int previous = 0)
+  {
+    return static_cast<int>(csm::computeShadowSetupForError(
+      view, light, nullptr, upTo4, nullptr, height, 2048, target, previous, casters)
                               .cascades.size());
   };
-  auto cheapest = [&](const std::vector<csm::CasterLoad>& casters) {
+  auto cheapest = [&](const std::vector<csm::CasterLoad>& casters)
+  {
     int best = 1;
     double bestCost = 0.0;
     for (int k = 1; k <= 4; ++k)

@@ -72,8 +72,7 @@ TEST(CasterBlocks, EveryTriangleLandsInExactlyOneBlockWithItsCornersWelded)
     EXPECT_EQ(distinct.size(), b.points.size());
     for (const auto& tri : b.triangles)
     {
-      output.insert(
-        corners(p[b.points[tri[0]]], p[b.points[tri[1]]], p[b.points[tri[2]]]));
+      output.insert(corners(p[b.points[tri[0]]], p[b.points[tri[1]]], p[b.points[tri[2]]]));
     }
   }
   EXPECT_EQ(input, output); // same triangles, same winding

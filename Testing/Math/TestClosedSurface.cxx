@@ -178,9 +178,11 @@ TEST(ClosedSurface, PlanesAndConvexSolidsCannotShadowThemselves)
     box(0.0, 1.0, false, p, t);
     p.push_back({ 0.5, 0.5, 0.6 }); // a point inside, under the top face z = 1
     const std::int64_t centre = static_cast<std::int64_t>(p.size()) - 1;
-    // Replace the top face (corners 4 5 7 6, wound { 4, 5, 7 }, { 4, 7, 6 }) by a fan to the centre.
+    // Replace the top face (corners 4 5 7 6, wound { 4, 5, 7 }, { 4, 7, 6 }) by a fan to the
+    // centre.
     t.erase(std::remove_if(t.begin(), t.end(),
-              [](const std::array<std::int64_t, 3>& tri) { return tri[0] == 4 && (tri[1] == 5 || tri[1] == 7); }),
+              [](const std::array<std::int64_t, 3>& tri)
+              { return tri[0] == 4 && (tri[1] == 5 || tri[1] == 7); }),
       t.end());
     t.push_back({ 4, 5, centre });
     t.push_back({ 5, 7, centre });

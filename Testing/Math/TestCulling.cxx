@@ -13,7 +13,7 @@
 
 namespace
 {
-using csmMathTest::camera; // eye at the origin looking down -z, up +y
+using csmMathTest::camera;  // eye at the origin looking down -z, up +y
 using csmMathTest::lightAt; // gammaDeg: 0 light from behind, 90 overhead, 180 facing
 using csmMathTest::settings;
 } // namespace
@@ -41,9 +41,9 @@ TEST(Body, BoxCulling)
 TEST(Body, SweptBoxReachesWhatLiesBehindItAlongTheLight)
 {
   const csm::Bounds ground{ { -100, -0.5, -100 }, { 100, 0, 100 } };
-  const csm::Bounds tower{ { -2, 0, -2 }, { 2, 30, 2 } }; // stands on the ground
+  const csm::Bounds tower{ { -2, 0, -2 }, { 2, 30, 2 } };       // stands on the ground
   const csm::Bounds buried{ { -2, -0.4, -2 }, { 2, -0.2, 2 } }; // inside the slab
-  const csm::Bounds sheet{ { -5, 0, -5 }, { 5, 0, 5 } };       // flat, on the ground's top
+  const csm::Bounds sheet{ { -5, 0, -5 }, { 5, 0, 5 } };        // flat, on the ground's top
   const csm::Bounds beside{ { 150, -0.3, -1 }, { 160, 5, 1 } }; // beside the slab
   const double eps = 1e-6;
   const glm::dvec3 down(0.3, -1.0, 0.2), up(0.3, 1.0, 0.2), sideways(1.0, 0.0, 0.0);
@@ -63,7 +63,9 @@ TEST(Body, SweptBoxReachesWhatLiesBehindItAlongTheLight)
   EXPECT_TRUE(csm::sweptBoxReachesBox(ground, sideways, tower, eps));   // touching: conservative
   // Far from the origin: the same answers.
   const glm::dvec3 far(3.0e6, 1.0e5, -4.0e6);
-  const auto moved = [&](const csm::Bounds& b) { return csm::Bounds{ b.wsMin + far, b.wsMax + far }; };
+  const auto moved = [&](const csm::Bounds& b) {
+    return csm::Bounds{ b.wsMin + far, b.wsMax + far };
+  };
   EXPECT_FALSE(csm::sweptBoxReachesBox(moved(ground), down, moved(tower), 1e-3));
   EXPECT_TRUE(csm::sweptBoxReachesBox(moved(ground), up, moved(tower), 1e-3));
   // Bad input: the safe answer (draw the caster).
@@ -71,5 +73,6 @@ TEST(Body, SweptBoxReachesWhatLiesBehindItAlongTheLight)
   EXPECT_TRUE(csm::sweptBoxReachesBox(ground, glm::dvec3(0.0), tower, eps));
   EXPECT_TRUE(csm::sweptBoxReachesBox(ground, glm::dvec3(nan, -1, 0), tower, eps));
   EXPECT_TRUE(csm::sweptBoxReachesBox(csm::Bounds{}, down, tower, eps));
-  EXPECT_TRUE(csm::sweptBoxReachesBox(ground, down, csm::Bounds{ { nan, 0, 0 }, { 1, 1, 1 } }, eps));
+  EXPECT_TRUE(
+    csm::sweptBoxReachesBox(ground, down, csm::Bounds{ { nan, 0, 0 }, { 1, 1, 1 } }, eps));
 }

@@ -127,8 +127,8 @@ void expectAllFinite(const csm::FacePartitioning& fp)
 
 /// Every sampled point of the frustum lies in exactly one partition: in at least one with a
 /// tolerance of 1e-9 of the far distance, and strictly inside (by that much) at most one.
-void expectExactCover(const csm::Camera& cam, const csm::FacePartitioning& fp, int samples,
-  const char* what)
+void expectExactCover(
+  const csm::Camera& cam, const csm::FacePartitioning& fp, int samples, const char* what)
 {
   ASSERT_EQ(fp.status, csm::Status::Ok) << what << ": " << fp.message;
   const double scale = cam.vsFar;
@@ -181,8 +181,8 @@ TEST(FacePartition, CoversTheFrustumExactly)
         {
           const csm::FacePartitioning fp = partitions(cam, lightAt(g, sideways), k);
           char what[96];
-          std::snprintf(what, sizeof what, "gamma %g sideways %g k %d aspect %g", g, sideways, k,
-            cam.aspect);
+          std::snprintf(
+            what, sizeof what, "gamma %g sideways %g k %d aspect %g", g, sideways, k, cam.aspect);
           expectExactCover(cam, fp, 1500, what);
           expectAllFinite(fp);
           EXPECT_EQ(fp.partitions.size() % k, 0u) << what;
@@ -251,7 +251,8 @@ TEST(FacePartition, StorageIsTheMaximumOfLloydsM)
           if (s % 97 == 0)
           {
             // Lloyd et al. 2006, Eq. 2-4 by central differences of s, t in [0, 1].
-            auto st = [&](const glm::dvec3& q) {
+            auto st = [&](const glm::dvec3& q)
+            {
               const glm::dvec4 h = c.wsToClip * glm::dvec4(q, 1.0);
               return glm::dvec2(0.5 * h.x / h.w + 0.5, 0.5 * h.y / h.w + 0.5);
             };
@@ -361,8 +362,8 @@ TEST(FacePartition, DegenerateInputs)
 {
   const csm::Camera cam = camera(1.0, 100.0, 60.0);
   const double nan = std::nan("");
-  for (const glm::dvec3& bad : { glm::dvec3(nan, -1, 0), glm::dvec3(0.0),
-         glm::dvec3(INFINITY, 0, 0) })
+  for (const glm::dvec3& bad :
+    { glm::dvec3(nan, -1, 0), glm::dvec3(0.0), glm::dvec3(INFINITY, 0, 0) })
   {
     const csm::FacePartitioning fp = partitions(cam, bad, 1);
     EXPECT_EQ(fp.status, csm::Status::InvalidInput);
@@ -378,16 +379,16 @@ TEST(FacePartition, DegenerateInputs)
   EXPECT_EQ(partitions(cam, lightAt(0.0), 65).status, csm::Status::InvalidInput);
   csm::Camera badCamera = cam;
   badCamera.vsNear = nan;
-  EXPECT_EQ(partitions(badCamera, lightAt(0.0), 1).message,
-    "camera near distance must be finite and > 0");
+  EXPECT_EQ(
+    partitions(badCamera, lightAt(0.0), 1).message, "camera near distance must be finite and > 0");
 
   const double tanY = std::tan(30.0 * kDeg);
   const glm::dvec3 edgeOn[] = {
-    { 0, 0, -1 },        // parallel to the view, from behind
-    { 0, 0, 1 },         // parallel, from the front
-    { tanY, tanY, -1 },  // along a side edge: the top and right faces are edge-on
-    { 0, -tanY, -1 },    // in the bottom face's plane (gamma = theta)
-    { 0, -1, 0 },        // overhead: left, right and near faces edge-on
+    { 0, 0, -1 },       // parallel to the view, from behind
+    { 0, 0, 1 },        // parallel, from the front
+    { tanY, tanY, -1 }, // along a side edge: the top and right faces are edge-on
+    { 0, -tanY, -1 },   // in the bottom face's plane (gamma = theta)
+    { 0, -1, 0 },       // overhead: left, right and near faces edge-on
   };
   for (const glm::dvec3& light : edgeOn)
   {

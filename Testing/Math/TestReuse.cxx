@@ -47,8 +47,8 @@ TEST(Reuse, AKeptMapServesWhileItsErrorMeetsAFreshMapsAtItsResolution)
   EXPECT_FALSE(csm::keptMapServes(1.45, csm::MapSize(1440, 720), csm::MapSize(1000, 500)));
   EXPECT_FALSE(csm::keptMapServes(1.2, csm::MapSize(1440, 500), csm::MapSize(1000, 500)));
   // Not covering (infinite ratio), NaN and empty maps never serve.
-  EXPECT_FALSE(csm::keptMapServes(std::numeric_limits<double>::infinity(), csm::MapSize(2048),
-    csm::MapSize(64)));
+  EXPECT_FALSE(csm::keptMapServes(
+    std::numeric_limits<double>::infinity(), csm::MapSize(2048), csm::MapSize(64)));
   EXPECT_FALSE(csm::keptMapServes(std::nan(""), csm::MapSize(2048), csm::MapSize(64)));
   EXPECT_FALSE(csm::keptMapServes(0.5, csm::MapSize(0), csm::MapSize(64)));
 }
@@ -72,7 +72,8 @@ TEST(Reuse, ASlackedMapServesACameraThatTurnsALittle)
   const csm::MapSize most(2048);
   const auto first = csm::computeShadowSetup(cam, light, &scene, s);
   ASSERT_EQ(first.status, csm::Status::Ok);
-  const csm::MapSize need = csm::resolutionForError(first.cascades[0], imageHeight, target, 64, most);
+  const csm::MapSize need =
+    csm::resolutionForError(first.cascades[0], imageHeight, target, 64, most);
   const csm::SlackedMap slacked = csm::slackedMap(need, most, 0.44);
   ASSERT_GT(slacked.border, 0.0);
   const glm::dmat4 kept = csm::withBorder(first.cascades[0].wsToClip, slacked.border);
@@ -88,8 +89,8 @@ TEST(Reuse, ASlackedMapServesACameraThatTurnsALittle)
     ASSERT_EQ(fresh.status, csm::Status::Ok);
     const csm::MapSize freshNeed =
       csm::resolutionForError(fresh.cascades[0], imageHeight, target, 64, most);
-    const auto reuse = csm::compareKeptMap(kept, fresh.cascades[0], turned,
-      glm::normalize(light), true, 2.0 * 2.0 / slacked.size.width);
+    const auto reuse = csm::compareKeptMap(
+      kept, fresh.cascades[0], turned, glm::normalize(light), true, 2.0 * 2.0 / slacked.size.width);
     const bool serves =
       reuse.covers && csm::keptMapServes(reuse.errorRatio, slacked.size, freshNeed);
     if (frame == 0)
@@ -114,7 +115,7 @@ TEST(Reuse, ASmallCameraStepIsATurnOfAFewDegreesAndAMoveWellShortOfTheDepth)
   csm::Camera moved = before;
   moved.wsPosition = { 0.0, 0.0, -2.0 };
   EXPECT_TRUE(csm::smallCameraStep(before, moved, 10.0));
-  EXPECT_FALSE(csm::smallCameraStep(before, moved, 4.0)); // half the way to the depth
+  EXPECT_FALSE(csm::smallCameraStep(before, moved, 4.0));   // half the way to the depth
   EXPECT_FALSE(csm::smallCameraStep(before, before, 10.0)); // no step at all
   EXPECT_FALSE(csm::smallCameraStep(before, moved, std::nan("")));
   csm::Camera broken = before;
@@ -154,25 +155,25 @@ TEST(Reuse, ABorderedMapCoversTheBodyOfACameraThatTurnedALittle)
     turned.wsDirection = -turned.wsPosition;
     const auto fresh = csm::computeShadowSetup(turned, light, &scene, s);
     ASSERT_EQ(fresh.status, csm::Status::Ok);
-    const auto reuse = csm::compareKeptMap(bordered, fresh.cascades[0], turned, glm::normalize(light),
-      true, 2.0 * 2.0 / 1024.0);
+    const auto reuse = csm::compareKeptMap(
+      bordered, fresh.cascades[0], turned, glm::normalize(light), true, 2.0 * 2.0 / 1024.0);
     covered += reuse.covers;
     if (reuse.covers)
     {
       EXPECT_LT(reuse.errorRatio, 1.6) << "frame " << frame;
       EXPECT_GT(reuse.errorRatio, 0.6) << "frame " << frame;
     }
-    coveredWithout +=
-      csm::compareKeptMap(kept.cascades[0].wsToClip, fresh.cascades[0], turned,
-        glm::normalize(light), true, 2.0 * 2.0 / 1024.0).covers;
+    coveredWithout += csm::compareKeptMap(kept.cascades[0].wsToClip, fresh.cascades[0], turned,
+      glm::normalize(light), true, 2.0 * 2.0 / 1024.0)
+                        .covers;
   }
   EXPECT_EQ(covered, 4);
   EXPECT_EQ(coveredWithout, 0);
   // The same with the maps turned to a non-square tile (orientToTile): the kept map's rows no
   // longer follow the turned camera's ls x and z exactly, and the error is still read along the
   // row that follows each (the ratio near 1, not the error across the map's other axis).
-  const csm::MapSize tile = kept.cascades[0].Mx > kept.cascades[0].Mz ? csm::MapSize(1024, 2048)
-                                                                      : csm::MapSize(2048, 1024);
+  const csm::MapSize tile =
+    kept.cascades[0].Mx > kept.cascades[0].Mz ? csm::MapSize(1024, 2048) : csm::MapSize(2048, 1024);
   auto keptTurned = kept;
   csm::orientToTile(keptTurned, tile);
   ASSERT_TRUE(keptTurned.cascades[0].mapTurned);
@@ -186,8 +187,8 @@ TEST(Reuse, ABorderedMapCoversTheBodyOfACameraThatTurnedALittle)
     auto fresh = csm::computeShadowSetup(turned, light, &scene, s);
     csm::orientToTile(fresh, tile);
     ASSERT_TRUE(fresh.cascades[0].mapTurned);
-    const auto reuse = csm::compareKeptMap(borderedTurned, fresh.cascades[0], turned,
-      glm::normalize(light), true, 2.0 * 2.0 / 1024.0);
+    const auto reuse = csm::compareKeptMap(
+      borderedTurned, fresh.cascades[0], turned, glm::normalize(light), true, 2.0 * 2.0 / 1024.0);
     EXPECT_TRUE(reuse.covers) << "frame " << frame;
     EXPECT_LT(reuse.errorRatio, 1.6) << "frame " << frame;
     EXPECT_GT(reuse.errorRatio, 0.6) << "frame " << frame;

@@ -118,14 +118,14 @@ TEST(Steps, SceneFittedCascadeServesEveryViewThatItMeets)
   const csm::Bounds box{ { -1.0, 1.0, -1.0 }, { 1.0, 3.0, 1.0 } };
   const csm::Bounds scene{ ground.wsMin, glm::dvec3(100.0, 3.0, 100.0) };
   const std::vector<csm::Bounds> receivers{ ground, box };
-  const std::vector<csm::CasterLoad> casters{ { ground, 12.0, 0, false },
-    { box, 12.0, 1, false } };
+  const std::vector<csm::CasterLoad> casters{ { ground, 12.0, 0, false }, { box, 12.0, 1, false } };
   const glm::dvec3 light(-0.3, -1.0, -0.2);
   csm::SceneFit fit;
   ASSERT_TRUE(csm::sceneFit(light, scene, casters, &receivers, fit));
   auto s = settings(csm::WarpMode::Generalized, csm::SplitScheme::Adaptive, 4);
   s.sceneFitted = true;
-  auto orbit = [](double azimuthDeg, double distance) {
+  auto orbit = [](double azimuthDeg, double distance)
+  {
     csm::Camera c = camera(0.5, 400.0, 30.0, 4.0 / 3.0);
     const double a = azimuthDeg * 3.14159265358979323846 / 180.0;
     c.wsPosition = glm::dvec3(distance * std::sin(a), 0.5 * distance, distance * std::cos(a));
@@ -158,8 +158,8 @@ TEST(Steps, SceneFittedCascadeServesEveryViewThatItMeets)
     EXPECT_DOUBLE_EQ(last.Mx, mx);
     EXPECT_DOUBLE_EQ(last.Mz, mz);
     // Its resolution is its tile's: drawn once, for every view.
-    EXPECT_EQ(csm::resolutionForError(last, 480.0, 1.0, 64, csm::MapSize(2896)),
-      csm::MapSize(2896));
+    EXPECT_EQ(
+      csm::resolutionForError(last, 480.0, 1.0, 64, csm::MapSize(2896)), csm::MapSize(2896));
   }
   // Close to the box with a tight target the fit does not meet it: the cascades follow the view.
   const csm::ShadowSetup close = csm::computeShadowSetupForError(

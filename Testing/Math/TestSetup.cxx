@@ -20,12 +20,12 @@
 namespace
 {
 using csmMathTest::camera; // eye at the origin looking down -z, up +y
-using csmMathTest::kDeg;
-using csmMathTest::lightAt; // gammaDeg: 0 light from behind, 90 overhead, 180 facing
-using csmMathTest::settings;
 using csmMathTest::expectAllFinite;
 using csmMathTest::expectBodyInUnitCube;
 using csmMathTest::finite;
+using csmMathTest::kDeg;
+using csmMathTest::lightAt; // gammaDeg: 0 light from behind, 90 overhead, 180 facing
+using csmMathTest::settings;
 using csmMathTest::toNdc;
 } // namespace
 
@@ -57,7 +57,8 @@ TEST(StorageFactor, OverheadMatchesClosedForms)
   }
 }
 
-// Lloyd et al. 2006, Eq. 7-10 with n = 1 (the form the paper prints): maxima of m_x, m_z for one LiSPSM map.
+// Lloyd et al. 2006, Eq. 7-10 with n = 1 (the form the paper prints): maxima of m_x, m_z for one
+// LiSPSM map.
 TEST(StorageFactor, OverheadMaximaMatchEq9And10)
 {
   const double n = 1.0, f = 100.0, tanTheta = std::tan(30.0 * kDeg);
@@ -70,7 +71,7 @@ TEST(StorageFactor, OverheadMaximaMatchEq9And10)
     const double np = setup.cascades[0].nPrime;
     EXPECT_NEAR(np, warp == csm::WarpMode::PSM ? n : n + std::sqrt(f * n), 1e-12);
     const double fp = np + f - n;
-    EXPECT_NEAR(setup.cascades[0].Mx, f * np / fp, 1e-9);                           // Eq. 9
+    EXPECT_NEAR(setup.cascades[0].Mx, f * np / fp, 1e-9);                                  // Eq. 9
     EXPECT_NEAR(setup.cascades[0].Mz, n * (f - n) / (2 * tanTheta) * fp / (np * f), 1e-9); // Eq. 10
   }
 }
@@ -79,8 +80,8 @@ TEST(StorageFactor, NonSquareImageKeepsOverheadStorage)
 {
   const double tanTheta = std::tan(20.0 * kDeg);
   const csm::Camera cam = camera(1.0, 1000.0, 40.0, 800.0 / 300.0);
-  const csm::ShadowSetup setup = csm::computeShadowSetup(cam, lightAt(cam, 90.0), nullptr,
-    settings(csm::WarpMode::LiSPSM, csm::SplitScheme::Log, 3));
+  const csm::ShadowSetup setup = csm::computeShadowSetup(
+    cam, lightAt(cam, 90.0), nullptr, settings(csm::WarpMode::LiSPSM, csm::SplitScheme::Log, 3));
   const double r = 10.0;
   EXPECT_NEAR(setup.storageTotal, 3 * (r - 1) / (2 * tanTheta), 1e-6 * setup.storageTotal);
 }
@@ -100,14 +101,15 @@ TEST(StorageFactor, LightBehindAndInFrontAgree)
 }
 
 // Beyond gamma_lim the generalized warp beats the orthographic map by a wide margin; below it,
-// where it fades to orthographic (Barroso & Celes 2007, Eq. 16-18), its worst error stays within 10% of it.
+// where it fades to orthographic (Barroso & Celes 2007, Eq. 16-18), its worst error stays within
+// 10% of it.
 TEST(StorageFactor, GeneralizedAgainstUniform)
 {
   const csm::Camera cam = camera(1.0, 1000.0, 60.0);
   for (double g = 0.0; g <= 180.0; g += 5.0)
   {
-    const auto none = csm::computeShadowSetup(cam, lightAt(cam, g), nullptr,
-      settings(csm::WarpMode::None, csm::SplitScheme::Log, 2));
+    const auto none = csm::computeShadowSetup(
+      cam, lightAt(cam, g), nullptr, settings(csm::WarpMode::None, csm::SplitScheme::Log, 2));
     const auto gen = csm::computeShadowSetup(cam, lightAt(cam, g), nullptr,
       settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 2));
     const double folded = std::min(g, 180.0 - g);
@@ -117,8 +119,8 @@ TEST(StorageFactor, GeneralizedAgainstUniform)
     }
     EXPECT_LE(gen.storageTotal, 1.1 * none.storageTotal) << "gamma " << g;
   }
-  const auto overheadNone = csm::computeShadowSetup(cam, lightAt(cam, 90.0), nullptr,
-    settings(csm::WarpMode::None, csm::SplitScheme::Log, 2));
+  const auto overheadNone = csm::computeShadowSetup(
+    cam, lightAt(cam, 90.0), nullptr, settings(csm::WarpMode::None, csm::SplitScheme::Log, 2));
   const auto overheadGen = csm::computeShadowSetup(cam, lightAt(cam, 90.0), nullptr,
     settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 2));
   // Lloyd et al. 2006, Eq. 17 over Eq. 18: the warp saves the factor (f/n)^(1/k).
@@ -130,8 +132,8 @@ TEST(Body, EveryVertexMapsIntoUnitCube)
   csm::Bounds scene;
   scene.wsMin = { -50, -2, -400 };
   scene.wsMax = { 60, 30, 5 };
-  for (auto warp : { csm::WarpMode::None, csm::WarpMode::PSM, csm::WarpMode::LiSPSM,
-         csm::WarpMode::Generalized })
+  for (auto warp :
+    { csm::WarpMode::None, csm::WarpMode::PSM, csm::WarpMode::LiSPSM, csm::WarpMode::Generalized })
   {
     for (auto scheme : { csm::SplitScheme::Single, csm::SplitScheme::Log,
            csm::SplitScheme::Practical, csm::SplitScheme::Adaptive })
@@ -218,8 +220,8 @@ TEST(Stability, AnglesRangesAndFields)
       const double t = std::tan(0.5 * fovy * kDeg);
       const csm::PartitionShape whole{ 0.01, 0.01 * ratio, 0.01 * t, 0.01 * ratio * t };
       const double limitDeg = csm::gammaLim(whole) / kDeg;
-      for (double g : { 0.0, 1e-12, 1e-6, limitDeg - 1e-9, limitDeg + 1e-9, 90.0, 180.0,
-             180.0 - 1e-12 })
+      for (double g :
+        { 0.0, 1e-12, 1e-6, limitDeg - 1e-9, limitDeg + 1e-9, 90.0, 180.0, 180.0 - 1e-12 })
       {
         for (auto warp : { csm::WarpMode::None, csm::WarpMode::PSM, csm::WarpMode::LiSPSM,
                csm::WarpMode::Generalized })
@@ -318,8 +320,8 @@ TEST(Stability, ParallelProjection)
   csm::Bounds scene{ { -30, -5, -150 }, { 30, 20, -10 } };
   for (double g : { 0.0, 45.0, 90.0, 180.0 })
   {
-    const auto setup = csm::computeShadowSetup(cam, lightAt(cam, g), &scene,
-      settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 2));
+    const auto setup = csm::computeShadowSetup(
+      cam, lightAt(cam, g), &scene, settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 2));
     ASSERT_EQ(setup.status, csm::Status::Ok);
     for (const auto& c : setup.cascades)
     {
@@ -336,7 +338,8 @@ TEST(Stability, BadInputIsReported)
   const auto s = settings(csm::WarpMode::Generalized, csm::SplitScheme::Adaptive, 2);
   const double nan = std::nan("");
   csm::Camera cam = camera(1.0, 100.0, 60.0);
-  auto expectInvalid = [&](const csm::Camera& c, glm::dvec3 light, const csm::Settings& st) {
+  auto expectInvalid = [&](const csm::Camera& c, glm::dvec3 light, const csm::Settings& st)
+  {
     const auto setup = csm::computeShadowSetup(c, light, nullptr, st);
     EXPECT_EQ(setup.status, csm::Status::InvalidInput);
     EXPECT_FALSE(setup.message.empty());
@@ -366,8 +369,8 @@ TEST(Stability, BadInputIsReported)
   st.split.lambda = nan;
   expectInvalid(cam, { 0, -1, 0 }, st);
   csm::Bounds infinite{ { 0, 0, 0 }, { INFINITY, 1, 1 } };
-  EXPECT_EQ(csm::computeShadowSetup(cam, { 0, -1, 0 }, &infinite, s).status,
-    csm::Status::InvalidInput);
+  EXPECT_EQ(
+    csm::computeShadowSetup(cam, { 0, -1, 0 }, &infinite, s).status, csm::Status::InvalidInput);
   // View-up parallel to the view direction still gives a valid frame.
   bad = cam;
   bad.wsViewUp = bad.wsDirection;
@@ -432,8 +435,8 @@ TEST(Stability, ExtremeDepthRanges)
   }
   // Beyond it: refused with a message, no cascades.
   const csm::Camera huge = camera(1e-300, 1e300, 60.0);
-  const auto h = csm::computeShadowSetup(
-    huge, lightAt(huge, 90.0), nullptr, settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 8));
+  const auto h = csm::computeShadowSetup(huge, lightAt(huge, 90.0), nullptr,
+    settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 8));
   EXPECT_EQ(h.status, csm::Status::InvalidInput);
   EXPECT_TRUE(h.cascades.empty());
   EXPECT_NE(h.message.find("1e50"), std::string::npos) << h.message;

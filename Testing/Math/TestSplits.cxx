@@ -32,7 +32,8 @@ TEST(Splits, UniformLogPractical)
   EXPECT_NEAR(l[2], 100.0, 1e-12);
   EXPECT_NEAR(l[3], 1000.0, 1e-9);
   EXPECT_EQ(l[4], 1e4);
-  const auto p = csm::splitDepths(params(csm::SplitScheme::Practical, 2, 2.0, 0.25), 1.0, 101.0, 0.0);
+  const auto p =
+    csm::splitDepths(params(csm::SplitScheme::Practical, 2, 2.0, 0.25), 1.0, 101.0, 0.0);
   EXPECT_NEAR(p[1], 0.25 * std::sqrt(101.0) + 0.75 * 51.0, 1e-12);
   const auto s = csm::splitDepths(params(csm::SplitScheme::Single, 4), 2.0, 3.0, 0.0);
   ASSERT_EQ(s.size(), 2u);
@@ -46,7 +47,8 @@ TEST(Splits, AdaptiveEqualsLogOverhead)
   {
     for (double ratio : { 10.0, 1e3, 1e5 })
     {
-      const auto a = csm::splitDepths(params(csm::SplitScheme::Adaptive, k), 0.5, 0.5 * ratio, kHalfPi);
+      const auto a =
+        csm::splitDepths(params(csm::SplitScheme::Adaptive, k), 0.5, 0.5 * ratio, kHalfPi);
       const auto l = csm::splitDepths(params(csm::SplitScheme::Log, k), 0.5, 0.5 * ratio, kHalfPi);
       ASSERT_EQ(a.size(), l.size());
       for (size_t i = 0; i < a.size(); ++i)
@@ -75,8 +77,8 @@ TEST(Splits, AdaptiveRatioIsAlphaWhenParallel)
 
 TEST(Splits, AlwaysStrictlyIncreasingAndCovering)
 {
-  for (auto scheme : { csm::SplitScheme::Uniform, csm::SplitScheme::Log, csm::SplitScheme::Practical,
-         csm::SplitScheme::Adaptive })
+  for (auto scheme : { csm::SplitScheme::Uniform, csm::SplitScheme::Log,
+         csm::SplitScheme::Practical, csm::SplitScheme::Adaptive })
   {
     for (int k = 1; k <= 8; ++k)
     {
@@ -131,9 +133,9 @@ TEST(Splits, LogSplitsInLogSpace)
 TEST(Splits, PartitionAtDepthSelectsAsTheShaderDoes)
 {
   const double far[3] = { 2.0, 5.0, 10.0 };
-  EXPECT_EQ(csm::partitionAtDepth(0.5, 1.0, far, 3), -1);  // before the first
+  EXPECT_EQ(csm::partitionAtDepth(0.5, 1.0, far, 3), -1); // before the first
   EXPECT_EQ(csm::partitionAtDepth(1.0, 1.0, far, 3), 0);
-  EXPECT_EQ(csm::partitionAtDepth(2.0, 1.0, far, 3), 0);   // a split belongs to the nearer
+  EXPECT_EQ(csm::partitionAtDepth(2.0, 1.0, far, 3), 0); // a split belongs to the nearer
   EXPECT_EQ(csm::partitionAtDepth(2.0001, 1.0, far, 3), 1);
   EXPECT_EQ(csm::partitionAtDepth(10.0, 1.0, far, 3), 2);
   EXPECT_EQ(csm::partitionAtDepth(10.5, 1.0, far, 3), -1); // beyond the last

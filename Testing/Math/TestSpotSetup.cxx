@@ -13,9 +13,9 @@
 namespace
 {
 using csmMathTest::camera; // eye at the origin looking down -z, up +y
-using csmMathTest::kDeg;
 using csmMathTest::expectBodyInUnitCube;
 using csmMathTest::finite;
+using csmMathTest::kDeg;
 using csmMathTest::toNdc;
 } // namespace
 
@@ -40,7 +40,8 @@ TEST(Spot, FitsTheLitVisibleScene)
     EXPECT_LT(caster.z, floor.z);
     EXPECT_LE(std::abs(floor.x), 1.0);
     // The map covers only what the cone lights: the window is narrower than the cone.
-    const glm::dvec3 edge = toNdc(setup.cascades[0].wsToClip, { 5 + 40 * std::tan(30 * kDeg), 0, -20 });
+    const glm::dvec3 edge =
+      toNdc(setup.cascades[0].wsToClip, { 5 + 40 * std::tan(30 * kDeg), 0, -20 });
     EXPECT_GT(std::max(std::abs(edge.x), std::abs(edge.y)), 1.0 - 1e-9);
   }
   // Bad cone, NaN position, a cone that misses the view.

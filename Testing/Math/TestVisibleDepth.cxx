@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The visible depth range: from a depth buffer, carried to the next frame's camera, checked.
-#include "csmVisibleDepth.h"
 #include "csmMathTestHelpers.h"
+#include "csmVisibleDepth.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -77,7 +77,8 @@ TEST(VisibleDepth, TheNearestSampleOfABoxAtKnownDepth)
   std::vector<float> empty(100, 1.0f);
   EXPECT_TRUE(csm::windowDepthRange(empty.data(), empty.size()).isEmpty());
   EXPECT_TRUE(csm::windowDepthRange(nullptr, 5).isEmpty());
-  EXPECT_TRUE(csm::depthRangeHolds(csm::DepthRange(), csm::windowDepthRange(empty.data(), 100), cam));
+  EXPECT_TRUE(
+    csm::depthRangeHolds(csm::DepthRange(), csm::windowDepthRange(empty.data(), 100), cam));
 }
 
 TEST(VisibleDepth, CarriedRangeHoldsThePointsSeenBeforeAfterTheCameraMoved)

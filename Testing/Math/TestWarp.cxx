@@ -11,7 +11,8 @@ namespace
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
-// Barroso & Celes 2007, Fig. 7: n = 1, f = 100, phi_y = pi/6; a, b half-heights of near and far faces.
+// Barroso & Celes 2007, Fig. 7: n = 1, f = 100, phi_y = pi/6; a, b half-heights of near and far
+// faces.
 csm::PartitionShape figure7()
 {
   const double t = std::tan(kPi / 6.0);
@@ -23,7 +24,8 @@ TEST(GeneralizedWarp, GammaLimIsEq15)
 {
   const csm::PartitionShape p = figure7();
   EXPECT_NEAR(csm::gammaLim(p), std::atan((p.a + p.b) / (p.f - p.n)), 1e-15);
-  // For f >> n it approaches the half field of view (Barroso & Celes 2007, §3.1: keep it above phi).
+  // For f >> n it approaches the half field of view (Barroso & Celes 2007, §3.1: keep it above
+  // phi).
   EXPECT_GT(csm::gammaLim(p), kPi / 6.0);
   EXPECT_LT(csm::gammaLim(p), kPi / 6.0 + 2.0 * kDeg);
 }

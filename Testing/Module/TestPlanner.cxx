@@ -2,7 +2,7 @@
 // vtkCascadedShadowMapPlanner: VTK camera and light in, the math's cascades out.
 #include "csmAtlas.h"        // csm::resolutionCeilingForCount
 #include "csmCascadeCount.h" // csm::computeShadowSetupForError
-#include "csmTestHelpers.h" // ErrorCounter
+#include "csmTestHelpers.h"  // ErrorCounter
 #include "vtkCascadedShadowMapPlanner.h"
 
 #include "vtkCallbackCommand.h"

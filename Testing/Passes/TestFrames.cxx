@@ -7,11 +7,11 @@
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
+#include "vtkCascadedShadowMapPlanner.h"
 #include "vtkCubeSource.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkMatrix4x4.h"
-#include "vtkCascadedShadowMapPlanner.h"
 #include "vtkNew.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
@@ -28,8 +28,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <vector>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -137,11 +137,13 @@ TEST(Frames, TheFirstRenderIsTheFittedOne)
 TEST(Frames, ADroppedChainIsFreed)
 {
   BoxOverPlane scene;
-  vtkWeakPointer<vtkCascadedShadowMapPass> pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkWeakPointer<vtkCascadedShadowMapPass> pass =
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkWeakPointer<vtkCascadedShadowMapBakerPass> baker = pass->GetShadowMapBakerPass();
   scene.Frame();
   ASSERT_TRUE(baker->GetHasShadows());
-  EXPECT_GT(baker->GetLastFrameStatistics().CompactCasters, 0); // the baker's own mappers were drawn
+  EXPECT_GT(
+    baker->GetLastFrameStatistics().CompactCasters, 0); // the baker's own mappers were drawn
   vtkCascadedShadowMapPass::UseShadowsOff(scene.Renderer);
   scene.Frame(); // the props' mappers forget the chain's passes
   EXPECT_EQ(pass.GetPointer(), nullptr);
@@ -183,8 +185,9 @@ namespace
 {
 /// The largest aliasing error (texels per pixel, Lloyd et al. 2006) of the light's cascade c over
 /// ground points (y = 0) the view sees in that cascade's depth slice and the map holds.
-double LargestGroundError(vtkRenderer* renderer, const vtkCascadedShadowMapBakerPass::LightMaps& maps,
-  int c, const double lightDirection[3], int* samples)
+double LargestGroundError(vtkRenderer* renderer,
+  const vtkCascadedShadowMapBakerPass::LightMaps& maps, int c, const double lightDirection[3],
+  int* samples)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
   const double aspect = renderer->GetTiledAspectRatio();
@@ -206,8 +209,8 @@ double LargestGroundError(vtkRenderer* renderer, const vtkCascadedShadowMapBaker
       {
         continue; // not in view
       }
-      const double depth = (x - eye[0]) * direction[0] + (0.0 - eye[1]) * direction[1] +
-        (z - eye[2]) * direction[2];
+      const double depth =
+        (x - eye[0]) * direction[0] + (0.0 - eye[1]) * direction[1] + (z - eye[2]) * direction[2];
       const double from = c == 0 ? maps.SplitNear : maps.SplitFar[c - 1];
       if (depth < from || depth > maps.SplitFar[c])
       {
@@ -219,10 +222,12 @@ double LargestGroundError(vtkRenderer* renderer, const vtkCascadedShadowMapBaker
         continue;
       }
       double m[2];
-      vtkCascadedShadowMapPlanner::ComputeAliasing(camera, aspect, lightDirection, maps.WorldToMap[c], p, m);
+      vtkCascadedShadowMapPlanner::ComputeAliasing(
+        camera, aspect, lightDirection, maps.WorldToMap[c], p, m);
       const bool turned = maps.MapTurned[c];
       const double error = std::max(m[0] / maps.CascadeResolution[c][turned ? 1 : 0],
-                             m[1] / maps.CascadeResolution[c][turned ? 0 : 1]) * imageHeight;
+                             m[1] / maps.CascadeResolution[c][turned ? 0 : 1]) *
+        imageHeight;
       largest = std::max(largest, error);
       ++*samples;
     }

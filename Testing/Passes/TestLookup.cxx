@@ -55,8 +55,9 @@ std::string fragmentShader(int constantRadius)
     "  vec4 tile = vec4(0.0, 0.0, 1.0, 1.0);\n"
     "  float zRef = 0.5;\n"
     "  int r = CSM_PCF_RADIUS;\n"
-    "  vec2 texel = vec2(1.0 / " + std::to_string(kMapWidth) + ".0, 1.0 / " +
-    std::to_string(kMapHeight) + ".0);\n"
+    "  vec2 texel = vec2(1.0 / " +
+    std::to_string(kMapWidth) + ".0, 1.0 / " + std::to_string(kMapHeight) +
+    ".0);\n"
     "  float fast = csmGridPCF(map, tile, texel, uv, zRef, vec2(0.0));\n"
     "  float reference = 0.0;\n"
     "  for (int i = -r; i <= r; ++i)\n"
@@ -137,7 +138,8 @@ TEST(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
       const double difference = std::abs(pixels[4 * i] - pixels[4 * i + 1]);
       worst = std::max(worst, difference);
       differing += difference > 1.0 / 255.0;
-      penumbra += pixels[4 * i + 1] > 0.05f && pixels[4 * i + 1] < 0.95f; // neither lit nor shadowed
+      penumbra +=
+        pixels[4 * i + 1] > 0.05f && pixels[4 * i + 1] < 0.95f; // neither lit nor shadowed
     }
     std::printf("r = %d (%s): largest difference %.2e, %ld of %d samples in a penumbra\n", r,
       constant ? "compiled in" : "uniform", worst, penumbra, kSamples * kSamples);

@@ -37,11 +37,13 @@ struct WarningCounter
   explicit WarningCounter(vtkObject* object)
   {
     this->Command->SetClientData(this);
-    this->Command->SetCallback([](vtkObject*, unsigned long, void* self, void* message) {
-      auto* counter = static_cast<WarningCounter*>(self);
-      ++counter->Count;
-      counter->Last = message ? static_cast<const char*>(message) : "";
-    });
+    this->Command->SetCallback(
+      [](vtkObject*, unsigned long, void* self, void* message)
+      {
+        auto* counter = static_cast<WarningCounter*>(self);
+        ++counter->Count;
+        counter->Last = message ? static_cast<const char*>(message) : "";
+      });
     object->AddObserver(vtkCommand::WarningEvent, this->Command);
   }
 };
@@ -94,11 +96,12 @@ TEST(Passes, UnwarpedMapsOfAGroundInTheMapsDarkenWhatTheStandardMapDarkens)
     const long unwarped = DarkenedPixels(scene.Render(), plain);
     ASSERT_EQ(baker->GetLightMaps().size(), 1u);
     EXPECT_GE(baker->GetLightMaps()[0].NumberOfCascades, 2) << cascades;
-    EXPECT_EQ(baker->GetLastFrameStatistics().CastersWithoutReceivers, 0) << cascades; // the ground is drawn
+    EXPECT_EQ(baker->GetLastFrameStatistics().CastersWithoutReceivers, 0)
+      << cascades; // the ground is drawn
     EXPECT_GT(standard, 800) << cascades;
     EXPECT_NEAR(unwarped, standard, 0.1 * standard) << cascades << " cascades";
-    std::printf("%d cascades: standard map %ld darkened pixels, unwarped %ld\n", cascades,
-      standard, unwarped);
+    std::printf("%d cascades: standard map %ld darkened pixels, unwarped %ld\n", cascades, standard,
+      unwarped);
   }
 }
 
@@ -111,7 +114,8 @@ TEST(Passes, CameraSpaceMapsKeepTheShadowAtAnyFocus)
   BoxOverPlane scene; // the camera is 21 from the origin
   auto plain = scene.Render();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
-  pass->SetPCFSize(1); // hard shadows: the maps differ in size (see CameraSpaceMapShadesLikeCascades)
+  pass->SetPCFSize(
+    1); // hard shadows: the maps differ in size (see CameraSpaceMapShadesLikeCascades)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   const long standard = DarkenedPixels(scene.Render(), plain);
   EXPECT_GT(standard, 800);
@@ -135,8 +139,8 @@ TEST(Passes, CameraSpaceMapsKeepTheShadowAtAnyFocus)
     scene.Render();
     scene.Renderer->GetActiveCamera()->Azimuth(-1.0);
     EXPECT_EQ(warnings.Count, expectedWarnings) << focus;
-    std::printf("focus %g: standard map %ld darkened pixels, camera space map %ld\n", focus,
-      standard, cssm);
+    std::printf(
+      "focus %g: standard map %ld darkened pixels, camera space map %ld\n", focus, standard, cssm);
   }
   EXPECT_NE(warnings.Last.find("CameraSpaceFocus"), std::string::npos) << warnings.Last;
 }

@@ -119,7 +119,8 @@ TEST(Passes, MeasuredTimesAreRecorded)
   baker->MeasureTimesOff();
   scene.Box->SetPosition(0.25, 0, 0); // a prop moved: every map again, not timed
   scene.Window->Render();
-  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, baker->GetLightMaps().at(0).NumberOfCascades);
+  EXPECT_EQ(
+    baker->GetLastFrameStatistics().CascadesRendered, baker->GetLightMaps().at(0).NumberOfCascades);
   EXPECT_EQ(baker->GetLastFrameStatistics().MapSeconds, 0.0);
   EXPECT_EQ(baker->GetLastFrameStatistics().GetCascadeSeconds(0), 0.0);
 }
@@ -247,7 +248,8 @@ TEST(Passes, NonSquareWindowKeepsTheShadowInPlace)
     for (int x = 0; x < 300; ++x)
       for (int c = 0; c < 3; ++c)
       {
-        crop->SetScalarComponentFromDouble(x, y, 0, c, wd->GetScalarComponentAsDouble(x + 300, y, 0, c));
+        crop->SetScalarComponentFromDouble(
+          x, y, 0, c, wd->GetScalarComponentAsDouble(x + 300, y, 0, c));
         cropPlain->SetScalarComponentFromDouble(
           x, y, 0, c, wdPlain->GetScalarComponentAsDouble(x + 300, y, 0, c));
       }

@@ -63,7 +63,8 @@ TEST(Passes, CastersOutsideACascadeAreNotDrawnIntoIt)
   plane->SetOrigin(-10, 0, -70);
   plane->SetPoint1(10, 0, -70);
   plane->SetPoint2(-10, 0, 10);
-  vtkPolyDataMapper::SafeDownCast(scene.Ground->GetMapper())->SetInputConnection(plane->GetOutputPort());
+  vtkPolyDataMapper::SafeDownCast(scene.Ground->GetMapper())
+    ->SetInputConnection(plane->GetOutputPort());
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->SetNumberOfCascades(3);
@@ -90,34 +91,42 @@ TEST(Passes, CastersThatShadowNothingAreLeftOutOfTheMaps)
   ASSERT_GT(baker->GetLastFrameStatistics().CascadesRendered, 0);
   // The plane (planar: it cannot shadow itself; the box floats above it) is left out of every
   // cascade, the box is drawn.
-  EXPECT_GE(baker->GetLastFrameStatistics().CastersWithoutReceivers, 1); // where the box reaches a cascade
-  EXPECT_EQ(baker->GetLastFrameStatistics().PropsDrawn, baker->GetLastFrameStatistics().CascadesRendered);
+  EXPECT_GE(
+    baker->GetLastFrameStatistics().CastersWithoutReceivers, 1); // where the box reaches a cascade
+  EXPECT_EQ(
+    baker->GetLastFrameStatistics().PropsDrawn, baker->GetLastFrameStatistics().CascadesRendered);
   EXPECT_GT(DarkenedPixels(without, plain), 800);
   // The same image as with the plane drawn into the maps.
   baker->CullCastersWithoutReceiversOff();
   auto with = scene.Render();
   EXPECT_EQ(baker->GetLastFrameStatistics().CastersWithoutReceivers, 0);
-  EXPECT_EQ(baker->GetLastFrameStatistics().PropsDrawn, 2 * baker->GetLastFrameStatistics().CascadesRendered);
+  EXPECT_EQ(baker->GetLastFrameStatistics().PropsDrawn,
+    2 * baker->GetLastFrameStatistics().CascadesRendered);
   EXPECT_LE(csmTest::DifferingPixels(without, with, 8), 20);
   baker->CullCastersWithoutReceiversOn();
   // The box reaching through the plane: the plane shadows its lower part, so it is drawn.
   vtkNew<vtkCubeSource> deep;
   deep->SetBounds(-1, 1, -2, 4, -1, 1);
-  vtkPolyDataMapper::SafeDownCast(scene.Box->GetMapper())->SetInputConnection(deep->GetOutputPort());
+  vtkPolyDataMapper::SafeDownCast(scene.Box->GetMapper())
+    ->SetInputConnection(deep->GetOutputPort());
   scene.Render();
   EXPECT_EQ(baker->GetLastFrameStatistics().CastersWithoutReceivers, 0);
   // Light from below the plane: the plane shadows the box and is drawn; the box (convex, over
   // nothing else along this light) is left out.
   vtkNew<vtkCubeSource> above;
   above->SetBounds(-1, 1, 2, 4, -1, 1);
-  vtkPolyDataMapper::SafeDownCast(scene.Box->GetMapper())->SetInputConnection(above->GetOutputPort());
+  vtkPolyDataMapper::SafeDownCast(scene.Box->GetMapper())
+    ->SetInputConnection(above->GetOutputPort());
   scene.Render();
-  EXPECT_EQ(baker->GetLastFrameStatistics().CastersWithoutReceivers, baker->GetLastFrameStatistics().CascadesRendered);
+  EXPECT_EQ(baker->GetLastFrameStatistics().CastersWithoutReceivers,
+    baker->GetLastFrameStatistics().CascadesRendered);
   scene.Light->SetPosition(0, -10, 0);
   scene.Render();
   EXPECT_GT(baker->GetLastFrameStatistics().CascadesRendered, 0);
-  EXPECT_GE(baker->GetLastFrameStatistics().CastersWithoutReceivers, 1); // where the box reaches a cascade
-  EXPECT_EQ(baker->GetLastFrameStatistics().PropsDrawn, baker->GetLastFrameStatistics().CascadesRendered);
+  EXPECT_GE(
+    baker->GetLastFrameStatistics().CastersWithoutReceivers, 1); // where the box reaches a cascade
+  EXPECT_EQ(
+    baker->GetLastFrameStatistics().PropsDrawn, baker->GetLastFrameStatistics().CascadesRendered);
   // A spot light: every caster is drawn.
   scene.Light->SetPosition(0, 10, 0);
   scene.Light->SetPositional(true);
@@ -145,7 +154,8 @@ TEST(Passes, ClosedSurfacesDrawnFromBehindTakeAShareOfTheBias)
   EXPECT_TRUE(baker->DrawsFromBehind(scene.Box));
   vtkNew<vtkCubeSource> slab;
   slab->SetBounds(-10, 10, -0.5, 0, -10, 10);
-  vtkPolyDataMapper::SafeDownCast(scene.Ground->GetMapper())->SetInputConnection(slab->GetOutputPort());
+  vtkPolyDataMapper::SafeDownCast(scene.Ground->GetMapper())
+    ->SetInputConnection(slab->GetOutputPort());
   vtkSmartPointer<vtkRenderPass> chain = scene.Renderer->GetPass();
   scene.Renderer->SetPass(nullptr);
   plain = scene.Render();
@@ -196,8 +206,10 @@ MapDepths DepthsInMap(vtkRenderWindow* window, const vtkCascadedShadowMapBakerPa
     window->MakeCurrent();
     maps.Atlas->Bind();
     glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-    const int x = static_cast<int>((maps.Tile[c][0] + (0.5 * ndc[0] + 0.5) * maps.Tile[c][2]) * width);
-    const int y = static_cast<int>((maps.Tile[c][1] + (0.5 * ndc[1] + 0.5) * maps.Tile[c][3]) * height);
+    const int x =
+      static_cast<int>((maps.Tile[c][0] + (0.5 * ndc[0] + 0.5) * maps.Tile[c][2]) * width);
+    const int y =
+      static_cast<int>((maps.Tile[c][1] + (0.5 * ndc[1] + 0.5) * maps.Tile[c][3]) * height);
     result.Held = depth[static_cast<size_t>(y) * width + x];
     for (int i = 0; i < 2; ++i)
     {
@@ -260,7 +272,8 @@ TEST(Passes, ClosedCastersCastTheSameShadowsFromTheirExitLayer)
 
     baker->CullClosedCastersOn();
     const long exitLayer = DarkenedPixels(scene.Render(), plain);
-    EXPECT_EQ(baker->GetLastFrameStatistics().ClosedCasters, 1); // the box; not the plane, not the sheet
+    EXPECT_EQ(
+      baker->GetLastFrameStatistics().ClosedCasters, 1); // the box; not the plane, not the sheet
     const MapDepths after = DepthsInMap(scene.Window, baker->GetLightMaps()[0], centre, faces);
 
     EXPECT_GT(bothSides, 1200); // the box's and the sheet's shadows
@@ -393,7 +406,8 @@ TEST(Passes, ScreenSizedCastersGetNoSceneFittedMap)
   BoxOverPlane scene;
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
-  auto lastFitted = [&]() {
+  auto lastFitted = [&]()
+  {
     return baker->GetPlanner()->GetCascadeSceneFitted(
       baker->GetLightMaps().at(0).NumberOfCascades - 1);
   };
@@ -562,8 +576,8 @@ TEST(Passes, SplatsGlyphsAndCompositeDataCastShadows)
   vtkNew<vtkCompositePolyDataMapper2> composite;
   composite->SetInputDataObject(blocks);
 
-  const std::pair<const char*, vtkMapper*> mappers[] = { { "splats", splats },
-    { "glyphs", glyphs }, { "composite", composite } };
+  const std::pair<const char*, vtkMapper*> mappers[] = { { "splats", splats }, { "glyphs", glyphs },
+    { "composite", composite } };
   for (const auto& named : mappers)
   {
     BoxOverPlane scene;

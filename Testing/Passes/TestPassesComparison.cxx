@@ -38,7 +38,7 @@ TEST(Passes, MapCoordinatesFromTheVerticesGiveTheSameShadows)
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   EXPECT_FALSE(pass->GetMapCoordinatesFromVertices()); // the default
-  baker->AdaptiveCascadesOff(); // the counts set here
+  baker->AdaptiveCascadesOff();                        // the counts set here
   for (int cascades : { 2, 3, vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES })
   {
     baker->SetNumberOfCascades(cascades);
@@ -75,7 +75,7 @@ TEST(Passes, MapCoordinatesFromTheVerticesGiveTheSameShadows)
   twoPass->GetShadowMapBakerPass()->SetNumberOfCascades(
     vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES);
   two.Render();
-  EXPECT_EQ(twoPass->GetLastMapCoordinateVaryings(), 4); // two lights of at most four used
+  EXPECT_EQ(twoPass->GetLastMapCoordinateVaryings(), 4);   // two lights of at most four used
   twoPass->GetShadowMapBakerPass()->AdaptiveCascadesOff(); // eight each
   auto both = two.Render();
   ASSERT_EQ(twoPass->GetShadowMapBakerPass()->GetLightMaps().size(), 2u);
@@ -254,7 +254,8 @@ TEST(Passes, CameraSpaceSpotLightShadesLikeItsStandardMap)
   EXPECT_GT(standard, 500);
   EXPECT_NEAR(cssm, standard, 0.05 * standard);
   std::printf("spot light: standard map %ld darkened pixels, camera space map %ld; %ld values "
-              "differ\n", standard, cssm, static_cast<long>(DifferingValues(standardImage, cssmImage, 8)));
+              "differ\n",
+    standard, cssm, static_cast<long>(DifferingValues(standardImage, cssmImage, 8)));
   // The light in the view (in front of the camera, facing the ground): the standard map.
   scene.Light->SetPosition(0, 4, 4);
   baker->CameraSpaceOff();

@@ -122,7 +122,8 @@ TEST(Passes, MoreLightsThanTextureUnits)
   vtkNew<vtkCallbackCommand> countWarnings;
   int warnings = 0;
   countWarnings->SetClientData(&warnings);
-  countWarnings->SetCallback([](vtkObject*, unsigned long, void* n, void*) { ++*static_cast<int*>(n); });
+  countWarnings->SetCallback(
+    [](vtkObject*, unsigned long, void* n, void*) { ++*static_cast<int*>(n); });
   baker->AddObserver(vtkCommand::WarningEvent, countWarnings);
   auto shadowed = scene.Render();
   scene.Renderer->GetActiveCamera()->Azimuth(5);

@@ -128,7 +128,8 @@ TEST(Passes, SceneFittedMapServesEveryViewOfAnOrbit)
     const int last = maps.NumberOfCascades - 1;
     EXPECT_TRUE(baker->GetPlanner()->GetCascadeSceneFitted(last)) << "frame " << frame;
     kept += baker->GetLastFrameStatistics().CascadesKept;
-    EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, last) << "frame " << frame; // only the others
+    EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, last)
+      << "frame " << frame; // only the others
     // As a pass that plans this view afresh.
     BoxOverPlane other;
     other.Renderer->GetActiveCamera()->DeepCopy(scene.Renderer->GetActiveCamera());
@@ -149,8 +150,8 @@ TEST(Passes, SceneFittedMapServesEveryViewOfAnOrbit)
   scene.Frame();
   scene.Renderer->GetActiveCamera()->Azimuth(35.0);
   scene.Frame();
-  EXPECT_FALSE(baker->GetPlanner()->GetCascadeSceneFitted(
-    baker->GetLightMaps().at(0).NumberOfCascades - 1));
+  EXPECT_FALSE(
+    baker->GetPlanner()->GetCascadeSceneFitted(baker->GetLightMaps().at(0).NumberOfCascades - 1));
   EXPECT_GE(baker->GetLastFrameStatistics().CascadesRendered, 1);
 }
 
@@ -162,7 +163,8 @@ TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
   auto plain = scene.Render();
   // Pixels in shadow: less than half as bright as without shadows (the penumbra of a texel-space
   // filter widens on screen with the texels, the shadow's extent does not).
-  auto halfDark = [&plain](vtkImageData* shadowed) {
+  auto halfDark = [&plain](vtkImageData* shadowed)
+  {
     auto* a = vtkUnsignedCharArray::SafeDownCast(shadowed->GetPointData()->GetScalars());
     auto* b = vtkUnsignedCharArray::SafeDownCast(plain->GetPointData()->GetScalars());
     long n = 0;
@@ -210,8 +212,8 @@ TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
     EXPECT_LE(planner->GetCascadeMaximumAliasing(c) * 240 / std::max(r[0], r[1]), 1.0);
     texels += static_cast<long>(r[0]) * r[1];
   }
-  std::printf("shadowed pixels: full maps %ld, maps from need %ld (%.1f %% of the texels)\n",
-    full, needed, 100.0 * texels / (2.0 * baker->GetResolution() * baker->GetResolution()));
+  std::printf("shadowed pixels: full maps %ld, maps from need %ld (%.1f %% of the texels)\n", full,
+    needed, 100.0 * texels / (2.0 * baker->GetResolution() * baker->GetResolution()));
   EXPECT_GT(full, 800);
   EXPECT_NEAR(static_cast<double>(needed), static_cast<double>(full), 0.03 * full);
   // A larger window needs more texels (up to the ceiling).
@@ -258,7 +260,7 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
     EXPECT_GE(differing, 0);
     EXPECT_LE(differing, ia->GetNumberOfPoints() / 200) << "frame " << frame;
   }
-  EXPECT_GT(kept, 0);         // the point of it: maps were kept
+  EXPECT_GT(kept, 0);            // the point of it: maps were kept
   EXPECT_EQ(rendered, cascades); // the reference re-rendered every cascade every frame
   // While dragging, the maps have at most InteractiveResolution texels a side.
   vtkCascadedShadowMapBakerPass* baker = a->GetShadowMapBakerPass();
@@ -367,7 +369,8 @@ TEST(Passes, AMapReRenderedBesideKeptOnesHoldsOnlyItsOwnCasters)
     keep.Frame();
     fresh.Frame();
     vtkCascadedShadowMapBakerPass* baker = a->GetShadowMapBakerPass();
-    if (baker->GetLastFrameStatistics().CascadesKept == 0 || baker->GetLastFrameStatistics().CascadesRendered == 0)
+    if (baker->GetLastFrameStatistics().CascadesKept == 0 ||
+      baker->GetLastFrameStatistics().CascadesRendered == 0)
     {
       continue; // not a frame with both
     }
@@ -426,16 +429,16 @@ TEST(Passes, MoreThanFourCascadesOnlyInStillFrames)
   }
   std::printf("still: %d cascades (%d turned), tiles %d x %d\n", maps.NumberOfCascades, turned,
     maps.Resolution[0], maps.Resolution[1]);
-  EXPECT_EQ(pass->GetLastMapCoordinateVaryings(),
-    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES);
+  EXPECT_EQ(
+    pass->GetLastMapCoordinateVaryings(), vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES);
   const vtkMTimeType shaders = pass->GetShaderStageMTime();
   scene.Window->SetDesiredUpdateRate(15.0); // as vtkRenderWindowInteractor while dragging
   const long dragged = DarkenedPixels(scene.Render(), plain);
   EXPECT_LE(baker->GetLightMaps().at(0).NumberOfCascades, 4);
   // The count changes with the view: the shaders keep the eight cascades' coordinates they
   // were built with (a new variant would rebuild every shader).
-  EXPECT_EQ(pass->GetLastMapCoordinateVaryings(),
-    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES);
+  EXPECT_EQ(
+    pass->GetLastMapCoordinateVaryings(), vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES);
   EXPECT_EQ(pass->GetShaderStageMTime(), shaders);
   EXPECT_GT(still, 200);
   EXPECT_NEAR(dragged, still, 0.1 * still);

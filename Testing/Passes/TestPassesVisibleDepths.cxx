@@ -33,8 +33,8 @@ using csmTest::DifferingValues;
 namespace
 {
 /// An actor of a box with the given bounds, in grey.
-vtkSmartPointer<vtkActor> BoxActor(double xmin, double xmax, double ymin, double ymax,
-  double zmin, double zmax)
+vtkSmartPointer<vtkActor> BoxActor(
+  double xmin, double xmax, double ymin, double ymax, double zmin, double zmax)
 {
   vtkNew<vtkCubeSource> cube;
   cube->SetBounds(xmin, xmax, ymin, ymax, zmin, zmax);
@@ -154,7 +154,8 @@ TEST(Passes, SomethingNearerComingIntoViewIsShadowedInThatFrame)
   auto plain = reference.Render();
   vtkCascadedShadowMapPass::UseShadowsOn(reference.Renderer);
   auto image = scene.Frame();
-  const std::vector<char> nearer = NearerThan(scene.Window, scene.Renderer->GetActiveCamera(), fittedNear);
+  const std::vector<char> nearer =
+    NearerThan(scene.Window, scene.Renderer->GetActiveCamera(), fittedNear);
   EXPECT_TRUE(baker->GetLastFrameStatistics().VisibleDepthsUsed);
   EXPECT_LT(baker->GetLightMaps()[0].SplitNear, 0.8 * fittedNear);
   auto fresh = reference.Frame();

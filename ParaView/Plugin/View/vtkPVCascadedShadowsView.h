@@ -21,7 +21,7 @@
 #ifndef vtkPVCascadedShadowsView_h
 #define vtkPVCascadedShadowsView_h
 
-#include "vtkNew.h" // for members
+#include "vtkNew.h"                     // for members
 #include "vtkPVCascadedShadowsModule.h" // for export macro
 #include "vtkPVRenderView.h"
 #include "vtkSmartPointer.h" // for members
@@ -84,7 +84,7 @@ protected:
   int ShadowedLights = KEY_LIGHT;
   vtkNew<vtkLightCollection> FillAndBackLights; // the light kit's camera lights but the key light
   vtkSmartPointer<vtkCascadedShadowMapPass> ShadowPass;
-  vtkNew<vtkSequencePass> ShadowSequence; // { baker, shadow pass }
+  vtkNew<vtkSequencePass> ShadowSequence;  // { baker, shadow pass }
   vtkRenderPass* SequencedBaker = nullptr; // the baker in ShadowSequence (compared only)
 
 private:
