@@ -182,7 +182,11 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   settings.split.lambda = this->Lambda;
   settings.split.alpha = this->Alpha;
   settings.depthClamp = this->DepthClamp;
-  settings.sceneFitted = this->SceneFittedCascades;
+  // A map fixed in the world pays only while the light stays: not for a light that follows
+  // the camera (a camera light or headlight moves with every view).
+  const vtkLight* vtkLightOf = static_cast<const vtkLight*>(light);
+  settings.sceneFitted = this->SceneFittedCascades &&
+    (!vtkLightOf || const_cast<vtkLight*>(vtkLightOf)->LightTypeIsSceneLight());
   settings.stableOrthographic = true; // with GetCascadeMatrix(..., resolution)'s snap
   const csm::Bounds scene = toBounds(bounds);
   const glm::dvec3 direction(lightDirection[0], lightDirection[1], lightDirection[2]);
@@ -267,7 +271,8 @@ void vtkCascadedShadowMapPlanner::Internals::NoteFocus(
 void vtkCascadedShadowMapPlanner::WarnFocusClamped()
 {
   // Once per focus: the view depth it can reach changes with every camera move.
-  if (!this->Internal->FocusClamped.empty() && this->CameraSpaceFocus != this->Internal->WarnedFocus)
+  if (!this->Internal->FocusClamped.empty() &&
+    this->CameraSpaceFocus != this->Internal->WarnedFocus)
   {
     this->Internal->WarnedFocus = this->CameraSpaceFocus;
     vtkWarningMacro(<< this->Internal->FocusClamped);
@@ -440,10 +445,10 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
     this->Internal->Camera = cam;
     this->Internal->wsLightDirection = glm::dvec3(direction[0], direction[1], direction[2]);
     this->Internal->Directional = false;
-    this->Internal->Setup = csm::computeSpotSetup(cam,
-      glm::dvec3(position[0], position[1], position[2]),
-      glm::dvec3(direction[0], direction[1], direction[2]), light->GetConeAngle(),
-      bounds ? &scene : nullptr, this->DepthClamp);
+    this->Internal->Setup =
+      csm::computeSpotSetup(cam, glm::dvec3(position[0], position[1], position[2]),
+        glm::dvec3(direction[0], direction[1], direction[2]), light->GetConeAngle(),
+        bounds ? &scene : nullptr, this->DepthClamp);
     csm::ShadowSetup& setup = this->Internal->Setup;
     if (this->CameraSpace && this->DepthClamp && !cam.parallel && setup.status == csm::Status::Ok &&
       setup.cascades.size() == 1)
@@ -453,10 +458,10 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
       csm::Camera fitted = cam;
       fitted.vsNear = setup.cascades[0].vsNear;
       fitted.vsFar = setup.cascades[0].vsFar;
-      const csm::CameraSpaceMap map = csm::computeCameraSpaceSpot(fitted,
-        glm::dvec3(position[0], position[1], position[2]),
-        this->CameraSpaceFocus > 0.0 ? this->CameraSpaceFocus
-                                     : std::sqrt(fitted.vsNear * fitted.vsFar));
+      const csm::CameraSpaceMap map =
+        csm::computeCameraSpaceSpot(fitted, glm::dvec3(position[0], position[1], position[2]),
+          this->CameraSpaceFocus > 0.0 ? this->CameraSpaceFocus
+                                       : std::sqrt(fitted.vsNear * fitted.vsFar));
       if (map.status == csm::Status::Ok)
       {
         setup.cascades[0].wsToClip = map.wsToClip;
@@ -475,8 +480,8 @@ void vtkCascadedShadowMapPlanner::SetVisibleDepths(
   csm::WindowDepthRange window;
   window.min = windowMin;
   window.max = windowMax;
-  this->Internal->Visible = toCamera(measuredBy, aspect, cam) ? csm::viewDepthRange(window, cam)
-                                                               : csm::DepthRange();
+  this->Internal->Visible =
+    toCamera(measuredBy, aspect, cam) ? csm::viewDepthRange(window, cam) : csm::DepthRange();
   this->Internal->VisibleCamera = cam;
 }
 
@@ -490,8 +495,8 @@ bool vtkCascadedShadowMapPlanner::GetVisibleDepthsUsed() const
   return this->Internal->VisibleUsed;
 }
 
-bool vtkCascadedShadowMapPlanner::DepthsHeld(vtkCamera* camera, double aspect,
-  double coveredNear, double coveredFar, double windowMin, double windowMax)
+bool vtkCascadedShadowMapPlanner::DepthsHeld(vtkCamera* camera, double aspect, double coveredNear,
+  double coveredFar, double windowMin, double windowMax)
 {
   csm::Camera cam;
   if (!toCamera(camera, aspect, cam))
@@ -744,8 +749,8 @@ void vtkCascadedShadowMapPlanner::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "NumberOfCascades: " << this->NumberOfCascades << "\n";
   os << indent << "WarpMode: " << csm::toString(static_cast<csm::WarpMode>(this->WarpMode)) << "\n";
-  os << indent << "SplitScheme: "
-     << csm::toString(static_cast<csm::SplitScheme>(this->SplitScheme)) << "\n";
+  os << indent << "SplitScheme: " << csm::toString(static_cast<csm::SplitScheme>(this->SplitScheme))
+     << "\n";
   os << indent << "Lambda: " << this->Lambda << "\n";
   os << indent << "Alpha: " << this->Alpha << "\n";
   os << indent << "DepthClamp: " << (this->DepthClamp ? "on" : "off") << "\n";

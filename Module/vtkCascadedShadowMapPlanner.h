@@ -16,8 +16,8 @@
 #ifndef vtkCascadedShadowMapPlanner_h
 #define vtkCascadedShadowMapPlanner_h
 
+#include "vtkCascadedShadowsSetMacro.h" // for vtkSetFiniteClampMacro
 #include "vtkObject.h"
-#include "vtkCascadedShadowsSetMacro.h"     // for vtkSetFiniteClampMacro
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 
 #include <memory> // for std::unique_ptr
@@ -107,8 +107,8 @@ public:
    * (csm::ceilingsForCount: one scene-fitted cascade gets the whole atlas, others a tile) meets
    * ErrorTarget, the smallest, or with caster loads (AddCasterLoad()) the one that costs least
    * to render (passes and texels); when none does, more cascades only
-   * while each cuts the predicted error to csm::kCountHysteresis; changed with hysteresis from the last
-   * frame's (csm::computeShadowSetupForError; with the adaptive split scheme each count takes
+   * while each cuts the predicted error to csm::kCountHysteresis; changed with hysteresis from the
+   * last frame's (csm::computeShadowSetupForError; with the adaptive split scheme each count takes
    * Eq. 19's splits or the log splits, whichever predicts the smaller worst error). Needs the
    * image height and the largest map
    * resolution (see Plan()). Default on: against two fixed cascades, the towers' worst error
@@ -201,7 +201,8 @@ public:
    * (csm::sceneFit) where that meets ErrorTarget: its matrix depends only on the light and
    * the boxes, so the baker keeps its map while they stay (an orbit around a model draws it
    * once), at all the texels of its tile. A view that needs more (close to the scene, a long
-   * depth range) gets the cascade fitted to it. Default on.
+   * depth range) gets the cascade fitted to it, and so does a light that follows the camera (a
+   * camera light or headlight: its map would be drawn again every frame). Default on.
    */
   vtkSetMacro(SceneFittedCascades, bool);
   vtkGetMacro(SceneFittedCascades, bool);
@@ -350,8 +351,8 @@ public:
    * +infinity when the kept map does not cover that body with a border of marginTexels texels
    * of a map of the given resolution.
    */
-  double CompareKeptMap(int i, const double keptWorldToClip[16], double marginTexels,
-    int resolution) const;
+  double CompareKeptMap(
+    int i, const double keptWorldToClip[16], double marginTexels, int resolution) const;
 
   /// Did the camera take a small step from `before` (a smooth path: csm::smallCameraStep),
   /// measured against a view depth (the far end of a cascade)?
@@ -360,8 +361,8 @@ public:
   /// Does any part of a world box (xmin, xmax, ymin, ymax, zmin, zmax) reach the light volume of
   /// a cascade (row-major world -> light clip)? With depthClamp, what is nearer than the near
   /// plane counts (clamped onto it).
-  static bool CascadeReachesBox(const double worldToClip[16], const double bounds[6],
-    bool depthClamp);
+  static bool CascadeReachesBox(
+    const double worldToClip[16], const double bounds[6], bool depthClamp);
   /// Can a caster inside casterBounds shadow a point inside receiverBounds (world boxes) under a
   /// directional light travelling along lightDirection (csm::sweptBoxReachesBox: the caster box
   /// swept along the light by more than minimumDistance meets the receiver box)? True for bad
@@ -369,9 +370,10 @@ public:
   static bool CasterBoxReachesBox(const double lightDirection[3], const double casterBounds[6],
     const double receiverBounds[6], double minimumDistance);
   /// The cascade a view depth falls in, as the shadow lookup selects it (before it falls back to
-  /// the next map covering a point a kept map misses), or -1 outside [splitNear, splitFar[count-1]].
-  static int GetCascadeAtDepth(double viewDepth, double splitNear, const double splitFar[],
-    int count);
+  /// the next map covering a point a kept map misses), or -1 outside [splitNear,
+  /// splitFar[count-1]].
+  static int GetCascadeAtDepth(
+    double viewDepth, double splitNear, const double splitFar[], int count);
 
   /// Why the last plan has no cascades (empty when it has some).
   const char* GetLastMessage() const;

@@ -1,8 +1,13 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # The Debian package: set up and build as the other scripts do, then CPack writes
-# build/vtk-cascaded-shadows_<version>_<arch>.deb (install it with `apt install ./<file>.deb`).
+# build-deb/vtk-cascaded-shadows_<version>_<arch>.deb (install it with `apt install ./<file>.deb`).
 set -euo pipefail
+# A build of its own, configured for /usr: GNUInstallDirs then puts the libraries in Debian's
+# multiarch directory (lib/<triplet>) and the Python package in /usr/lib/python3/dist-packages.
+ROOT_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+export CSM_BUILD_DIR="${CSM_BUILD_DIR:-$ROOT_DIR/build-deb}"
+export CSM_CMAKE_ARGS="-DCMAKE_INSTALL_PREFIX=/usr ${CSM_CMAKE_ARGS:-}"
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 cd "$BUILD"
 cpack -G DEB > "$BUILD/logs/cpack.log" 2>&1 || { tail -20 "$BUILD/logs/cpack.log"; exit 1; }

@@ -23,6 +23,7 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
+#include "vtkRenderPass.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 
@@ -45,9 +46,9 @@ struct WalkOptions
   int Size[2] = { 640, 480 };
   bool CameraLight = false;
   bool PerFrame = false;
-  bool Variants = false; ///< also ours with the cascades fitted to the boxes
+  bool Variants = false;      ///< also ours with the cascades fitted to the boxes
   std::vector<double> Slacks; ///< also ours with these MapSlack values
-  bool Interactive = false; ///< frames as while the user drags (the interactor's update rate)
+  bool Interactive = false;   ///< frames as while the user drags (the interactor's update rate)
   std::string Out = "walk.csv";
   std::string Engine;
 };
@@ -128,10 +129,11 @@ std::vector<Pose> Path(const csmScenes::Scene& scene, double closeness, bool orb
     eye[c] = f[c] + closeness * (scene.CameraPosition[c] - f[c]);
   }
   const double* b = scene.Bounds;
-  const double diagonal = std::sqrt((b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) +
-    (b[5] - b[4]) * (b[5] - b[4]));
+  const double diagonal = std::sqrt(
+    (b[1] - b[0]) * (b[1] - b[0]) + (b[3] - b[2]) * (b[3] - b[2]) + (b[5] - b[4]) * (b[5] - b[4]));
   double toward[3] = { f[0] - eye[0], f[1] - eye[1], f[2] - eye[2] };
-  const double distance = std::sqrt(toward[0] * toward[0] + toward[1] * toward[1] + toward[2] * toward[2]);
+  const double distance =
+    std::sqrt(toward[0] * toward[0] + toward[1] * toward[1] + toward[2] * toward[2]);
   // (A path that would pass the focal point takes smaller steps.)
   const double step = std::min(0.01 * diagonal, 0.8 * distance / std::max(frames, 1));
   std::vector<Pose> poses;
@@ -183,7 +185,8 @@ double median(std::vector<double> v)
 
 /// The light of a walk: the scene's key light (or at gammaDeg from the first view's direction),
 /// as a scene light or a camera light (then fixed to the camera, as ParaView's key light is).
-void SetLight(vtkLight* light, vtkCamera* camera, const Pose& first, double gammaDeg, bool cameraLight)
+void SetLight(
+  vtkLight* light, vtkCamera* camera, const Pose& first, double gammaDeg, bool cameraLight)
 {
   double travel[3] = { -0.45, -1.0, -0.35 };
   if (gammaDeg >= 0.0)
@@ -199,7 +202,8 @@ void SetLight(vtkLight* light, vtkCamera* camera, const Pose& first, double gamm
       dir[c] /= l;
       upOrtho[c] = up[c] - along * dir[c];
     }
-    const double lu = std::sqrt(upOrtho[0] * upOrtho[0] + upOrtho[1] * upOrtho[1] + upOrtho[2] * upOrtho[2]);
+    const double lu =
+      std::sqrt(upOrtho[0] * upOrtho[0] + upOrtho[1] * upOrtho[1] + upOrtho[2] * upOrtho[2]);
     const double r = gammaDeg * M_PI / 180.0;
     for (int c = 0; c < 3; ++c)
     {
@@ -251,7 +255,8 @@ WalkOptions ParseWalk(int argc, char** argv)
         o.Slacks.push_back(std::atof(value.c_str()));
     }
     else if ((f == "--scenes" || f == "--frames" || f == "--rounds" || f == "--out" ||
-               f == "--size") && !hasValue)
+               f == "--size") &&
+      !hasValue)
       walkFail(f + " needs a value");
     else if (f == "--scenes")
     {
@@ -401,8 +406,8 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
             const auto start = std::chrono::steady_clock::now();
             window->Render();
             window->WaitForCompletion();
-            const double ms =
-              1000.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double ms = 1000.0 *
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (i < 1)
             {
               continue; // the first frame of a path builds the shaders and the first maps
@@ -418,8 +423,10 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
               if (o.PerFrame)
                 std::printf("    %s %s frame %d: %.1f ms, maps %d rendered %d kept, %.2f M texels, "
                             "%.0f k cells, near %.3g\n",
-                  name.c_str(), pathName.c_str(), i, ms, baker->GetLastFrameStatistics().CascadesRendered,
-                  baker->GetLastFrameStatistics().CascadesKept, 1e-6 * baker->GetLastFrameStatistics().TexelsRendered,
+                  name.c_str(), pathName.c_str(), i, ms,
+                  baker->GetLastFrameStatistics().CascadesRendered,
+                  baker->GetLastFrameStatistics().CascadesKept,
+                  1e-6 * baker->GetLastFrameStatistics().TexelsRendered,
                   1e-3 * baker->GetLastFrameStatistics().CellsDrawn,
                   baker->GetLightMaps().empty() ? 0.0 : baker->GetLightMaps()[0].SplitNear);
               if (o.PerFrame && !baker->GetLightMaps().empty())
@@ -427,11 +434,16 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
                 const auto& maps = baker->GetLightMaps()[0];
                 for (int c = 0; c < maps.NumberOfCascades; ++c)
                   std::printf("      map %d: %dx%d of %dx%d, to depth %.3g%s\n", c,
-                    maps.CascadeResolution[c][0], maps.CascadeResolution[c][1],
-                    maps.Resolution[0], maps.Resolution[1], maps.SplitFar[c],
+                    maps.CascadeResolution[c][0], maps.CascadeResolution[c][1], maps.Resolution[0],
+                    maps.Resolution[1], maps.SplitFar[c],
                     maps.SceneFitted[c] ? " (scene-fitted)" : "");
               }
             }
+          }
+          // (Each pass chain gives back its GL objects before it goes.)
+          if (vtkRenderPass* chain = renderer->GetPass())
+          {
+            chain->ReleaseGraphicsResources(window);
           }
           renderer->SetPass(nullptr);
         }
@@ -440,17 +452,18 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
       for (const Technique& t : techniques)
       {
         const double frames = std::max<long long>(t.Frames, 1);
-        std::printf("  %-6s %-7s %-12s %7.1f ms  %5.2fx vtk default  %5.2fx unshadowed", name.c_str(),
-          pathName.c_str(), t.Label.c_str(), median(t.Ms), median(t.Ms) / vtk, median(t.Ms) / none);
+        std::printf("  %-6s %-7s %-12s %7.1f ms  %5.2fx vtk default  %5.2fx unshadowed",
+          name.c_str(), pathName.c_str(), t.Label.c_str(), median(t.Ms), median(t.Ms) / vtk,
+          median(t.Ms) / none);
         if (t.Shadow.Technique == "csm")
           std::printf("  maps %.2f rendered %.2f kept, %.2f M texels, %.0f k cells a frame",
             t.MapsRendered / frames, t.MapsKept / frames, 1e-6 * t.Texels / frames,
             1e-3 * t.Cells / frames);
         std::printf("\n");
         csv << name << "," << pathName << "," << (o.CameraLight ? "camera" : "scene") << ","
-            << t.Label << "," << median(t.Ms) << "," << t.Frames << ","
-            << t.MapsRendered / frames << "," << t.MapsKept / frames << "," << t.Texels / frames
-            << "," << t.Cells / frames << "\n";
+            << t.Label << "," << median(t.Ms) << "," << t.Frames << "," << t.MapsRendered / frames
+            << "," << t.MapsKept / frames << "," << t.Texels / frames << "," << t.Cells / frames
+            << "\n";
       }
       std::fflush(stdout);
     }
