@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # GLSL lives in its own files and is embedded at build time (Module/CMakeLists.txt; the
 # ParaView plugin builds the same module file).
-set(csm_glsl_files csmShadowFS csmShadowVS csmCaster csmCasterLineGS)
+set(csm_glsl_files csmShadowFS csmCaster csmCasterLineGS)
 
 # csm_encode_glsl(<Module dir> <sources var> <headers var>)
 function(csm_encode_glsl module_dir sources_var headers_var)

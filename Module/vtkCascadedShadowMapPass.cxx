@@ -24,7 +24,6 @@
 #include "vtkTextureObject.h"
 
 #include "csmShadowFS.h" // the GLSL of Module/glsl/csmShadowFS.glsl
-#include "csmShadowVS.h" // the GLSL of Module/glsl/csmShadowVS.glsl
 
 #include <algorithm>
 #include <sstream>
@@ -74,7 +73,6 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
 {
   vtkOpenGLClearErrorMacro();
   this->NumberOfRenderedProps = 0;
-  this->LastMapCoordinateVaryings = 0;
   vtkRenderer* renderer = s->GetRenderer();
   this->ClearLights(renderer);
   this->UpdateLightGeometry(renderer);
@@ -172,35 +170,6 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   {
     signature += " radius " + std::to_string(this->PCFSize / 2);
   }
-  // Map coordinates from the vertices: for as many cascades as fill the atlas with full maps
-  // (csm::kAtlasFullMaps), or as many as the baker may plan while a light uses more. Two
-  // variants, not one per count: AdaptiveCascades changes the count with the view, and a count
-  // compiled in would rebuild every shader; measured, two more varyings cost a vertex-heavy
-  // frame ~2 %, so the up to 8 of NumberOfCascades are compiled in only where they are used.
-  // Once a light has used more than four, the more stay while the baker's NumberOfCascades,
-  // AdaptiveCascades and the shadowed lights stay: the count changes with the view, and a switch
-  // of variant rebuilds every shader (the towers' fly-through: 0.1-0.2 s a switch on llvmpipe).
-  if (this->MapCoordinatesFromVertices)
-  {
-    const int most = baker->GetNumberOfCascades();
-    const int key[3] = { most, baker->GetAdaptiveCascades() ? 1 : 0, static_cast<int>(u.Lights()) };
-    int cascades = std::min(most, csm::kAtlasFullMaps);
-    if (std::equal(key, key + 3, this->VaryingsKey))
-    {
-      cascades = std::max(cascades, this->VaryingsUsed);
-    }
-    std::copy(key, key + 3, this->VaryingsKey);
-    for (int count : u.Count)
-    {
-      cascades = count > cascades ? std::max(most, count) : cascades;
-    }
-    this->VaryingsUsed = cascades;
-    if (u.Lights() * cascades <= static_cast<size_t>(MAXIMUM_MAP_COORDINATE_VARYINGS))
-    {
-      this->LastMapCoordinateVaryings = cascades;
-    }
-  }
-  signature += " varyings " + std::to_string(this->LastMapCoordinateVaryings);
   if (signature != this->ShaderSignature)
   {
     this->ShaderSignature = signature;
@@ -246,25 +215,10 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader
   // Tubes and spheres (VTK's impostors) receive on the surface they show, not on their quad.
   const bool impostor = fragmentShader.find("uniform float ZCalcR") != std::string::npos &&
     fragmentShader.find("normalVCVSOutput") != std::string::npos;
-  // Map coordinates interpolated from the vertices where the vertex shader's outputs reach the
-  // fragment shader directly (no geometry shader: tubes, wide lines) and the fragment's
-  // position is the vertex's (not an impostor's surface).
-  const size_t vertexMain = vertexShader.find("void main");
-  const size_t vertexEnd = vertexShader.rfind('}');
-  const int varyings = this->LastMapCoordinateVaryings;
-  const bool fromVertices = varyings > 0 && !impostor && geometryShader.empty() &&
-    vertexMain != std::string::npos && vertexEnd != std::string::npos && vertexEnd > vertexMain &&
-    vertexShader.find("vertexVCVSOutput =", vertexMain) != std::string::npos;
   std::ostringstream common;
   // The limits and option values the GLSL uses, from their one definition here.
   common << "#define CSM_LIGHTS " << this->Uniforms.Lights() << "\n"
          << "#define CSM_MAX_CASCADES " << kMaxCascades << "\n";
-  if (fromVertices)
-  {
-    common << "#define CSM_MAP_VARYINGS " << varyings << "\n";
-    vertexShader.insert(vertexEnd, "  csmMapCoordinates(vertexVCVSOutput);\n");
-    vertexShader.insert(vertexMain, common.str() + csmShadowVS + "\n");
-  }
   std::ostringstream decl;
   decl << common.str() << "#define CSM_KERNEL_GRID " << KERNEL_GRID << "\n"
        << "#define CSM_KERNEL_JITTERED " << KERNEL_JITTERED << "\n"
@@ -312,12 +266,6 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader
   const std::string reaches = this->DebugMode == DEBUG_OFF ? "df > 0.0" : "true";
   std::ostringstream impl;
   impl << kVertexVC << "\n  vec4 csmDVCdx = dFdx(vertexVC);\n  vec4 csmDVCdy = dFdy(vertexVC);\n";
-  if (fromVertices)
-  {
-    impl << "  vec4 csmMapDx[CSM_LIGHTS * CSM_MAP_VARYINGS];\n"
-            "  vec4 csmMapDy[CSM_LIGHTS * CSM_MAP_VARYINGS];\n"
-            "  csmMapDerivatives(csmMapDx, csmMapDy);\n";
-  }
   for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
   {
     impl << "  vec4 csmResult" << j << " = vec4(1.0, -1.0, 0.0, 1.0);\n";
@@ -329,9 +277,8 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader
     const std::string result = "csmResult" + std::to_string(j);
     const std::string map = "csmMap" + std::to_string(j) + ", " + std::to_string(j);
     const std::string lookup = result +
-      (impostor          ? " = csmImpostorShadow(" + map + ", vertexVC, normalVCVSOutput);"
-          : fromVertices ? " = csmShadowFromVertices(" + map + ", vertexVC, csmMapDx, csmMapDy);"
-                         : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
+      (impostor ? " = csmImpostorShadow(" + map + ", vertexVC, normalVCVSOutput);"
+                : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
     const std::string factor = result + ".x * ";
     // Phong-style lighting (diffuse and specular), or PBR (radiance, directional or positional).
     const bool phong =
@@ -470,7 +417,6 @@ void vtkCascadedShadowMapPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BlendBand: " << this->BlendBand << "\n";
   os << indent << "ShadowDarkness: " << this->ShadowDarkness << "\n";
   os << indent << "DebugMode: " << this->DebugMode << "\n";
-  os << indent << "MapCoordinatesFromVertices: " << this->MapCoordinatesFromVertices << "\n";
   os << indent << "ShadowMapBakerPass: " << this->ShadowMapBakerPass << "\n";
   if (this->ShadowMapBakerPass)
   {

@@ -68,30 +68,6 @@ public:
   /// rebuilds the shaders.
   static constexpr int MAXIMUM_LIGHTS_WITH_CONSTANT_KERNEL = 4;
 
-  ///@{
-  /**
-   * Map coordinates from the vertices. A cascade's map coordinates are linear in the view
-   * position, so where no geometry shader sits between the stages (not for tubes, spheres or
-   * wide lines) the vertex shader can compute them for every cascade and the rasterizer
-   * interpolate them: the lookup then makes no matrix product per fragment, with the same
-   * result up to float rounding. Only while shadowed lights times the cascades is at most
-   * MAXIMUM_MAP_COORDINATE_VARYINGS (varyings are few); otherwise, or off, the fragment shader
-   * multiplies, for the cascades it tests only. Default off: on llvmpipe the varyings' set-up
-   * for every triangle costs more than the products they save (Documentation/Results.md,
-   * "Map coordinates from vertices").
-   */
-  vtkSetMacro(MapCoordinatesFromVertices, bool);
-  vtkGetMacro(MapCoordinatesFromVertices, bool);
-  vtkBooleanMacro(MapCoordinatesFromVertices, bool);
-  static constexpr int MAXIMUM_MAP_COORDINATE_VARYINGS = 8;
-  ///@}
-
-  ///@{
-  /// For tests: the cascades per light whose map coordinates come from the vertices in the last
-  /// Render() (0: the fragment shader multiplies).
-  vtkGetMacro(LastMapCoordinateVaryings, int);
-  ///@}
-
   enum Kernels
   {
     KERNEL_GRID = 0,    ///< regular grid of taps one texel apart
@@ -191,10 +167,6 @@ protected:
   double BlendBand = 0.05;
   double ShadowDarkness = 1.0;
   int DebugMode = DEBUG_OFF;
-  bool MapCoordinatesFromVertices = false;
-  int LastMapCoordinateVaryings = 0;
-  int VaryingsKey[3] = { 0, 0, 0 }; ///< NumberOfCascades, AdaptiveCascades, lights of VaryingsUsed
-  int VaryingsUsed = 0;             ///< the cascades a light needed coordinates for
 
   /// What the shader needs this frame, packed as its uniform arrays (light j's cascade c at
   /// 8 j + c): filled once per frame in Render(), only uploaded per draw.

@@ -279,48 +279,7 @@ vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
     csmDisplacement(toChosen, dvcdx.xyz), csmDisplacement(toChosen, dvcdy.xyz));
 }
 
-#ifdef CSM_MAP_VARYINGS
-// The same from map coordinates interpolated from the vertices (csmShadowVS.glsl: light j's
-// cascade i at j * CSM_MAP_VARYINGS + i; exact, they are linear in the view position) and their
-// screen derivatives, taken where control flow is uniform. Picked by comparisons, not by a
-// varying index (which a software rasterizer would gather per pixel).
-in vec4 csmMapCoordVSOutput[CSM_LIGHTS * CSM_MAP_VARYINGS];
 
-// Screen derivatives of every interpolated map coordinate; called where control flow is uniform.
-void csmMapDerivatives(
-  out vec4 hdx[CSM_LIGHTS * CSM_MAP_VARYINGS], out vec4 hdy[CSM_LIGHTS * CSM_MAP_VARYINGS])
-{
-  for (int i = 0; i < CSM_LIGHTS * CSM_MAP_VARYINGS; ++i)
-  {
-    hdx[i] = dFdx(csmMapCoordVSOutput[i]);
-    hdy[i] = dFdy(csmMapCoordVSOutput[i]);
-  }
-}
-vec4 csmShadowFromVertices(sampler2DShadow map, int j, vec4 vc,
-  vec4 hdx[CSM_LIGHTS * CSM_MAP_VARYINGS], vec4 hdy[CSM_LIGHTS * CSM_MAP_VARYINGS])
-{
-  int c, next;
-  bool blend;
-  bool inside = csmCascadeAt(j, vc, c, next, blend);
-  int first = j * CSM_MAP_VARYINGS;
-  vec4 hThis = csmMapCoordVSOutput[first];
-  vec4 hNext = hThis;
-  for (int i = 1; i < CSM_MAP_VARYINGS; ++i)
-  {
-    hThis = i == c ? csmMapCoordVSOutput[first + i] : hThis;
-    hNext = i == next ? csmMapCoordVSOutput[first + i] : hNext;
-  }
-  int chosen = inside ? csmChoose(c, next, blend, hThis, hNext) : -1;
-  vec4 h = csmMapCoordVSOutput[first], hx = hdx[first], hy = hdy[first];
-  for (int i = 1; i < CSM_MAP_VARYINGS; ++i)
-  {
-    h = i == chosen ? csmMapCoordVSOutput[first + i] : h;
-    hx = i == chosen ? hdx[first + i] : hx;
-    hy = i == chosen ? hdy[first + i] : hy;
-  }
-  return csmShadowIn(map, j, chosen, h, hx, hy);
-}
-#endif
 
 #ifdef CSM_IMPOSTOR
 // Receivers drawn as impostors (VTK's tubes and spheres): the fragment's vertexVC is the point on

@@ -29,60 +29,6 @@ using csmTest::DarkenedPixels;
 using csmTest::DifferingValues;
 } // namespace
 
-TEST(Passes, MapCoordinatesFromTheVerticesGiveTheSameShadows)
-{
-  // The lookup's map coordinates interpolated from the vertices equal the fragment's matrix
-  // products up to float rounding: the same shadow, a few edge pixels apart at most.
-  BoxOverPlane scene;
-  auto plain = scene.Render();
-  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
-  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
-  EXPECT_FALSE(pass->GetMapCoordinatesFromVertices()); // the default
-  baker->AdaptiveCascadesOff();                        // the counts set here
-  for (int cascades : { 2, 3, vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES })
-  {
-    baker->SetNumberOfCascades(cascades);
-    pass->MapCoordinatesFromVerticesOff();
-    auto products = scene.Render();
-    EXPECT_EQ(pass->GetLastMapCoordinateVaryings(), 0);
-    pass->MapCoordinatesFromVerticesOn();
-    auto interpolated = scene.Render();
-    EXPECT_EQ(pass->GetLastMapCoordinateVaryings(), cascades) << cascades << " cascades";
-    const long dark = DarkenedPixels(products, plain);
-    EXPECT_GT(dark, 1000) << cascades << " cascades"; // the box's shadow: ~1250 pixels
-    EXPECT_LE(std::abs(DarkenedPixels(interpolated, plain) - dark), dark / 200);
-    EXPECT_LE(DifferingValues(interpolated, products, 8), 320 * 240 * 3 / 1000)
-      << cascades << " cascades";
-  }
-  // Up to eight cascades allowed, at most four used: four coordinates interpolated (the eight
-  // are compiled in only while a light uses more than four).
-  baker->AdaptiveCascadesOn();
-  scene.Render();
-  ASSERT_LE(baker->GetLightMaps().at(0).NumberOfCascades, 4);
-  EXPECT_EQ(pass->GetLastMapCoordinateVaryings(), 4);
-
-  // More varyings than the limit (two lights of 8 cascades): the fragment multiplies.
-  BoxOverPlane two;
-  vtkNew<vtkLight> second;
-  second->SetLightTypeToSceneLight();
-  second->SetPositional(false);
-  second->SetPosition(-6, 10, 2);
-  second->SetFocalPoint(0, 0, 0);
-  two.Renderer->AddLight(second);
-  auto twoPlain = two.Render();
-  vtkCascadedShadowMapPass* twoPass = vtkCascadedShadowMapPass::UseShadowsOn(two.Renderer);
-  twoPass->MapCoordinatesFromVerticesOn();
-  twoPass->GetShadowMapBakerPass()->SetNumberOfCascades(
-    vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES);
-  two.Render();
-  EXPECT_EQ(twoPass->GetLastMapCoordinateVaryings(), 4);   // two lights of at most four used
-  twoPass->GetShadowMapBakerPass()->AdaptiveCascadesOff(); // eight each
-  auto both = two.Render();
-  ASSERT_EQ(twoPass->GetShadowMapBakerPass()->GetLightMaps().size(), 2u);
-  EXPECT_EQ(twoPass->GetLastMapCoordinateVaryings(), 0);
-  EXPECT_GT(DarkenedPixels(both, twoPlain), 300); // two half-dark shadows: ~420 pixels
-}
-
 // Face partitioning as a comparison technique. The light 10 degrees from behind the
 // viewer enters all four side faces: four maps, each selected by its planes; the box's shadow
 // is the one the cascades give (the same darkened pixels within 3 %), and the debug view shows
