@@ -215,22 +215,9 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader
   // Tubes and spheres (VTK's impostors) receive on the surface they show, not on their quad.
   const bool impostor = fragmentShader.find("uniform float ZCalcR") != std::string::npos &&
     fragmentShader.find("normalVCVSOutput") != std::string::npos;
-  std::ostringstream common;
-  // The limits and option values the GLSL uses, from their one definition here.
-  common << "#define CSM_LIGHTS " << this->Uniforms.Lights() << "\n"
-         << "#define CSM_MAX_CASCADES " << kMaxCascades << "\n";
   std::ostringstream decl;
-  decl << common.str() << "#define CSM_KERNEL_GRID " << KERNEL_GRID << "\n"
-       << "#define CSM_KERNEL_JITTERED " << KERNEL_JITTERED << "\n"
-       << "#define CSM_KERNEL " << this->PCFKernel << "\n"
-       << "#define CSM_DEBUG_CASCADES " << DEBUG_CASCADES << "\n"
-       << "#define CSM_DEBUG_ERROR " << DEBUG_ERROR << "\n"
-       << "#define CSM_DEBUG_FACTOR " << DEBUG_FACTOR << "\n"
-       << "#define CSM_DEBUG " << this->DebugMode << "\n";
-  if (this->ConstantKernelSize())
-  {
-    decl << "#define CSM_PCF_RADIUS " << this->PCFSize / 2 << "\n";
-  }
+  decl << vtkCascadedShadowMapPass::GetShaderDefinitions(static_cast<int>(this->Uniforms.Lights()),
+    this->PCFKernel, this->DebugMode, this->ConstantKernelSize() ? this->PCFSize / 2 : -1);
   if (this->Uniforms.Faces)
   {
     decl << "#define CSM_FACES\n"; // maps selected by their half-spaces (face partitions)
@@ -305,6 +292,27 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader
       "//VTK::Light::Impl\n  gl_FragData[0] = csmDebugColor(gl_FragData[0], csmResult0);\n", false);
   }
   return true;
+}
+
+std::string vtkCascadedShadowMapPass::GetShaderDefinitions(
+  int lights, int kernel, int debugMode, int pcfRadius)
+{
+  // The limits and option values the GLSL uses, from their one definition here.
+  std::ostringstream decl;
+  decl << "#define CSM_LIGHTS " << lights << "\n"
+       << "#define CSM_MAX_CASCADES " << kMaxCascades << "\n"
+       << "#define CSM_KERNEL_GRID " << KERNEL_GRID << "\n"
+       << "#define CSM_KERNEL_JITTERED " << KERNEL_JITTERED << "\n"
+       << "#define CSM_KERNEL " << kernel << "\n"
+       << "#define CSM_DEBUG_CASCADES " << DEBUG_CASCADES << "\n"
+       << "#define CSM_DEBUG_ERROR " << DEBUG_ERROR << "\n"
+       << "#define CSM_DEBUG_FACTOR " << DEBUG_FACTOR << "\n"
+       << "#define CSM_DEBUG " << debugMode << "\n";
+  if (pcfRadius >= 0)
+  {
+    decl << "#define CSM_PCF_RADIUS " << pcfRadius << "\n";
+  }
+  return decl.str();
 }
 
 bool vtkCascadedShadowMapPass::ConstantKernelSize() const

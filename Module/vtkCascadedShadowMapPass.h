@@ -68,6 +68,11 @@ public:
   /// rebuilds the shaders.
   static constexpr int MAXIMUM_LIGHTS_WITH_CONSTANT_KERNEL = 4;
 
+  /// The #defines the pass prepends to the lookup (Module/glsl/csmShadowFS.glsl): the limits
+  /// and option values it uses, for `lights` shadowed lights, a kernel (Kernels), a debug mode
+  /// (DebugModes) and the PCF radius compiled in (-1: the uniform csmPCFRadius).
+  static std::string GetShaderDefinitions(int lights, int kernel, int debugMode, int pcfRadius);
+
   enum Kernels
   {
     KERNEL_GRID = 0,    ///< regular grid of taps one texel apart

@@ -4,6 +4,7 @@
 // compares one texel apart that it stands for, within 1/255.
 #include "csmShadowFS.h" // the GLSL under test
 
+#include "vtkCascadedShadowMapPass.h"
 #include "vtkNew.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLQuadHelper.h"
@@ -35,18 +36,13 @@ constexpr int kSamples = 96; // sample positions per side (the quad's pixels)
 // otherwise the uniform csmPCFRadius.
 std::string fragmentShader(int constantRadius)
 {
-  const std::string radius = constantRadius >= 0
-    ? "#define CSM_PCF_RADIUS " + std::to_string(constantRadius) + "\n"
-    : std::string();
-  // The pass prepends these (vtkCascadedShadowMapPass::PostReplaceShaderValues).
+  // The definitions the pass prepends, from the pass itself.
   return std::string("//VTK::System::Dec\n"
                      "in vec2 texCoord;\n"
-                     "//VTK::Output::Dec\n"
-                     "#define CSM_LIGHTS 1\n#define CSM_MAX_CASCADES 8\n#define CSM_KERNEL_GRID 0\n"
-                     "#define CSM_KERNEL_JITTERED 1\n#define CSM_KERNEL 0\n"
-                     "#define CSM_DEBUG_CASCADES 1\n#define CSM_DEBUG_ERROR 2\n"
-                     "#define CSM_DEBUG_FACTOR 3\n#define CSM_DEBUG 0\n") +
-    radius + csmShadowFS +
+                     "//VTK::Output::Dec\n") +
+    vtkCascadedShadowMapPass::GetShaderDefinitions(1, vtkCascadedShadowMapPass::KERNEL_GRID,
+      vtkCascadedShadowMapPass::DEBUG_OFF, constantRadius) +
+    csmShadowFS +
     "\nuniform sampler2DShadow map;\n"
     "void main()\n"
     "{\n"
