@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "csmTestHelpers.h"
 
+#include "vtkAppendPolyData.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
 #include "vtkCubeSource.h"
@@ -189,6 +190,20 @@ BoxOverPlane::BoxOverPlane(const BoxOverPlaneSettings& s)
   camera->SetPosition(s.CameraPosition[0], s.CameraPosition[1], s.CameraPosition[2]);
   camera->SetFocalPoint(s.CameraFocalPoint[0], s.CameraFocalPoint[1], s.CameraFocalPoint[2]);
   camera->SetViewUp(0, 1, 0);
+  this->Renderer->ResetCameraClippingRange();
+}
+
+void BoxOverPlane::AddBlockBehindTheCamera()
+{
+  vtkNew<vtkCubeSource> behind, front;
+  behind->SetBounds(-1, 1, 13, 15, 18, 20);
+  front->SetBounds(-1, 1, 2, 4, -1, 1);
+  vtkNew<vtkAppendPolyData> both;
+  both->AddInputConnection(behind->GetOutputPort());
+  both->AddInputConnection(front->GetOutputPort());
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(both->GetOutputPort());
+  this->Box->SetMapper(mapper);
   this->Renderer->ResetCameraClippingRange();
 }
 

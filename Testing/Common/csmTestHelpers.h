@@ -96,6 +96,11 @@ struct BoxOverPlane
 
   /// One frame, and the image of exactly that frame.
   vtkSmartPointer<vtkImageData> Frame() { return Grab(this->Window, false); }
+
+  /// Makes the box one polydata with a block behind the default camera (0, 14, 16): that prop's
+  /// box then holds the camera, so the scene's boxes meet the view far nearer than anything it
+  /// shows (the visible depths begin at the box in front).
+  void AddBlockBehindTheCamera();
 };
 
 } // namespace csmTest

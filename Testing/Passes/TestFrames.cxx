@@ -105,16 +105,7 @@ TEST(Frames, CameraLightIsShadowedFromThisFramesDirection)
 TEST(Frames, TheFirstRenderIsTheFittedOne)
 {
   BoxOverPlane scene;
-  vtkNew<vtkCubeSource> behind, front;
-  behind->SetBounds(-1, 1, 13, 15, 18, 20); // behind the camera at (0, 14, 16)
-  front->SetBounds(-1, 1, 2, 4, -1, 1);
-  vtkNew<vtkAppendPolyData> both;
-  both->AddInputConnection(behind->GetOutputPort());
-  both->AddInputConnection(front->GetOutputPort());
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(both->GetOutputPort());
-  scene.Box->SetMapper(mapper);
-  scene.Renderer->ResetCameraClippingRange();
+  scene.AddBlockBehindTheCamera();
   auto plain = scene.Frame();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
