@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowCasterPass.h"
 
+#include "csmReportOnce.h"
+
 #include "csmCaster.h"       // the GLSL of Module/glsl/csmCaster.glsl
 #include "csmCasterLineGS.h" // the GLSL of Module/glsl/csmCasterLineGS.glsl
 
@@ -57,19 +59,7 @@ void vtkCascadedShadowCasterPass::EndCascade()
 
 void vtkCascadedShadowCasterPass::ReportOnce(bool error, const std::string& message)
 {
-  // A frame is rendered on every camera move: say each distinct thing once.
-  if (!this->Reported.insert(message).second)
-  {
-    return;
-  }
-  if (error)
-  {
-    vtkErrorMacro(<< message);
-  }
-  else
-  {
-    vtkWarningMacro(<< message);
-  }
+  csmReportOnce(this, this->Reported, error, message);
 }
 
 namespace

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapBakerPass.h"
 
+#include "csmReportOnce.h"
+
 #include "csmAtlas.h" // the atlas layout
 #include "csmCasterBlocks.h"
 #include "csmClosedSurface.h"
@@ -403,19 +405,7 @@ int vtkCascadedShadowMapBakerPass::MaximumShadowedLights(vtkOpenGLRenderWindow* 
 
 void vtkCascadedShadowMapBakerPass::ReportOnce(bool error, const std::string& message)
 {
-  // A frame is rendered on every camera move: say each distinct thing once.
-  if (!this->Reported.insert(message).second)
-  {
-    return;
-  }
-  if (error)
-  {
-    vtkErrorMacro(<< message);
-  }
-  else
-  {
-    vtkWarningMacro(<< message);
-  }
+  csmReportOnce(this, this->Reported, error, message);
 }
 
 bool vtkCascadedShadowMapBakerPass::PrepareAtlas(

@@ -225,25 +225,6 @@ double Dot(const double a[3], const double b[3])
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/// The direction a light travels at gammaDeg from the view direction eye -> focal (0: from
-/// behind the viewer, 90: overhead, 180: facing it), in the plane of the view and the camera's
-/// up (+y made orthogonal to the view).
-void LightAtGamma(const double eye[3], const double focal[3], double gammaDeg, double light[3])
-{
-  double dir[3] = { focal[0] - eye[0], focal[1] - eye[1], focal[2] - eye[2] };
-  const double l = std::sqrt(Dot(dir, dir));
-  for (double& c : dir)
-    c /= l;
-  double up[3] = { 0, 1, 0 };
-  const double along = Dot(up, dir);
-  for (int c = 0; c < 3; ++c)
-    up[c] -= along * dir[c];
-  const double lu = std::sqrt(Dot(up, up));
-  const double r = gammaDeg * M_PI / 180.0;
-  for (int c = 0; c < 3; ++c)
-    light[c] = std::cos(r) * dir[c] - std::sin(r) * up[c] / lu;
-}
-
 /// The camera paths (orbit, fly-through: timed, every n-th measured) and the light sweep
 /// (gamma 0..180 at the scene's default view: measured).
 std::vector<View> Views(const csmScenes::Scene& scene, const Options& o)
@@ -295,7 +276,7 @@ std::vector<View> Views(const csmScenes::Scene& scene, const Options& o)
     std::copy(eye, eye + 3, v.Position);
     std::copy(focal, focal + 3, v.Focal);
     v.Up[0] = 0, v.Up[1] = 1, v.Up[2] = 0;
-    LightAtGamma(eye, focal, g, v.Light);
+    csmScenes::LightAtGamma(eye, focal, g, v.Light);
     v.Name = "gamma" + std::to_string(static_cast<int>(g));
     v.Timed = false;
     v.Measured = true;
@@ -1002,7 +983,7 @@ int main(int argc, char** argv)
     // consecutive pair) whose shadowed/lit class changes while the truth's does not.
     {
       View dolly = views[0];
-      LightAtGamma(dolly.Position, dolly.Focal, 15.0, dolly.Light);
+      csmScenes::LightAtGamma(dolly.Position, dolly.Focal, 15.0, dolly.Light);
       double dir[3] = { dolly.Focal[0] - dolly.Position[0], dolly.Focal[1] - dolly.Position[1],
         dolly.Focal[2] - dolly.Position[2] };
       const double distance = std::sqrt(Dot(dir, dir));

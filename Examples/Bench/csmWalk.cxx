@@ -191,24 +191,7 @@ void SetLight(
   double travel[3] = { -0.45, -1.0, -0.35 };
   if (gammaDeg >= 0.0)
   {
-    double dir[3] = { first.Focal[0] - first.Eye[0], first.Focal[1] - first.Eye[1],
-      first.Focal[2] - first.Eye[2] };
-    const double l = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-    double up[3] = { 0, 1, 0 };
-    const double along = (up[1] * dir[1]) / l;
-    double upOrtho[3];
-    for (int c = 0; c < 3; ++c)
-    {
-      dir[c] /= l;
-      upOrtho[c] = up[c] - along * dir[c];
-    }
-    const double lu =
-      std::sqrt(upOrtho[0] * upOrtho[0] + upOrtho[1] * upOrtho[1] + upOrtho[2] * upOrtho[2]);
-    const double r = gammaDeg * M_PI / 180.0;
-    for (int c = 0; c < 3; ++c)
-    {
-      travel[c] = std::cos(r) * dir[c] - std::sin(r) * upOrtho[c] / lu;
-    }
+    csmScenes::LightAtGamma(first.Eye, first.Focal, gammaDeg, travel);
   }
   light->SetPositional(false);
   light->SetFocalPoint(0, 0, 0);

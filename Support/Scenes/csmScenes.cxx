@@ -886,4 +886,22 @@ void Install(const Scene& scene, vtkRenderer* renderer, double)
     renderer->ResetCameraClippingRange();
 }
 
+void LightAtGamma(const double eye[3], const double focal[3], double gammaDeg, double light[3])
+{
+  double dir[3] = { focal[0] - eye[0], focal[1] - eye[1], focal[2] - eye[2] };
+  vtkMath::Normalize(dir);
+  double up[3] = { 0, 1, 0 };
+  const double along = vtkMath::Dot(up, dir);
+  for (int c = 0; c < 3; ++c)
+  {
+    up[c] -= along * dir[c];
+  }
+  vtkMath::Normalize(up);
+  const double r = vtkMath::RadiansFromDegrees(gammaDeg);
+  for (int c = 0; c < 3; ++c)
+  {
+    light[c] = std::cos(r) * dir[c] - std::sin(r) * up[c];
+  }
+}
+
 } // namespace csmScenes

@@ -63,6 +63,11 @@ bool FromFile(const std::string& path, Scene& scene, std::string& error);
 /// Adds the scene's actors to the renderer and sets the default camera (and clipping range).
 void Install(const Scene& scene, vtkRenderer* renderer, double aspect);
 
+/// The direction a light travels at gammaDeg from the view direction eye -> focal (0: from
+/// behind the viewer, 90: overhead, 180: facing it), in the plane of the view and the world's
+/// +y made orthogonal to the view.
+void LightAtGamma(const double eye[3], const double focal[3], double gammaDeg, double light[3]);
+
 /// Number of triangles of a polydata (polys and strips, after triangulation).
 long long CountTriangles(vtkPolyData* data);
 
