@@ -42,7 +42,7 @@ int main()
   // One call, like vtkRenderer::UseShadowsOn(); returns the pass for its options.
   vtkCascadedShadowMapPass* shadows = vtkCascadedShadowMapPass::UseShadowsOn(renderer);
   shadows->SetPCFSize(5);
-  shadows->GetShadowMapBakerPass()->SetNumberOfCascades(3);
+  shadows->GetShadowMapBakerPass()->GetPlanner()->SetNumberOfCascades(3);
 
   vtkNew<vtkRenderWindow> window;
   // VTK's X window crashes when there is no X display: say so instead.

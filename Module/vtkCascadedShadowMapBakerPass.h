@@ -38,20 +38,21 @@
 #include "vtkSmartPointer.h"                   // for members
 #include "vtkWeakPointer.h"                    // for members
 
-#include <array>  // for members
-#include <atomic> // for members
-#include <future> // for members
-#include <map>    // for members
-#include <memory> // for members
-#include <set>    // for members
-#include <string> // for members
-#include <vector> // for members
+#include <algorithm> // for std::equal
+#include <array>     // for members
+#include <atomic>    // for members
+#include <future>    // for members
+#include <map>       // for members
+#include <memory>    // for members
+#include <set>       // for members
+#include <string>    // for members
+#include <vector>    // for members
 
 class vtkActor;
 class vtkCamera;
 class vtkCascadedShadowBlockMapper;
-struct csmPreparedBlocks;  // a big caster's blocks, prepared by a worker thread
-struct csmPreparedClosure; // a big caster's closed-surface classification, likewise
+class csmCasterCollection;
+struct csmFrameCasters;
 class vtkCascadedShadowCasterPass;
 class vtkLight;
 class vtkMatrix4x4;
@@ -95,67 +96,15 @@ public:
   vtkGetMacro(InteractiveResolution, int);
   ///@}
 
-  ///@{
   /**
-   * How the cascades are planned; these forward to GetPlanner(), which documents them:
-   * number of cascades (1..MAXIMUM_NUMBER_OF_CASCADES, default 8: the most AdaptiveCascades
-   * may use; Barroso & Celes §4 use 2-4, the error model takes more only where four cannot
-   * reach ErrorTarget), warp mode and split scheme
-   * (vtkCascadedShadowMapPlanner::WarpModes / SplitSchemes; defaults generalized LiSPSM and
-   * adaptive), lambda (practical splits, 0.5), alpha (adaptive splits, 2) and depth clamping
-   * (Lloyd et al. §6.4, on).
+   * How the cascades are planned is the planner's (GetPlanner(), which documents each option):
+   * the number of cascades (default 8: the most AdaptiveCascades may use), the warp mode
+   * (default generalized LiSPSM), the split scheme (default adaptive), lambda, alpha, depth
+   * clamping, the scene-fitted cascade, ErrorTarget (default 0.7) and AdaptiveCascades. Each
+   * cascade's map gets the fewest texels (a multiple of RESOLUTION_STEP) at which its predicted
+   * worst aliasing error m in this renderer's viewport is at most ErrorTarget, with Resolution
+   * (InteractiveResolution while the user drags) the largest map that follows the view.
    */
-  void SetNumberOfCascades(int cascades);
-  int GetNumberOfCascades();
-  void SetWarpMode(int mode);
-  int GetWarpMode();
-  void SetSplitScheme(int scheme);
-  int GetSplitScheme();
-  void SetLambda(double lambda);
-  double GetLambda();
-  void SetAlpha(double alpha);
-  double GetAlpha();
-  void SetDepthClamp(bool clamp);
-  bool GetDepthClamp();
-  vtkBooleanMacro(DepthClamp, bool);
-  void SetSceneFittedCascades(bool fitted);
-  bool GetSceneFittedCascades();
-  vtkBooleanMacro(SceneFittedCascades, bool);
-  ///@}
-
-  ///@{
-  /**
-   * Texels only where the view needs them (forwarded to GetPlanner(), which documents them):
-   * each cascade's map gets the fewest texels (a multiple of RESOLUTION_STEP) at which its
-   * predicted worst aliasing error m in this renderer's viewport is at most ErrorTarget
-   * (default 0.7; 0: every map at the ceiling), with Resolution (InteractiveResolution while the
-   * user drags) the tile of four cascades; with AdaptiveCascades (default on) the number of
-   * cascades is, of those up to NumberOfCascades that meet ErrorTarget on the largest maps
-   * their count gets, the one that costs least to render: a caster pass per cascade (the
-   * casters' cells, csm::kTexelsPerCasterTriangle) and the texels of its maps.
-   */
-  void SetErrorTarget(double target);
-  double GetErrorTarget();
-  void SetAdaptiveCascades(bool adaptive);
-  bool GetAdaptiveCascades();
-  vtkBooleanMacro(AdaptiveCascades, bool);
-  ///@}
-
-  ///@{
-  /// Face partitioning instead of cascades (a comparison technique, forwarded to GetPlanner(),
-  /// which documents it): 0 off (default), 1 FP+W, 2 FP+ZP+W. Its maps are re-rendered every
-  /// frame; with NumberOfCascades below 4 they share a smaller atlas.
-  void SetFacePartitions(int zPartitionsPerFace);
-  int GetFacePartitions();
-  /// Camera space shadow maps (general case; a comparison technique, forwarded to GetPlanner(),
-  /// which documents it). Default off; re-rendered every frame.
-  void SetCameraSpace(bool cameraSpace);
-  bool GetCameraSpace();
-  vtkBooleanMacro(CameraSpace, bool);
-  /// Its focus range (forwarded to GetPlanner(), which documents it; 0, the default: automatic).
-  void SetCameraSpaceFocus(double viewDepth);
-  double GetCameraSpaceFocus();
-  ///@}
   /// Resolutions chosen from ErrorTarget are multiples of this.
   static constexpr int RESOLUTION_STEP = 64;
 
@@ -270,17 +219,10 @@ public:
   vtkBooleanMacro(VisibleDepthFit, bool);
   ///@}
 
-  /// For benchmarks: keep the depth the visible depths were measured with for the frame's
-  /// geometry pass (on, the default), or clear it.
-  vtkSetMacro(KeepPrePassDepth, bool);
-  vtkGetMacro(KeepPrePassDepth, bool);
-
-  /// For tests and benchmarks: how many depth-only passes measured the visible depths
-  /// (VisibleDepthFit), over every Render().
-  vtkGetMacro(VisibleDepthMeasures, int);
-
   /// The planner that holds the options above and computes the cascades.
   vtkCascadedShadowMapPlanner* GetPlanner();
+  /// Another planner for this pass (one may serve several bakers); null is refused.
+  void SetPlanner(vtkCascadedShadowMapPlanner* planner);
 
   /// Includes the planner's options.
   vtkMTimeType GetMTime() override;
@@ -289,11 +231,10 @@ public:
   /// Slope-scaled depth offset applied while rendering the maps (glPolygonOffset factor and
   /// units), finite; not to closed casters drawn from behind (CullClosedCasters), whose exit
   /// layer stays at its own depth (an offset there lets light through along concave creases:
-  /// Documentation/Results.md, "Closed casters"). Defaults 1.1 and 2.
-  vtkSetFiniteClampMacro(PolygonOffsetFactor, double, -VTK_FLOAT_MAX, VTK_FLOAT_MAX);
-  vtkGetMacro(PolygonOffsetFactor, double);
-  vtkSetFiniteClampMacro(PolygonOffsetUnits, double, -VTK_FLOAT_MAX, VTK_FLOAT_MAX);
-  vtkGetMacro(PolygonOffsetUnits, double);
+  /// Documentation/Results.md, "Closed casters"). Defaults 1.1 and 2. A value that is not
+  /// finite gets one error and the offset stays.
+  void SetPolygonOffset(double factor, double units);
+  vtkGetVector2Macro(PolygonOffset, double);
   ///@}
 
   ///@{
@@ -313,56 +254,81 @@ public:
   /// ShadowAttenuation is above 0 (an invisible shadow gets no maps).
   static bool LightCastsShadows(vtkLight* light);
 
+  /// The kinds of light that get maps.
+  enum class LightKind
+  {
+    Directional, ///< cascades along the view (z-partitions), or a scene-fitted map
+    Spot         ///< one perspective map fitted to the lit part of the visible scene
+  };
+  /// The kinds of map a cascade has.
+  enum class MapKind
+  {
+    FollowsView,   ///< planned for the view: re-rendered when the view moves out of what it serves
+    SceneFitted,   ///< fixed in the world: kept while the scene and the light stay
+    FacePartition, ///< a face partition, selected by its planes (comparison technique)
+    CameraSpace    ///< a camera space map (comparison technique)
+  };
+
+  /// One cascade's map, as the shadow pass reads it.
+  struct CascadeMap
+  {
+    MapKind Kind = MapKind::FollowsView;
+    double WorldToMap[16] = {}; ///< world -> light clip, row-major
+    double SplitFar = 0.0;      ///< view depth where the cascade ends
+    /// Its tile in the light's atlas, texels: x, y (from the lower left), width, height.
+    int Tile[4] = {};
+    /// Texels of its map along its s and t axes (from ErrorTarget), in the lower left of its
+    /// tile.
+    int Resolution[2] = {};
+    /// Turned a quarter to its tile (vtkCascadedShadowMapPlanner::GetCascadeMapTurned).
+    bool Turned = false;
+    /// The main view its screen-sized casters (tubes, spheres, wide lines, big points) were
+    /// sized for: world -> view (row-major) and the pixel size (the baker's casterView()).
+    double CasterView[18] = {};
+    /// Face partitions: the 4 world half-spaces of the piece
+    /// (vtkCascadedShadowMapPlanner::GetCascadePlanes).
+    double Planes[16] = {};
+    /// Camera space maps: the smallest w of the map (its constant bias scales by it over the
+    /// point's w); 0 otherwise.
+    double DepthW = 0.0;
+    bool IsSceneFitted() const { return this->Kind == MapKind::SceneFitted; }
+  };
+
   /// The maps of one shadowed light, as the shadow pass reads them.
   struct LightMaps
   {
     vtkLight* Light = nullptr;
-    int LightIndex = -1;      ///< index among the renderer's switched-on lights
-    int NumberOfCascades = 0; ///< 0: nothing to shadow for this light this frame
-    double WorldToMap[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES]
-                     [16] = {}; ///< world -> light clip, row-major, per cascade
-    double SplitNear = 0.0;     ///< view depth where the first cascade begins
-    double
-      SplitFar[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {}; ///< view depth where
-                                                                              ///< each cascade ends
-    /// Face partitions: the 4 world half-spaces of each piece
-    /// (vtkCascadedShadowMapPlanner::GetCascadePlanes).
-    double Planes[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][16] = {};
-    bool Faces = false; ///< the maps are face partitions, selected by their planes
-    /// Camera space maps: the smallest w of the map (its constant bias scales by it over the
-    /// point's w); 0 otherwise.
-    double DepthW[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
-    double Tile[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES]
-               [4] = {}; ///< atlas tile: offset x, y and scale x, y in [0, 1]
-    /// Texels of each cascade's tile, width and height (csm::atlasForCount: twice Resolution a
-    /// side for one cascade in 2 x 2 tiles, Resolution for up to csm::kAtlasFullMaps, less
-    /// beyond, in non-square tiles, or where GL limits).
-    int Resolution[2] = { 0, 0 };
-    /// Texels of each cascade's map along its s and t axes (from ErrorTarget), in the lower left
-    /// of its tile.
-    int CascadeResolution[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][2] = {};
-    /// Each cascade's map is fixed in the world
-    /// (vtkCascadedShadowMapPlanner::GetCascadeSceneFitted).
-    bool SceneFitted[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
-    /// Each cascade's map is turned a quarter to its tile
-    /// (vtkCascadedShadowMapPlanner::GetCascadeMapTurned).
-    bool MapTurned[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
-    double LightGeometry[7] = { 0, 0, 0, 0, 0, 0,
-      0 }; ///< position, focal point, cone angle (-1: directional) the maps were rendered for
-    /// Per cascade: the main view its screen-sized casters (tubes, spheres, wide lines, big
-    /// points) were sized for: world -> view (row-major) and the pixel size (see CasterView()).
-    double CasterView[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES][18] = {};
+    int LightIndex = -1; ///< index among the renderer's switched-on lights
+    LightKind Kind = LightKind::Directional;
+    /// Where the maps were rendered from: the light's transformed position and focal point, and
+    /// a spot light's cone angle (0 for a directional light).
+    double Position[3] = { 0, 0, 0 };
+    double FocalPoint[3] = { 0, 0, 0 };
+    double ConeAngle = 0.0;
+    double SplitNear = 0.0; ///< view depth where the first cascade begins
+    /// The cascades (none: nothing to shadow for this light this frame).
+    std::vector<CascadeMap> Cascades;
+    int AtlasSize[2] = { 0, 0 }; ///< texels of the atlas texture
     vtkSmartPointer<vtkTextureObject> Atlas;
+
+    int GetNumberOfCascades() const { return static_cast<int>(this->Cascades.size()); }
+    /// The maps are face partitions, selected by their planes.
+    bool SelectedByPlanes() const
+    {
+      return !this->Cascades.empty() && this->Cascades[0].Kind == MapKind::FacePartition;
+    }
+    /// Were these maps rendered for the same light geometry as other's?
+    bool SameGeometry(const LightMaps& other) const
+    {
+      return this->Kind == other.Kind && this->ConeAngle == other.ConeAngle &&
+        std::equal(this->Position, this->Position + 3, other.Position) &&
+        std::equal(this->FocalPoint, this->FocalPoint + 3, other.FocalPoint);
+    }
   };
 
-  /// The shadowed lights of a renderer (as of its last Render()), in its light order.
-  const std::vector<LightMaps>& GetLightMaps(vtkRenderer* renderer) const;
-  /// The same for the renderer of the last Render().
-  const std::vector<LightMaps>& GetLightMaps() const;
-
-  /// True when the last Render() for the renderer produced at least one shadowed light.
-  bool GetHasShadows(vtkRenderer* renderer) const { return !this->GetLightMaps(renderer).empty(); }
-  bool GetHasShadows() const { return !this->GetLightMaps().empty(); }
+  /// The shadowed lights of a renderer (as of its last Render(); null: the renderer of the last
+  /// Render()), in its light order; none where it has no shadows.
+  const std::vector<LightMaps>& GetLightMaps(vtkRenderer* renderer = nullptr) const;
 
   /// Is the user interacting with the window? VTK's convention: vtkRenderWindowInteractor raises
   /// the window's desired update rate (to 15 by default) while the user drags, and lowers it
@@ -379,9 +345,6 @@ public:
   /// (vtkCascadedShadowMapPass::ClosedSurfaceBiasFactor).
   bool DrawsFromBehind(vtkProp* prop) { return this->ClosureOf(prop) != 0; }
 
-  /// Number of Render() calls that rendered at least one map (not all kept); for tests.
-  vtkGetMacro(BakeCount, int);
-
   /// What the last Render() did, for tests and benchmarks (machine-independent counts; the
   /// seconds only with MeasureTimes).
   struct FrameStatistics
@@ -394,12 +357,13 @@ public:
     int ClosedCasters = 0;       ///< casters drawn with their exit layer only (CullClosedCasters)
     int CompactCasters = 0;      ///< casters drawn from compact blocks (CompactCasters)
     int BlocksDrawn = 0;         ///< blocks drawn into the rendered maps
-    int CastersWithoutReceivers = 0; ///< casters (or blocks) left out: they shadow nothing there
-    bool VisibleDepthsUsed = false;  ///< cascades fitted to the visible depths (VisibleDepthFit)
-    double PlanSeconds = 0.0;        ///< planning, all lights (MeasureTimes)
-    double MapSeconds = 0.0;         ///< rendering the maps, the GPU's work included (MeasureTimes)
-    double ClearSeconds = 0.0;       ///< clearing the first light's tiles (MeasureTimes)
-    double CombineSeconds = 0.0;     ///< combining the maps across processes
+    int CastersWithoutReceivers = 0;    ///< casters (or blocks) left out: they shadow nothing there
+    bool VisibleDepthsUsed = false;     ///< cascades fitted to the visible depths (VisibleDepthFit)
+    bool VisibleDepthsMeasured = false; ///< by a depth-only pass in this frame (VisibleDepthFit)
+    double PlanSeconds = 0.0;           ///< planning, all lights (MeasureTimes)
+    double MapSeconds = 0.0;     ///< rendering the maps, the GPU's work included (MeasureTimes)
+    double ClearSeconds = 0.0;   ///< clearing the first light's tiles (MeasureTimes)
+    double CombineSeconds = 0.0; ///< combining the maps across processes
     /// Each of the first light's re-rendered maps (MeasureTimes; 0 for a kept one).
     double CascadeSeconds[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     /// CascadeSeconds[cascade], 0 for an index out of range.
@@ -449,90 +413,61 @@ protected:
     vtkSmartPointer<vtkCamera> LastCamera;
   };
 
-  /// What a frame draws: the visible props' boxes and the opaque ones among them.
-  struct FrameProps
-  {
-    double SceneBounds[6] = { 1, -1, 1, -1, 1, -1 };
-    bool Changed = true; ///< a prop, light, option or the window size changed: render every map
-    struct Caster
-    {
-      vtkProp* Prop = nullptr;      ///< a visible opaque prop, or an actor of a prop's blocks
-      std::array<double, 6> Bounds; ///< world box
-      /// 0 draw both sides; +1 / -1 closed, its counter-clockwise faces (after the actor's
-      /// matrix) turned outward / inward.
-      int Closure = 0;
-      /// Drawn from compact blocks (CompactCasters): its entry in Compacts (-1: as it is).
-      int Compact = -1;
-      /// The prop may shadow itself (false: planar, or closed and convex).
-      bool ShadowsItself = true;
-      /// Its prop's box in Receivers (-1: none).
-      int Receiver = -1;
-    };
-    std::vector<Caster> Casters;
-    /// A prop drawn from compact blocks: the mapper that draws the chosen ones, and each
-    /// block's world box and triangles.
-    struct Compact
-    {
-      vtkCascadedShadowBlockMapper* Mapper = nullptr;
-      std::vector<std::array<double, 6>> Bounds;
-      std::vector<double> Cells;
-    };
-    std::vector<Compact> Compacts;
-    std::vector<std::array<double, 6>> Receivers;
-    /// What the cascade count and the scene-fitted map are judged by
-    /// (vtkCascadedShadowMapPlanner::AddCasterLoad), per caster; all processes' when
-    /// distributed (then without receiver boxes).
-    struct CasterLoad
-    {
-      std::array<double, 6> Bounds;
-      double Cells = 0.0; ///< of its data: triangles, strips, lines, vertices
-      int Receiver = -1;  ///< its prop's box in Receivers (-1: none)
-      bool ShadowsItself = true;
-      bool ScreenSized = false; ///< drawn wider than its data (tubes, spheres, wide lines)
-    };
-    std::vector<CasterLoad> CasterLoads;
-  };
   /// The steps of Render(): collect the props, share them across processes, plan the lights
   /// (and choose the cascades to re-render: 1 in render per light slot and cascade), render the
   /// chosen cascades into the atlases.
-  void CollectProps(vtkRenderer* renderer, RendererMaps& state, FrameProps& props);
+  void CollectProps(vtkRenderer* renderer, RendererMaps& state, csmFrameCasters& props);
   /// The window depths of the casters this view sees, unless measured for this view and scene.
   void MeasureVisibleDepths(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
-    RendererMaps& state, const FrameProps& props);
-  void GatherAcrossProcesses(FrameProps& props);
+    RendererMaps& state, const csmFrameCasters& props);
   void PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window, RendererMaps& state,
-    const FrameProps& props, std::vector<LightMaps>& planned, std::vector<int>& render);
+    const csmFrameCasters& props, std::vector<LightMaps>& planned, std::vector<int>& render);
   void RenderAtlases(vtkOpenGLRenderer* renderer, vtkOpenGLRenderWindow* window,
-    RendererMaps& state, const FrameProps& props, std::vector<LightMaps>& planned,
+    RendererMaps& state, const csmFrameCasters& props, std::vector<LightMaps>& planned,
     std::vector<int>& render);
+  /// What every light of a frame is planned with.
+  struct FramePlan
+  {
+    bool Interacting = false;
+    bool Changed = true;      ///< every map must be rendered
+    bool ScreenSized = false; ///< some caster is drawn as wide as the main view draws it
+    double Border = 0.0;      ///< of the maps while interacting (InteractiveMapBorder)
+    double Tolerance = 1.0;   ///< of a kept map's error while interacting
+    int Ceiling = 0;          ///< texels a side of the largest map that follows the view
+    int MostCascades = 0;     ///< this frame's (0: NumberOfCascades)
+    int ImageHeight = 0;
+    double Aspect = 1.0;
+    double ViewKey[18] = {}; ///< the main view (the baker's casterView())
+  };
+  /// The receivers' boxes and the casters' loads, for the planner.
+  void FeedPlanner(const csmFrameCasters& props);
+  /// Plans one light, appends its maps to planned and, per cascade, 1 (render) or 0 (keep).
+  void PlanLight(vtkRenderer* renderer, RendererMaps& state, const csmFrameCasters& props,
+    const FramePlan& frame, vtkLight* light, int index, std::vector<LightMaps>& planned,
+    std::vector<int>& render);
+  /// The kind of the maps that the last plan made for this light, the scene-fitted one aside.
+  MapKind PlannedMapKind(vtkLight* light) const;
+  /// Cascade c's map as planned (or the one kept, whose map it returns true for).
+  bool PlanCascade(const FramePlan& frame, vtkCamera* camera, const RendererMaps& state, int c,
+    bool smoothPath, const LightMaps* kept, CascadeMap& map);
+  /// Renders the cascades of one light marked in renderCascade into its atlas.
+  void RenderAtlas(vtkOpenGLRenderer* renderer, vtkOpenGLRenderWindow* window, RendererMaps& state,
+    const csmFrameCasters& props, LightMaps& maps, int* renderCascade, bool timed);
 
   RendererMaps& MapsOf(vtkRenderer* renderer, vtkOpenGLRenderWindow* window);
   bool InputsChanged(vtkRenderer* renderer, RendererMaps& state);
   bool Distributed() const;
   void CombineAcrossProcesses(vtkTextureObject* atlas);
-  /// Sizes the light's atlas and its tiles; returns false when it cannot be allocated. Sets
+  /// Allocates the light's atlas as planned; returns false when it cannot be allocated. Sets
   /// reallocated when the texture is new (nothing in it may be kept).
-  bool PrepareAtlas(
-    vtkOpenGLRenderWindow* window, LightMaps& maps, int tiles, int resolution, bool& reallocated);
+  bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, bool& reallocated);
   /// Gives the tiles of the cascades to render (renderCascade[c]) far depth.
   void ClearTiles(vtkOpenGLState* ostate, const LightMaps& maps, const int* renderCascade);
   void RenderCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebufferObject* frameBuffer,
-    LightMaps& maps, int cascade, const FrameProps& props, bool depthClamp);
-  /// For a prop drawn from compact blocks (CompactCasters), appends its blocks to the casters
-  /// with their world boxes and returns true; false: the prop is drawn as it is.
-  bool AddCompactCaster(
-    vtkProp* prop, int closure, vtkOpenGLRenderWindow* window, FrameProps& props);
+    LightMaps& maps, int cascade, const csmFrameCasters& props, bool depthClamp);
   /// +1 / -1: the prop's data is closed, its counter-clockwise faces turned outward / inward in
   /// world space; 0: draw both sides (CullClosedCasters).
   int ClosureOf(vtkProp* prop);
-  /// False when the prop cannot shadow itself (CullCastersWithoutReceivers).
-  bool ShadowsItself(vtkProp* prop);
-  /// The classification of a polydata, from the cache while the data does not change.
-  struct Closure;
-  const Closure& ClassifiedShape(vtkPolyData* data);
-  /// Does the caster shadow anything in this light's maps (CullCastersWithoutReceivers)?
-  bool CasterHasReceivers(
-    const FrameProps& props, const FrameProps::Caster& caster, const LightMaps& maps) const;
   /// vtkErrorMacro / vtkWarningMacro, once per distinct message.
   void ReportOnce(bool error, const std::string& message);
   /// The light camera for a cascade: the light's rotation as view, the rest as projection.
@@ -543,8 +478,7 @@ protected:
 
   int Resolution = 2048;
   int InteractiveResolution = 1024;
-  double PolygonOffsetFactor = 1.1;
-  double PolygonOffsetUnits = 2.0;
+  double PolygonOffset[2] = { 1.1, 2.0 }; ///< glPolygonOffset factor and units
   double MapReuseTolerance = 1.25;
   double InteractiveMapBorder = 0.2;
   double MapSlack = 0.44;
@@ -553,8 +487,6 @@ protected:
   bool CompactCasters = true;
   bool CullCastersWithoutReceivers = true;
   bool VisibleDepthFit = true;
-  bool KeepPrePassDepth = true;
-  int VisibleDepthMeasures = 0;
 
   std::vector<RendererMaps> Renderers;
   vtkWeakPointer<vtkRenderer> LastRenderer;
@@ -566,54 +498,10 @@ protected:
   vtkSmartPointer<vtkCascadedShadowCasterPass> CasterPass;
   vtkMultiProcessController* Controller = nullptr;
   FrameStatistics Statistics;
-  int BakeCount = 0;
   long long FrameNumber = 0; ///< Render() calls
   bool ViewMoved = false;    ///< this frame's camera differs from the last one's
-  /// csm::classifySurface's answer per polydata, kept while the data does not change.
-  struct Closure
-  {
-    vtkWeakPointer<vtkPolyData> Data;
-    vtkMTimeType Time = 0;
-    int Orientation = 0; ///< +1 outward, -1 inward, 0 open
-    bool Planar = false;
-    bool ShadowsItself = true; ///< csm::SurfaceClosure::canShadowItself
-    std::future<std::shared_ptr<csmPreparedClosure>> Pending; ///< a big mesh's, under way
-    vtkMTimeType PendingTime = 0;
-    vtkMTimeType SeenTime = 0;
-    long long SeenFrame = 0;
-  };
-  std::map<vtkPolyData*, Closure> Closures;
-  /// Compact blocks of a polydata in one window (the mapper holds that context's buffers),
-  /// and the preparation under way (a worker thread's, for a big mesh).
-  struct CasterBlocks
-  {
-    vtkWeakPointer<vtkWindow> Window;
-    vtkWeakPointer<vtkPolyData> Data;
-    vtkMTimeType Time = 0; ///< of the data the blocks were prepared from
-    int Build = 0;         ///< which build: the proxy of a prop follows it
-    vtkSmartPointer<vtkCascadedShadowBlockMapper> Mapper;
-    std::vector<std::array<double, 6>> Bounds; ///< per block, in the data's coordinates
-    std::vector<double> Cells;                 ///< per block: its triangles
-    std::future<std::shared_ptr<csmPreparedBlocks>> Pending;
-    vtkMTimeType PendingTime = 0;
-    vtkMTimeType SeenTime = 0; ///< of the data a frame drew as it is, not yet prepared
-    long long SeenFrame = 0;   ///< that frame (FrameNumber)
-  };
-  std::map<std::pair<vtkWindow*, vtkPolyData*>, CasterBlocks> Blocks;
-  /// The actor that draws a prop's blocks in one window (its property, a copy of its matrix).
-  struct CasterProxy
-  {
-    vtkWeakPointer<vtkWindow> Window;
-    vtkWeakPointer<vtkProp> Prop;
-    vtkPolyData* Data = nullptr;
-    int Build = 0;
-    vtkSmartPointer<vtkActor> Actor;
-    vtkSmartPointer<vtkMatrix4x4> Matrix;
-  };
-  std::map<std::pair<vtkWindow*, vtkProp*>, CasterProxy> Proxies;
-  int BlockBuilds = 0;
-  /// Set when the baker goes: the worker threads' preparations stop early.
-  std::shared_ptr<std::atomic<bool>> StopWorkers;
+  /// The casters and receivers of the frames, and their caches.
+  std::unique_ptr<csmCasterCollection> Casters;
   int WarnedShadowingLights = 0;  // lights over the limit last warned about: warn once
   std::set<std::string> Reported; // messages said already (ReportOnce)
 

@@ -78,7 +78,7 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
   this->UpdateLightGeometry(renderer);
   this->UpdateLights(renderer);
   vtkCascadedShadowMapBakerPass* baker = this->ShadowMapBakerPass;
-  if (renderer->GetSelector() || !baker || !baker->GetHasShadows(renderer))
+  if (renderer->GetSelector() || !baker || baker->GetLightMaps(renderer).empty())
   {
     // Picking, or nothing shadowed: exactly the renderer's own geometry pass.
     this->UpdateGeometry(renderer, s->GetFrameBuffer());
@@ -102,16 +102,21 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   for (const auto& maps : baker->GetLightMaps(renderer))
   {
     u.LightIndex.push_back(maps.LightIndex);
-    u.Count.push_back(maps.NumberOfCascades);
+    u.Count.push_back(maps.GetNumberOfCascades());
     u.SplitNear.push_back(static_cast<float>(maps.SplitNear));
     u.Attenuation.push_back(
       static_cast<float>(this->ShadowDarkness * maps.Light->GetShadowAttenuation()));
+    const int count = maps.GetNumberOfCascades();
+    const double atlasWidth = std::max(1, maps.AtlasSize[0]);
+    const double atlasHeight = std::max(1, maps.AtlasSize[1]);
     for (int c = 0; c < kMaxCascades; ++c)
     {
+      static const vtkCascadedShadowMapBakerPass::CascadeMap none;
+      const vtkCascadedShadowMapBakerPass::CascadeMap& map = c < count ? maps.Cascades[c] : none;
       double clipFromView[16], mapFromView[16];
-      if (c < maps.NumberOfCascades)
+      if (c < count)
       {
-        vtkMatrix4x4::Multiply4x4(maps.WorldToMap[c], viewToWorld->GetData(), clipFromView);
+        vtkMatrix4x4::Multiply4x4(map.WorldToMap, viewToWorld->GetData(), clipFromView);
         vtkMatrix4x4::Multiply4x4(toUnit, clipFromView, mapFromView);
       }
       else
@@ -125,20 +130,21 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
           u.ToMap.push_back(static_cast<float>(mapFromView[4 * row + column]));
         }
       }
-      for (int k = 0; k < 4; ++k)
-      {
-        u.Tile.push_back(static_cast<float>(maps.Tile[c][k]));
-      }
-      u.SplitFar.push_back(c < maps.NumberOfCascades ? static_cast<float>(maps.SplitFar[c]) : 0.0f);
+      // The map's rectangle in the atlas (the lower left of its tile), in [0, 1].
+      u.Tile.push_back(static_cast<float>(map.Tile[0] / atlasWidth));
+      u.Tile.push_back(static_cast<float>(map.Tile[1] / atlasHeight));
+      u.Tile.push_back(static_cast<float>(map.Resolution[0] / atlasWidth));
+      u.Tile.push_back(static_cast<float>(map.Resolution[1] / atlasHeight));
+      u.SplitFar.push_back(static_cast<float>(map.SplitFar));
       for (int axis = 0; axis < 2; ++axis)
       {
-        u.Texel.push_back(1.0f / static_cast<float>(std::max(1, maps.CascadeResolution[c][axis])));
+        u.Texel.push_back(1.0f / static_cast<float>(std::max(1, map.Resolution[axis])));
       }
       // A face partition's half-spaces in view space: the world plane (a row) times view -> world.
       for (int k = 0; k < 4; ++k)
       {
-        const double* plane = maps.Planes[c] + 4 * k;
-        const bool used = maps.Faces && c < maps.NumberOfCascades;
+        const double* plane = map.Planes + 4 * k;
+        const bool used = maps.SelectedByPlanes() && c < count;
         for (int column = 0; column < 4; ++column)
         {
           double value = 0.0;
@@ -149,14 +155,10 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
           u.Planes.push_back(static_cast<float>(used ? value : (column == 3 ? 1.0 : 0.0)));
         }
       }
+      u.DepthW.push_back(static_cast<float>(map.DepthW));
+      u.CameraSpace = u.CameraSpace || map.DepthW > 0.0;
     }
-    u.Faces = u.Faces || maps.Faces;
-    for (int c = 0; c < kMaxCascades; ++c)
-    {
-      const double w = c < maps.NumberOfCascades ? maps.DepthW[c] : 0.0;
-      u.DepthW.push_back(static_cast<float>(w));
-      u.CameraSpace = u.CameraSpace || w > 0.0;
-    }
+    u.Faces = u.Faces || maps.SelectedByPlanes();
     maps.Atlas->Activate();
     u.TextureUnit.push_back(maps.Atlas->GetTextureUnit());
     signature += std::to_string(maps.LightIndex) + ";";

@@ -46,6 +46,9 @@ vtkStandardNewMacro(vtkCascadedShadowMapPlanner);
 struct vtkCascadedShadowMapPlanner::Internals
 {
   csm::ShadowSetup Setup;
+  /// The atlas of the last plan, and the largest map that follows the view it was planned for.
+  csm::AtlasPlan Atlas;
+  int MapCeiling = 0;
   std::vector<csm::Bounds> Receivers;
   std::vector<csm::CasterLoad> Casters; // what a map pass draws (AddCasterLoad)
   /// The error last reported per light (nullptr: plans from a direction) and the light's MTime
@@ -154,9 +157,21 @@ csm::Bounds toBounds(const double bounds[6])
 }
 }
 
+namespace
+{
+/// The atlas limits of a plan for maps of at most maximumResolution texels a side (tiles of
+/// atlasResolution, 0: of maximumResolution).
+csm::AtlasLimits atlasLimits(int atlasResolution, int maximumResolution, int maximumTextureSize)
+{
+  return csm::AtlasLimits(atlasResolution > 0 ? atlasResolution : maximumResolution,
+    maximumResolution, maximumTextureSize);
+}
+}
+
 int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect,
   const double lightDirection[3], const double bounds[6], int imageHeight, int maximumResolution)
 {
+  this->Internal->MapCeiling = maximumResolution;
   this->PlanDirection(
     camera, aspect, lightDirection, bounds, nullptr, imageHeight, maximumResolution);
   return this->Report(nullptr, 0);
@@ -228,10 +243,11 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
     maximumResolution > 0)
   {
     auto last = this->Internal->LastCount.find(lightKey);
-    this->Internal->Setup = csm::computeShadowSetupForError(cam, direction, sceneOrNull, settings,
-      parts, imageHeight, maximumResolution, this->ErrorTarget,
-      last == this->Internal->LastCount.end() ? 0 : last->second,
-      this->Internal->Casters.empty() ? nullptr : &this->Internal->Casters);
+    this->Internal->Setup =
+      csm::computeShadowSetupForError(cam, direction, sceneOrNull, settings, parts, imageHeight,
+        atlasLimits(this->AtlasResolution, maximumResolution, this->MaximumTextureSize),
+        this->ErrorTarget, last == this->Internal->LastCount.end() ? 0 : last->second,
+        this->Internal->Casters.empty() ? nullptr : &this->Internal->Casters);
   }
   else if (!planned)
   {
@@ -242,8 +258,10 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
     // Each map turned to the tile it gets in the atlas (more than csm::kAtlasFullMaps cascades
     // share it in non-square tiles).
     csm::orientToTile(this->Internal->Setup,
-      csm::resolutionCeilingForCount(static_cast<int>(this->Internal->Setup.cascades.size()),
-        this->NumberOfCascades, maximumResolution));
+      csm::planAtlas(static_cast<int>(this->Internal->Setup.cascades.size()),
+        this->NumberOfCascades,
+        atlasLimits(this->AtlasResolution, maximumResolution, this->MaximumTextureSize))
+        .tiles.tile);
   }
   if (this->Internal->LastCount.size() > 64)
   {
@@ -412,6 +430,7 @@ void vtkCascadedShadowMapPlanner::GetCascadePlanes(int i, double planes[16]) con
 int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight* light,
   const double bounds[6], int imageHeight, int maximumResolution, int mostCascades)
 {
+  this->Internal->MapCeiling = maximumResolution;
   if (!light)
   {
     return this->Plan(camera, aspect, static_cast<const double*>(nullptr), bounds);
@@ -546,6 +565,10 @@ void vtkCascadedShadowMapPlanner::AddCasterLoad(
 int vtkCascadedShadowMapPlanner::Report(const void* light, vtkMTimeType lightTime)
 {
   const csm::ShadowSetup& setup = this->Internal->Setup;
+  // The atlas, planned once for this count (the caller allocates and draws into it).
+  this->Internal->Atlas =
+    csm::planAtlas(static_cast<int>(setup.cascades.size()), this->NumberOfCascades,
+      atlasLimits(this->AtlasResolution, this->Internal->MapCeiling, this->MaximumTextureSize));
   auto& reported = this->Internal->ReportedErrors;
   if (setup.status == csm::Status::InvalidInput)
   {
@@ -642,6 +665,42 @@ void vtkCascadedShadowMapPlanner::GetCascadeResolution(
     : most;
   resolution[0] = size.width;
   resolution[1] = size.height;
+}
+
+void vtkCascadedShadowMapPlanner::GetCascadeResolution(
+  int i, int imageHeight, int step, int resolution[2]) const
+{
+  int ceiling[2];
+  this->GetCascadeResolutionCeiling(i, ceiling);
+  this->GetCascadeResolution(i, imageHeight, step, ceiling, resolution);
+}
+
+void vtkCascadedShadowMapPlanner::GetCascadeResolutionCeiling(int i, int ceiling[2]) const
+{
+  const auto& c = this->Internal->Setup.cascades;
+  const csm::MapSize& most =
+    this->Internal->Atlas.ceilings.of(i >= 0 && i < static_cast<int>(c.size()) && c[i].sceneFitted);
+  ceiling[0] = most.width;
+  ceiling[1] = most.height;
+}
+
+void vtkCascadedShadowMapPlanner::GetAtlasSize(int size[2]) const
+{
+  size[0] = this->Internal->Atlas.texture.width;
+  size[1] = this->Internal->Atlas.texture.height;
+}
+
+bool vtkCascadedShadowMapPlanner::GetAtlasShrunk() const
+{
+  return this->Internal->Atlas.shrunk;
+}
+
+void vtkCascadedShadowMapPlanner::GetCascadeTile(int i, int tile[4]) const
+{
+  const std::array<int, 4> t = i >= 0 && i < this->GetNumberOfPlannedCascades()
+    ? this->Internal->Atlas.tile(i)
+    : std::array<int, 4>{ 0, 0, 0, 0 };
+  std::copy(t.begin(), t.end(), tile);
 }
 
 bool vtkCascadedShadowMapPlanner::GetCascadeSceneFitted(int i) const
@@ -753,6 +812,8 @@ void vtkCascadedShadowMapPlanner::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "Lambda: " << this->Lambda << "\n";
   os << indent << "Alpha: " << this->Alpha << "\n";
+  os << indent << "AtlasResolution: " << this->AtlasResolution << "\n";
+  os << indent << "MaximumTextureSize: " << this->MaximumTextureSize << "\n";
   os << indent << "DepthClamp: " << (this->DepthClamp ? "on" : "off") << "\n";
   os << indent << "SceneFittedCascades: " << (this->SceneFittedCascades ? "on" : "off") << "\n";
   os << indent << "ErrorTarget: " << this->ErrorTarget << "\n";

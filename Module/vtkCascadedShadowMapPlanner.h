@@ -322,10 +322,33 @@ public:
   /// (csm::resolutionForError, along each map axis).
   void GetCascadeResolution(
     int i, int imageHeight, int step, const int ceiling[2], int resolution[2]) const;
+  /// The same within the largest map cascade i has in the last plan's atlas
+  /// (GetCascadeResolutionCeiling()).
+  void GetCascadeResolution(int i, int imageHeight, int step, int resolution[2]) const;
+
+  ///@{
+  /**
+   * The atlas one light's maps share, planned once with the cascades (csm::planAtlas): a depth
+   * texture of the texels of min(NumberOfCascades, csm::kAtlasFullMaps) tiles of
+   * AtlasResolution a side (0, the default: Plan()'s maximumResolution), within
+   * MaximumTextureSize texels a side (the GL's limit; 0, the default: none), the same for every
+   * count of cascades; each planned cascade's tile in it (texels: x, y from the lower left,
+   * width, height) and the largest map it may have there (a scene-fitted cascade its whole
+   * tile, one that follows the view at most maximumResolution a side). GetAtlasShrunk(): the
+   * texture limit made the tiles smaller than AtlasResolution.
+   */
+  vtkSetClampMacro(AtlasResolution, int, 0, 65536);
+  vtkGetMacro(AtlasResolution, int);
+  vtkSetClampMacro(MaximumTextureSize, int, 0, 1048576);
+  vtkGetMacro(MaximumTextureSize, int);
+  void GetAtlasSize(int size[2]) const;
+  bool GetAtlasShrunk() const;
+  void GetCascadeTile(int i, int tile[4]) const;
+  void GetCascadeResolutionCeiling(int i, int ceiling[2]) const;
+  ///@}
 
   /// Is cascade i's map turned a quarter to fit a non-square tile (csm::orientToTile: its s axis
-  /// follows light space z)? Plan() turns the maps for the tiles of the atlas that
-  /// maximumResolution and NumberOfCascades give (csm::resolutionCeilingForCount).
+  /// follows light space z)? Plan() turns the maps for their tiles in the atlas (GetCascadeTile()).
   bool GetCascadeMapTurned(int i) const;
 
   /// Storage factor of the plan (Lloyd Eq. 12 summed over the cascades) and its optimum.
@@ -394,6 +417,8 @@ protected:
   int FacePartitions = 0;
   bool CameraSpace = false;
   double CameraSpaceFocus = 0.0;
+  int AtlasResolution = 0;
+  int MaximumTextureSize = 0;
 
 private:
   vtkCascadedShadowMapPlanner(const vtkCascadedShadowMapPlanner&) = delete;

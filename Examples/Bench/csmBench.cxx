@@ -98,7 +98,6 @@ struct Technique
   double TexelsRendered = 0.0;          // map texels rendered over the timed frames
   long long MapsRendered = 0, MapsKept = 0;
   long long DepthPasses = 0; // depth-only passes that measured the visible depths (VisibleDepthFit)
-  int DepthPassesSeen = 0;   // the baker's count at the last timed frame
   long long CascadesPlanned = 0, FramesPlanned = 0; // k_used: cascades of the first light a frame
   csmTruth::Classification Errors;
   std::vector<double> M;
@@ -369,7 +368,7 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
   if (t.Passes.Cascaded)
   {
     const auto& maps = t.Passes.Cascaded->GetShadowMapBakerPass()->GetLightMaps();
-    if (maps.empty() || maps[0].NumberOfCascades == 0)
+    if (maps.empty() || maps[0].GetNumberOfCascades() == 0)
       return NAN;
     double dir[3], eye[3];
     camera->GetDirectionOfProjection(dir);
@@ -377,8 +376,11 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
     const double q[3] = { p[0] - eye[0], p[1] - eye[1], p[2] - eye[2] };
     const double depth = Dot(q, dir);
     const auto& lm = maps[0];
+    double splitFar[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
+    for (int i = 0; i < lm.GetNumberOfCascades(); ++i)
+      splitFar[i] = lm.Cascades[i].SplitFar;
     int c = vtkCascadedShadowMapPlanner::GetCascadeAtDepth(
-      depth, lm.SplitNear, lm.SplitFar, lm.NumberOfCascades);
+      depth, lm.SplitNear, splitFar, lm.GetNumberOfCascades());
     if (c < 0)
       return NAN;
     // The map the lookup takes: this cascade's where it holds the point, else the next one's
@@ -389,22 +391,25 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
       double h[4];
       const double ph[4] = { p[0], p[1], p[2], 1.0 };
       for (int r = 0; r < 4; ++r)
-        h[r] = lm.WorldToMap[i][4 * r] * ph[0] + lm.WorldToMap[i][4 * r + 1] * ph[1] +
-          lm.WorldToMap[i][4 * r + 2] * ph[2] + lm.WorldToMap[i][4 * r + 3] * ph[3];
+        h[r] = lm.Cascades[i].WorldToMap[4 * r] * ph[0] +
+          lm.Cascades[i].WorldToMap[4 * r + 1] * ph[1] +
+          lm.Cascades[i].WorldToMap[4 * r + 2] * ph[2] +
+          lm.Cascades[i].WorldToMap[4 * r + 3] * ph[3];
       return h[3] > 0.0 && std::abs(h[0]) <= h[3] && std::abs(h[1]) <= h[3] && h[2] <= h[3];
     };
     if (!holds(c))
     {
-      if (c + 1 < lm.NumberOfCascades && holds(c + 1))
+      if (c + 1 < lm.GetNumberOfCascades() && holds(c + 1))
         ++c;
       else
         return NAN;
     }
-    vtkCascadedShadowMapPlanner::ComputeAliasing(camera, aspect, light, lm.WorldToMap[c], p, m);
+    vtkCascadedShadowMapPlanner::ComputeAliasing(
+      camera, aspect, light, lm.Cascades[c].WorldToMap, p, m);
     // The resolution this view's map was rendered at (t along light space x if it was turned).
-    const bool turned = lm.MapTurned[c];
-    resolution[0] = lm.CascadeResolution[c][turned ? 1 : 0];
-    resolution[1] = lm.CascadeResolution[c][turned ? 0 : 1];
+    const bool turned = lm.Cascades[c].Turned;
+    resolution[0] = lm.Cascades[c].Resolution[turned ? 1 : 0];
+    resolution[1] = lm.Cascades[c].Resolution[turned ? 0 : 1];
   }
   else if (t.Passes.Vtk)
   {
@@ -430,15 +435,14 @@ void Account(Technique& t, vtkRenderer* renderer)
   vtkCascadedShadowMapBakerPass* baker = t.Passes.Cascaded->GetShadowMapBakerPass();
   t.MapsRendered += baker->GetLastFrameStatistics().CascadesRendered;
   t.MapsKept += baker->GetLastFrameStatistics().CascadesKept;
-  t.DepthPasses += baker->GetVisibleDepthMeasures() - t.DepthPassesSeen;
-  t.DepthPassesSeen = baker->GetVisibleDepthMeasures();
+  t.DepthPasses += baker->GetLastFrameStatistics().VisibleDepthsMeasured ? 1 : 0;
   t.TexelsRendered += baker->GetLastFrameStatistics().TexelsRendered;
   if (!baker->GetLightMaps().empty())
   {
-    t.CascadesPlanned += baker->GetLightMaps()[0].NumberOfCascades;
+    t.CascadesPlanned += baker->GetLightMaps()[0].GetNumberOfCascades();
     ++t.FramesPlanned;
     const double cameraNear = renderer->GetActiveCamera()->GetClippingRange()[0];
-    if (cameraNear > 0.0 && baker->GetLightMaps()[0].NumberOfCascades > 0)
+    if (cameraNear > 0.0 && baker->GetLightMaps()[0].GetNumberOfCascades() > 0)
       t.NearFit.push_back(baker->GetLightMaps()[0].SplitNear / cameraNear);
   }
   if (baker->GetMeasureTimes())
@@ -822,7 +826,7 @@ int main(int argc, char** argv)
                 1000.0 * b->GetLastFrameStatistics().MapSeconds,
                 b->GetLastFrameStatistics().CascadesRendered,
                 b->GetLastFrameStatistics().CascadesKept,
-                b->GetLightMaps().empty() ? 0 : b->GetLightMaps()[0].NumberOfCascades,
+                b->GetLightMaps().empty() ? 0 : b->GetLightMaps()[0].GetNumberOfCascades(),
                 1e-6 * b->GetLastFrameStatistics().TexelsRendered,
                 b->GetLastFrameStatistics().BlocksDrawn);
               // The rest of the frame: the main view with the lookup.
@@ -835,10 +839,10 @@ int main(int argc, char** argv)
               if (!b->GetLightMaps().empty())
               {
                 const auto& maps = b->GetLightMaps()[0];
-                for (int c = 0; c < maps.NumberOfCascades; ++c)
+                for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
                 {
-                  std::printf(" %dx%d%s", maps.CascadeResolution[c][0],
-                    maps.CascadeResolution[c][1], maps.SceneFitted[c] ? "f" : "");
+                  std::printf(" %dx%d%s", maps.Cascades[c].Resolution[0],
+                    maps.Cascades[c].Resolution[1], maps.Cascades[c].IsSceneFitted() ? "f" : "");
                   if (b->GetLastFrameStatistics().GetCascadeSeconds(c) > 0.0)
                     std::printf(
                       " %.1fms", 1000.0 * b->GetLastFrameStatistics().GetCascadeSeconds(c));
@@ -956,9 +960,9 @@ int main(int argc, char** argv)
         {
           // The analytic storage factor of this frame and the time of the math that plans it.
           vtkCascadedShadowMapBakerPass* baker = t.Passes.Cascaded->GetShadowMapBakerPass();
-          planner->SetNumberOfCascades(baker->GetNumberOfCascades());
-          planner->SetWarpMode(baker->GetWarpMode());
-          planner->SetSplitScheme(baker->GetSplitScheme());
+          planner->SetNumberOfCascades(baker->GetPlanner()->GetNumberOfCascades());
+          planner->SetWarpMode(baker->GetPlanner()->GetWarpMode());
+          planner->SetSplitScheme(baker->GetPlanner()->GetSplitScheme());
           double bounds[6];
           renderer->ComputeVisiblePropBounds(bounds);
           planner->ClearReceiverBounds();

@@ -167,7 +167,6 @@ struct Technique
   std::string Label;
   csmScenes::ShadowOptions Shadow;
   double Slack = -1.0; ///< MapSlack (-1: the default)
-  bool ClearPrePass = false;
   std::vector<double> Ms;
   double Texels = 0.0, Cells = 0.0;
   long long MapsRendered = 0, MapsKept = 0, Frames = 0;
@@ -357,9 +356,6 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
       if (o.Variants)
       {
         techniques.emplace_back();
-        techniques.back().Label = "depth cleared";
-        techniques.back().ClearPrePass = true;
-        techniques.emplace_back();
         techniques.back().Label = "boxes fit";
         techniques.back().Shadow.VisibleDepthFit = false;
       }
@@ -373,8 +369,6 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
             passes.Cascaded ? passes.Cascaded->GetShadowMapBakerPass() : nullptr;
           if (baker && t.Slack >= 0.0)
             baker->SetMapSlack(t.Slack);
-          if (baker)
-            baker->SetKeepPrePassDepth(!t.ClearPrePass);
           for (int i = -1; i < static_cast<int>(poses.size()); ++i)
           {
             const Pose& p = poses[std::max(i, 0)]; // (-1: the first view, not timed)
@@ -415,11 +409,11 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
               if (o.PerFrame && !baker->GetLightMaps().empty())
               {
                 const auto& maps = baker->GetLightMaps()[0];
-                for (int c = 0; c < maps.NumberOfCascades; ++c)
+                for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
                   std::printf("      map %d: %dx%d of %dx%d, to depth %.3g%s\n", c,
-                    maps.CascadeResolution[c][0], maps.CascadeResolution[c][1], maps.Resolution[0],
-                    maps.Resolution[1], maps.SplitFar[c],
-                    maps.SceneFitted[c] ? " (scene-fitted)" : "");
+                    maps.Cascades[c].Resolution[0], maps.Cascades[c].Resolution[1],
+                    maps.Cascades[0].Tile[2], maps.Cascades[0].Tile[3], maps.Cascades[c].SplitFar,
+                    maps.Cascades[c].IsSceneFitted() ? " (scene-fitted)" : "");
               }
             }
           }

@@ -98,6 +98,40 @@ CascadeCeilings ceilingsForCount(int count, int mostCascades, int resolution)
   return ceilings;
 }
 
+std::array<int, 4> AtlasPlan::tile(int i) const
+{
+  const int columns = std::max(this->tiles.columns, 1);
+  return { (i % columns) * this->tiles.tile.width, (i / columns) * this->tiles.tile.height,
+    this->tiles.tile.width, this->tiles.tile.height };
+}
+
+AtlasPlan planAtlas(int count, int mostCascades, const AtlasLimits& limits)
+{
+  AtlasPlan plan;
+  if (limits.resolution < 1 || limits.ceiling < 1)
+  {
+    return plan;
+  }
+  // (The texture also for no cascade: a light keeps its atlas while it has nothing to shadow.)
+  const AtlasGrid budget =
+    atlasLayout(std::max({ mostCascades, count, 1 }), limits.resolution, limits.maximumSide);
+  plan.texture = MapSize(budget.columns * budget.tile.width, budget.rows * budget.tile.height);
+  if (count < 1)
+  {
+    return plan;
+  }
+  plan.tiles = atlasForCount(count, budget);
+  plan.shrunk = budget.tile.width < limits.resolution;
+  plan.ceilings =
+    ceilingsForCount(count, mostCascades, std::min(limits.ceiling, limits.resolution));
+  for (MapSize* most : { &plan.ceilings.sceneFitted, &plan.ceilings.following })
+  {
+    most->width = std::min(most->width, plan.tiles.tile.width);
+    most->height = std::min(most->height, plan.tiles.tile.height);
+  }
+  return plan;
+}
+
 glm::dvec2 mapAxisAliasing(const Cascade& cascade)
 {
   return cascade.mapTurned ? glm::dvec2(cascade.Mz, cascade.Mx)

@@ -10,6 +10,8 @@
 
 #include <glm/vec2.hpp>
 
+#include <array>
+
 namespace csm
 {
 
@@ -80,6 +82,46 @@ MapSize resolutionCeilingForCount(int count, int mostCascades, int resolution);
 /// ceilingsForCount(count, mostCascades, resolution): see CascadeCeilings (0 x 0 where
 /// resolutionCeilingForCount is).
 CascadeCeilings ceilingsForCount(int count, int mostCascades, int resolution);
+
+/// What a light's atlas is planned from: tiles of resolution texels a side (the texture holds
+/// min(most cascades, kAtlasFullMaps) of them), maps that follow the view at most ceiling
+/// texels a side (at most resolution; fewer while the user interacts), and the GL's texture
+/// size limit (0: none). One number converts to tiles and ceiling of that side, without limit.
+struct AtlasLimits
+{
+  int resolution = 0;
+  int ceiling = 0;
+  int maximumSide = 0;
+  AtlasLimits(int side = 0) // NOLINT: tiles and ceiling of one side
+    : resolution(side)
+    , ceiling(side)
+  {
+  }
+  AtlasLimits(int tileResolution, int mapCeiling, int textureLimit)
+    : resolution(tileResolution)
+    , ceiling(mapCeiling)
+    , maximumSide(textureLimit)
+  {
+  }
+};
+
+/// One light's atlas as planned for count cascades: the texture (the atlasLayout of the most
+/// cascades), the tiles of this count in it (atlasForCount), the largest map of each kind of
+/// cascade (ceilingsForCount within the tiles) and whether the GL's limit shrank the tiles.
+struct AtlasPlan
+{
+  MapSize texture;
+  AtlasGrid tiles;
+  CascadeCeilings ceilings;
+  bool shrunk = false;
+  /// Cascade i's tile in the texture, texels: x, y (from the lower left), width, height.
+  std::array<int, 4> tile(int i) const;
+};
+
+/// The atlas of count cascades of at most mostCascades (the texture stays the one mostCascades
+/// needs: the count changes with the view); for no cascade, that texture and no tiles. Empty
+/// (0 texels) for limits below 1.
+AtlasPlan planAtlas(int count, int mostCascades, const AtlasLimits& limits);
 
 /// Lloyd's M along the cascade's map axes s and t: (Mx, Mz), or (Mz, Mx) where its map is turned.
 glm::dvec2 mapAxisAliasing(const Cascade& cascade);

@@ -20,14 +20,14 @@ class CountChooser
 public:
   CountChooser(const Camera& camera, const glm::dvec3& wsLightDirection, const Bounds* sceneBounds,
     const Settings& settings, const std::vector<Bounds>* receiverParts, double imageHeight,
-    int maximumResolution, double targetError, const std::vector<CasterLoad>* casters)
+    const AtlasLimits& atlas, double targetError, const std::vector<CasterLoad>* casters)
     : Cam(camera)
     , Light(wsLightDirection)
     , SceneBounds(sceneBounds)
     , Set(settings)
     , ReceiverParts(receiverParts)
     , ImageHeight(imageHeight)
-    , MaximumResolution(maximumResolution)
+    , Atlas(atlas)
     , TargetError(targetError)
     , Casters(casters)
     , KMax(std::max(1, settings.split.k))
@@ -52,10 +52,7 @@ public:
   }
 
 private:
-  CascadeCeilings ceilingOf(int k) const
-  {
-    return ceilingsForCount(k, this->KMax, this->MaximumResolution);
-  }
+  CascadeCeilings ceilingOf(int k) const { return planAtlas(k, this->KMax, this->Atlas).ceilings; }
 
   double errorOf(const ShadowSetup& plan, int k) const
   {
@@ -199,7 +196,7 @@ private:
   const Settings& Set;
   const std::vector<Bounds>* ReceiverParts;
   const double ImageHeight;
-  const int MaximumResolution;
+  const AtlasLimits Atlas;
   const double TargetError;
   const std::vector<CasterLoad>* Casters;
   const int KMax;
@@ -278,11 +275,11 @@ double passTexels(const ShadowSetup& setup, const std::vector<CasterLoad>& caste
 
 ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
-  double imageHeight, int maximumResolution, double targetError, int kPrevious,
+  double imageHeight, const AtlasLimits& atlas, double targetError, int kPrevious,
   const std::vector<CasterLoad>* casters)
 {
   CountChooser chooser(camera, wsLightDirection, sceneBounds, settings, receiverParts, imageHeight,
-    maximumResolution, targetError, casters);
+    atlas, targetError, casters);
   return chooser.choose(kPrevious);
 }
 

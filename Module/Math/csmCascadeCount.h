@@ -20,7 +20,7 @@ namespace csm
 /// The number of cascades from the error model. Each count k in [1, settings.split.k] is judged
 /// by its plan's predicted worst error, max over its cascades of max(M_x, M_z) (Lloyd et al.
 /// 2006, Eq. 9-10) times imageHeight over the largest maps that count can have
-/// (resolutionCeilingForCount(k, settings.split.k, maximumResolution)); of the counts whose
+/// (planAtlas(k, settings.split.k, atlas).ceilings); of the counts whose
 /// error is at most targetError, the one that costs least to render: its caster passes
 /// (passTexels) plus the texels its maps need to meet the target (texelsForError); with
 /// settings.sceneFitted, each count also with its farthest cascade scene-fitted (sceneFit),
@@ -39,15 +39,15 @@ namespace csm
 /// partition most of the range (f/n 1200, k 4, gamma 0: storage 22,512 against 139).
 ///
 /// One light's maps share an atlas of the texels of min(settings.split.k, kAtlasFullMaps) maps
-/// of maximumResolution a side (atlasLayout): one scene-fitted cascade gets them all, more get
-/// tiles of at most maximumResolution that need not be square (atlasForCount, ceilingsForCount),
+/// of atlas.resolution a side (atlasLayout): one scene-fitted cascade gets them all, more get
+/// tiles that need not be square, maps that follow the view at most atlas.ceiling (planAtlas),
 /// each map turned to its tile (predictedError). The plan returned is not turned: the caller
 /// turns it for its tile (orientToTile). Where no count meets the target, more cascades are
 /// taken only while each step cuts the predicted worst error to kCountHysteresis of the best
 /// fewer cascades reach; a previous count within 1 / kCountHysteresis of that error stays.
 ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& wsLightDirection,
   const Bounds* sceneBounds, const Settings& settings, const std::vector<Bounds>* receiverParts,
-  double imageHeight, int maximumResolution, double targetError, int kPrevious,
+  double imageHeight, const AtlasLimits& atlas, double targetError, int kPrevious,
   const std::vector<CasterLoad>* casters = nullptr);
 
 /// What one caster triangle costs to draw into a shadow map, in texels filled: a map pass of T

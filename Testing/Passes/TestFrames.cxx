@@ -109,7 +109,7 @@ TEST(Frames, TheFirstRenderIsTheFittedOne)
   auto plain = scene.Frame();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
-  baker->SceneFittedCascadesOff(); // (the cascades that follow the view)
+  baker->GetPlanner()->SceneFittedCascadesOff(); // (the cascades that follow the view)
   auto first = scene.Frame();
   EXPECT_TRUE(baker->GetLastFrameStatistics().VisibleDepthsUsed);
   EXPECT_GT(DarkenedPixels(first, plain), 800);
@@ -132,7 +132,7 @@ TEST(Frames, ADroppedChainIsFreed)
     vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkWeakPointer<vtkCascadedShadowMapBakerPass> baker = pass->GetShadowMapBakerPass();
   scene.Frame();
-  ASSERT_TRUE(baker->GetHasShadows());
+  ASSERT_FALSE(baker->GetLightMaps().empty());
   EXPECT_GT(
     baker->GetLastFrameStatistics().CompactCasters, 0); // the baker's own mappers were drawn
   vtkCascadedShadowMapPass::UseShadowsOff(scene.Renderer);
@@ -202,22 +202,22 @@ double LargestGroundError(vtkRenderer* renderer,
       }
       const double depth =
         (x - eye[0]) * direction[0] + (0.0 - eye[1]) * direction[1] + (z - eye[2]) * direction[2];
-      const double from = c == 0 ? maps.SplitNear : maps.SplitFar[c - 1];
-      if (depth < from || depth > maps.SplitFar[c])
+      const double from = c == 0 ? maps.SplitNear : maps.Cascades[c - 1].SplitFar;
+      if (depth < from || depth > maps.Cascades[c].SplitFar)
       {
         continue;
       }
-      vtkMatrix4x4::MultiplyPoint(maps.WorldToMap[c], p, map);
+      vtkMatrix4x4::MultiplyPoint(maps.Cascades[c].WorldToMap, p, map);
       if (!(map[3] > 0.0) || std::abs(map[0]) > map[3] || std::abs(map[1]) > map[3])
       {
         continue;
       }
       double m[2];
       vtkCascadedShadowMapPlanner::ComputeAliasing(
-        camera, aspect, lightDirection, maps.WorldToMap[c], p, m);
-      const bool turned = maps.MapTurned[c];
-      const double error = std::max(m[0] / maps.CascadeResolution[c][turned ? 1 : 0],
-                             m[1] / maps.CascadeResolution[c][turned ? 0 : 1]) *
+        camera, aspect, lightDirection, maps.Cascades[c].WorldToMap, p, m);
+      const bool turned = maps.Cascades[c].Turned;
+      const double error = std::max(m[0] / maps.Cascades[c].Resolution[turned ? 1 : 0],
+                             m[1] / maps.Cascades[c].Resolution[turned ? 0 : 1]) *
         imageHeight;
       largest = std::max(largest, error);
       ++*samples;
@@ -235,8 +235,8 @@ TEST(Frames, ASmallCameraStepKeepsMapsThatStillMeetTheErrorTarget)
   BoxOverPlane scene;
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
-  baker->SceneFittedCascadesOff(); // (the maps that follow the view)
-  const double target = baker->GetErrorTarget();
+  baker->GetPlanner()->SceneFittedCascadesOff(); // (the maps that follow the view)
+  const double target = baker->GetPlanner()->GetErrorTarget();
   const double lightDirection[3] = { 0.0, -1.0, 0.0 };
   scene.Frame();
   scene.Frame();
@@ -252,10 +252,10 @@ TEST(Frames, ASmallCameraStepKeepsMapsThatStillMeetTheErrorTarget)
     kept += baker->GetLastFrameStatistics().CascadesKept;
     texels += baker->GetLastFrameStatistics().TexelsRendered;
     std::vector<std::vector<double>> now;
-    for (int c = 0; c < maps.NumberOfCascades; ++c)
+    for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
     {
-      allTexels += double(maps.CascadeResolution[c][0]) * maps.CascadeResolution[c][1];
-      now.emplace_back(maps.WorldToMap[c], maps.WorldToMap[c] + 16);
+      allTexels += double(maps.Cascades[c].Resolution[0]) * maps.Cascades[c].Resolution[1];
+      now.emplace_back(maps.Cascades[c].WorldToMap, maps.Cascades[c].WorldToMap + 16);
       const bool keptMap = c < static_cast<int>(last.size()) && last[c] == now.back();
       int samples = 0;
       const double error = LargestGroundError(scene.Renderer, maps, c, lightDirection, &samples);

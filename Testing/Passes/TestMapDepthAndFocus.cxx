@@ -50,16 +50,16 @@ struct WarningCounter
 
 bool MapsAreFinite(const vtkCascadedShadowMapBakerPass::LightMaps& maps)
 {
-  for (int c = 0; c < maps.NumberOfCascades; ++c)
+  for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
-    for (double v : maps.WorldToMap[c])
+    for (double v : maps.Cascades[c].WorldToMap)
     {
       if (!std::isfinite(v))
       {
         return false;
       }
     }
-    if (!std::isfinite(maps.DepthW[c]))
+    if (!std::isfinite(maps.Cascades[c].DepthW))
     {
       return false;
     }
@@ -86,16 +86,16 @@ TEST(Passes, UnwarpedMapsOfAGroundInTheMapsDarkenWhatTheStandardMapDarkens)
   auto plain = scene.Render();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
-  baker->AdaptiveCascadesOff();
+  baker->GetPlanner()->AdaptiveCascadesOff();
   for (int cascades : { 2, 4, 8 })
   {
-    baker->SetNumberOfCascades(cascades);
-    baker->SetWarpMode(vtkCascadedShadowMapPlanner::WARP_GENERALIZED);
+    baker->GetPlanner()->SetNumberOfCascades(cascades);
+    baker->GetPlanner()->SetWarpMode(vtkCascadedShadowMapPlanner::WARP_GENERALIZED);
     const long standard = DarkenedPixels(scene.Render(), plain);
-    baker->SetWarpMode(vtkCascadedShadowMapPlanner::WARP_NONE);
+    baker->GetPlanner()->SetWarpMode(vtkCascadedShadowMapPlanner::WARP_NONE);
     const long unwarped = DarkenedPixels(scene.Render(), plain);
     ASSERT_EQ(baker->GetLightMaps().size(), 1u);
-    EXPECT_GE(baker->GetLightMaps()[0].NumberOfCascades, 2) << cascades;
+    EXPECT_GE(baker->GetLightMaps()[0].GetNumberOfCascades(), 2) << cascades;
     EXPECT_EQ(baker->GetLastFrameStatistics().CastersWithoutReceivers, 0)
       << cascades; // the ground is drawn
     EXPECT_GT(standard, 800) << cascades;
@@ -120,16 +120,16 @@ TEST(Passes, CameraSpaceMapsKeepTheShadowAtAnyFocus)
   const long standard = DarkenedPixels(scene.Render(), plain);
   EXPECT_GT(standard, 800);
   WarningCounter warnings(baker->GetPlanner());
-  baker->CameraSpaceOn();
+  baker->GetPlanner()->CameraSpaceOn();
   int expectedWarnings = 0;
   for (double focus : { 10.0, 25.0, 100.0, 500.0, 1.0e6 })
   {
-    baker->SetCameraSpaceFocus(focus);
+    baker->GetPlanner()->SetCameraSpaceFocus(focus);
     const long cssm = DarkenedPixels(scene.Render(), plain);
     ASSERT_EQ(baker->GetLightMaps().size(), 1u);
     const auto& maps = baker->GetLightMaps()[0];
-    EXPECT_EQ(maps.NumberOfCascades, 1) << focus;
-    EXPECT_GT(maps.DepthW[0], 0.0) << focus;
+    EXPECT_EQ(maps.GetNumberOfCascades(), 1) << focus;
+    EXPECT_GT(maps.Cascades[0].DepthW, 0.0) << focus;
     EXPECT_TRUE(MapsAreFinite(maps)) << focus;
     EXPECT_NEAR(cssm, standard, 0.1 * standard) << "focus " << focus;
     expectedWarnings += focus > 20.0; // the view's fitted range ends about 32 from the eye

@@ -46,7 +46,7 @@ TEST(Passes, ShadowAppearsUnderTheBox)
   EXPECT_GT(DarkenedPixels(shadowed, plain), 800);
   EXPECT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps().size(), 1u);
   // A small scene: one cascade meets the error target (AdaptiveCascades, the default).
-  EXPECT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps()[0].NumberOfCascades, 1);
+  EXPECT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps()[0].GetNumberOfCascades(), 1);
   // Switching back off gives the plain image again.
   vtkCascadedShadowMapPass::UseShadowsOff(scene.Renderer);
   EXPECT_EQ(DifferingValues(scene.Render(), plain), 0);
@@ -58,30 +58,28 @@ TEST(Passes, MapsAreRebakedOnlyWhenSomethingChanged)
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   // (The cascades that follow the view: a scene-fitted map would serve every view here.)
-  baker->SceneFittedCascadesOff();
+  baker->GetPlanner()->SceneFittedCascadesOff();
   // (Window renders only: grabbing an image renders with a copy of the camera. Two warm-up
   // frames: anything the first frame creates, such as an actor's default property, is a change.)
   scene.Window->Render();
   scene.Window->Render();
-  const int first = baker->GetBakeCount();
-  scene.Window->Render();
-  scene.Window->Render();
-  EXPECT_EQ(baker->GetBakeCount(), first); // nothing changed
+  auto rendered = [&]()
+  {
+    scene.Window->Render();
+    return baker->GetLastFrameStatistics().CascadesRendered;
+  };
+  EXPECT_EQ(rendered(), 0);
+  EXPECT_EQ(rendered(), 0); // nothing changed
   scene.Renderer->GetActiveCamera()->Azimuth(10);
-  scene.Window->Render();
-  EXPECT_EQ(baker->GetBakeCount(), first + 1); // the camera moved
+  EXPECT_GT(rendered(), 0); // the camera moved
   scene.Light->SetPosition(1, 10, 0);
-  scene.Window->Render();
-  EXPECT_EQ(baker->GetBakeCount(), first + 2); // the light moved
+  EXPECT_GT(rendered(), 0); // the light moved
   scene.Box->SetPosition(0.5, 0, 0);
-  scene.Window->Render();
-  EXPECT_EQ(baker->GetBakeCount(), first + 3); // a prop moved
+  EXPECT_GT(rendered(), 0); // a prop moved
   scene.Window->SetSize(300, 200);
-  scene.Window->Render();
-  EXPECT_EQ(baker->GetBakeCount(), first + 4); // the window changed shape
+  EXPECT_GT(rendered(), 0); // the window changed shape
   pass->SetPCFSize(5);
-  scene.Window->Render();
-  EXPECT_EQ(baker->GetBakeCount(), first + 4); // a lookup option needs no new maps
+  EXPECT_EQ(rendered(), 0); // a lookup option needs no new maps
 }
 
 // For benchmarks (csm-bench --breakdown): with MeasureTimes the planning, the maps, the clear
@@ -94,7 +92,7 @@ TEST(Passes, MeasuredTimesAreRecorded)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->MeasureTimesOn();
   scene.Window->Render();
-  const int n = baker->GetLightMaps().at(0).NumberOfCascades;
+  const int n = baker->GetLightMaps().at(0).GetNumberOfCascades();
   ASSERT_GE(n, 1);
   EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, n);
   EXPECT_GT(baker->GetLastFrameStatistics().PlanSeconds, 0.0);
@@ -119,8 +117,8 @@ TEST(Passes, MeasuredTimesAreRecorded)
   baker->MeasureTimesOff();
   scene.Box->SetPosition(0.25, 0, 0); // a prop moved: every map again, not timed
   scene.Window->Render();
-  EXPECT_EQ(
-    baker->GetLastFrameStatistics().CascadesRendered, baker->GetLightMaps().at(0).NumberOfCascades);
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered,
+    baker->GetLightMaps().at(0).GetNumberOfCascades());
   EXPECT_EQ(baker->GetLastFrameStatistics().MapSeconds, 0.0);
   EXPECT_EQ(baker->GetLastFrameStatistics().GetCascadeSeconds(0), 0.0);
 }
@@ -135,7 +133,7 @@ TEST(Passes, PropLightOrOptionChangesReRenderEveryMap)
   scene.Frame();
   scene.Frame();
   // Every cascade this frame has (as many as AdaptiveCascades chose).
-  auto cascades = [baker]() { return baker->GetLightMaps().at(0).NumberOfCascades; };
+  auto cascades = [baker]() { return baker->GetLightMaps().at(0).GetNumberOfCascades(); };
   EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, 0);
   EXPECT_GE(cascades(), 1);
   EXPECT_EQ(baker->GetLastFrameStatistics().CascadesKept, cascades());
@@ -145,7 +143,7 @@ TEST(Passes, PropLightOrOptionChangesReRenderEveryMap)
   scene.Light->SetPosition(1, 10, 0);
   scene.Frame();
   EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, cascades());
-  baker->SetPolygonOffsetUnits(3.0);
+  baker->SetPolygonOffset(1.1, 3.0);
   scene.Frame();
   EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, cascades());
   scene.Frame();
@@ -176,42 +174,45 @@ TEST(Passes, ResolutionAndCascadesCanChangeBetweenFrames)
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   auto plain = scene.Render();
-  baker->AdaptiveCascadesOff(); // the counts set here, not the fewest that meet the target
+  baker->GetPlanner()
+    ->AdaptiveCascadesOff(); // the counts set here, not the fewest that meet the target
   baker->SetResolution(512);
-  baker->SetNumberOfCascades(1);
+  baker->GetPlanner()->SetNumberOfCascades(1);
   auto one = scene.Render();
   ASSERT_EQ(baker->GetLightMaps().size(), 1u);
   EXPECT_EQ(baker->GetLightMaps()[0].Atlas->GetWidth(), 512u);
-  EXPECT_EQ(baker->GetLightMaps()[0].NumberOfCascades, 1);
+  EXPECT_EQ(baker->GetLightMaps()[0].GetNumberOfCascades(), 1);
   baker->SetResolution(1024);
-  baker->SetNumberOfCascades(6);
+  baker->GetPlanner()->SetNumberOfCascades(6);
   auto six = scene.Render();
   // Four full tiles at most, 2 x 2: six cascades share that area, 2 x 3 tiles of 1024 x 682.
   const auto& maps = baker->GetLightMaps()[0];
   EXPECT_EQ(maps.Atlas->GetWidth(), 2048u);
   EXPECT_EQ(maps.Atlas->GetHeight(), 2048u);
-  ASSERT_EQ(maps.NumberOfCascades, 6);
+  ASSERT_EQ(maps.GetNumberOfCascades(), 6);
   for (int c = 0; c < 6; ++c)
   {
-    EXPECT_LE(maps.CascadeResolution[c][0], 1024) << c;
-    EXPECT_LE(maps.CascadeResolution[c][1], 682) << c;
-    EXPECT_NEAR(maps.Tile[c][0], (c % 2) * 0.5, 1e-12) << c;
-    EXPECT_NEAR(maps.Tile[c][1], (c / 2) * 682.0 / 2048.0, 1e-12) << c;
+    EXPECT_LE(maps.Cascades[c].Resolution[0], 1024) << c;
+    EXPECT_LE(maps.Cascades[c].Resolution[1], 682) << c;
+    EXPECT_EQ(maps.Cascades[c].Tile[0], (c % 2) * 1024) << c;
+    EXPECT_EQ(maps.Cascades[c].Tile[1], (c / 2) * 682) << c;
+    EXPECT_EQ(maps.Cascades[c].Tile[2], 1024) << c;
+    EXPECT_EQ(maps.Cascades[c].Tile[3], 682) << c;
   }
   pass->SetPCFSize(1);
   auto hard = scene.Render();
   // A reallocated atlas must behave exactly like a first one (its compare mode and filters are
   // sent again to the new texture): compare with a fresh pass made with the final settings.
   baker->SetResolution(512);
-  baker->SetNumberOfCascades(1);
+  baker->GetPlanner()->SetNumberOfCascades(1);
   pass->SetPCFSize(5);
   auto reallocated = scene.Render();
   {
     BoxOverPlane fresh;
     vtkCascadedShadowMapPass* first = vtkCascadedShadowMapPass::UseShadowsOn(fresh.Renderer);
-    first->GetShadowMapBakerPass()->AdaptiveCascadesOff();
+    first->GetShadowMapBakerPass()->GetPlanner()->AdaptiveCascadesOff();
     first->GetShadowMapBakerPass()->SetResolution(512);
-    first->GetShadowMapBakerPass()->SetNumberOfCascades(1);
+    first->GetShadowMapBakerPass()->GetPlanner()->SetNumberOfCascades(1);
     first->SetPCFSize(5);
     EXPECT_EQ(DifferingValues(reallocated, fresh.Render()), 0);
   }
@@ -352,7 +353,7 @@ TEST(Passes, EmptyRendererAndNoShadowingLight)
   auto plain = scene.Render();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   EXPECT_EQ(DifferingValues(scene.Render(), plain), 0);
-  EXPECT_FALSE(pass->GetShadowMapBakerPass()->GetHasShadows());
+  EXPECT_TRUE(pass->GetShadowMapBakerPass()->GetLightMaps().empty());
   // No props at all.
   scene.Renderer->RemoveAllViewProps();
   scene.Renderer->AddLight(scene.Light);
@@ -380,16 +381,18 @@ TEST(Passes, NonFiniteOptionsAreRefused)
   pass->SetSlopeBias(NAN);
   pass->SetBlendBand(NAN);
   pass->SetShadowDarkness(-INFINITY);
-  baker->SetPolygonOffsetFactor(NAN);
-  baker->SetPolygonOffsetUnits(INFINITY);
+  baker->SetPolygonOffset(NAN, 2.0);
+  baker->SetPolygonOffset(1.1, INFINITY);
+  baker->SetPlanner(nullptr);
   EXPECT_EQ(passErrors.Count, 5);
-  EXPECT_EQ(bakerErrors.Count, 2);
+  EXPECT_EQ(bakerErrors.Count, 3);
+  EXPECT_NE(baker->GetPlanner(), nullptr);
   EXPECT_DOUBLE_EQ(pass->GetShadowDarkness(), 1.0);
   EXPECT_DOUBLE_EQ(pass->GetConstantBias(), 0.002);
   EXPECT_DOUBLE_EQ(pass->GetSlopeBias(), 1.5);
   EXPECT_DOUBLE_EQ(pass->GetBlendBand(), 0.05);
-  EXPECT_DOUBLE_EQ(baker->GetPolygonOffsetFactor(), 1.1);
-  EXPECT_DOUBLE_EQ(baker->GetPolygonOffsetUnits(), 2.0);
+  EXPECT_DOUBLE_EQ(baker->GetPolygonOffset()[0], 1.1);
+  EXPECT_DOUBLE_EQ(baker->GetPolygonOffset()[1], 2.0);
   EXPECT_EQ(DifferingValues(scene.Render(), before), 0);
 }
 

@@ -67,8 +67,8 @@ TEST(Passes, CastersOutsideACascadeAreNotDrawnIntoIt)
     ->SetInputConnection(plane->GetOutputPort());
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
-  baker->SetNumberOfCascades(3);
-  baker->AdaptiveCascadesOff();
+  baker->GetPlanner()->SetNumberOfCascades(3);
+  baker->GetPlanner()->AdaptiveCascadesOff();
   baker->CullCastersWithoutReceiversOff(); // the ground is counted below
   scene.Render();
   ASSERT_EQ(baker->GetLastFrameStatistics().CascadesRendered, 3);
@@ -85,8 +85,8 @@ TEST(Passes, CastersThatShadowNothingAreLeftOutOfTheMaps)
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->SetResolution(1024);
-  baker->SetNumberOfCascades(2);
-  baker->AdaptiveCascadesOff();
+  baker->GetPlanner()->SetNumberOfCascades(2);
+  baker->GetPlanner()->AdaptiveCascadesOff();
   auto without = scene.Render();
   ASSERT_GT(baker->GetLastFrameStatistics().CascadesRendered, 0);
   // The plane (planar: it cannot shadow itself; the box floats above it) is left out of every
@@ -194,10 +194,10 @@ MapDepths DepthsInMap(vtkRenderWindow* window, const vtkCascadedShadowMapBakerPa
     for (int k = 0; k < 3; ++k)
       ndc[k] = clip[k] / clip[3];
   };
-  for (int c = 0; c < maps.NumberOfCascades && !result.Found; ++c)
+  for (int c = 0; c < maps.GetNumberOfCascades() && !result.Found; ++c)
   {
     double ndc[3];
-    project(maps.WorldToMap[c], at, ndc);
+    project(maps.Cascades[c].WorldToMap, at, ndc);
     if (std::abs(ndc[0]) > 0.9 || std::abs(ndc[1]) > 0.9)
       continue;
     const int width = static_cast<int>(maps.Atlas->GetWidth());
@@ -206,14 +206,14 @@ MapDepths DepthsInMap(vtkRenderWindow* window, const vtkCascadedShadowMapBakerPa
     window->MakeCurrent();
     maps.Atlas->Bind();
     glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-    const int x =
-      static_cast<int>((maps.Tile[c][0] + (0.5 * ndc[0] + 0.5) * maps.Tile[c][2]) * width);
-    const int y =
-      static_cast<int>((maps.Tile[c][1] + (0.5 * ndc[1] + 0.5) * maps.Tile[c][3]) * height);
+    // (The map fills the lower left of its tile.)
+    const auto& map = maps.Cascades[c];
+    const int x = static_cast<int>(map.Tile[0] + (0.5 * ndc[0] + 0.5) * map.Resolution[0]);
+    const int y = static_cast<int>(map.Tile[1] + (0.5 * ndc[1] + 0.5) * map.Resolution[1]);
     result.Held = depth[static_cast<size_t>(y) * width + x];
     for (int i = 0; i < 2; ++i)
     {
-      project(maps.WorldToMap[c], points[i], ndc);
+      project(maps.Cascades[c].WorldToMap, points[i], ndc);
       result.Of[i] = 0.5 * ndc[2] + 0.5;
     }
     result.Found = true;
@@ -318,8 +318,8 @@ TEST(Passes, BigCastersAreDrawnFromCompactBlocksWithTheSameShadows)
 
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
-  baker->SetNumberOfCascades(3);
-  baker->AdaptiveCascadesOff();
+  baker->GetPlanner()->SetNumberOfCascades(3);
+  baker->GetPlanner()->AdaptiveCascadesOff();
   baker->CullCastersWithoutReceiversOff(); // the ground's blocks are counted below
   baker->CompactCastersOff();
   auto whole = scene.Render();
@@ -409,7 +409,7 @@ TEST(Passes, ScreenSizedCastersGetNoSceneFittedMap)
   auto lastFitted = [&]()
   {
     return baker->GetPlanner()->GetCascadeSceneFitted(
-      baker->GetLightMaps().at(0).NumberOfCascades - 1);
+      baker->GetLightMaps().at(0).GetNumberOfCascades() - 1);
   };
   scene.Frame();
   EXPECT_TRUE(lastFitted()); // the box alone
@@ -523,6 +523,7 @@ TEST(Passes, NaNLineWidthAndPointSizeGiveNoGarbage)
     // texels are finer.)
     vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)
       ->GetShadowMapBakerPass()
+      ->GetPlanner()
       ->SceneFittedCascadesOff();
     auto shadowed = scene.Render();
     float sizes[2] = { 0, 0 };

@@ -52,12 +52,12 @@ TEST(Passes, FacePartitionsShadeLikeCascades)
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   const long cascaded = DarkenedPixels(scene.Render(), plain);
-  EXPECT_FALSE(baker->GetLightMaps()[0].Faces);
-  baker->SetFacePartitions(1);
+  EXPECT_FALSE(baker->GetLightMaps()[0].SelectedByPlanes());
+  baker->GetPlanner()->SetFacePartitions(1);
   const long faces = DarkenedPixels(scene.Render(), plain);
   ASSERT_EQ(baker->GetLightMaps().size(), 1u);
-  EXPECT_TRUE(baker->GetLightMaps()[0].Faces);
-  EXPECT_EQ(baker->GetLightMaps()[0].NumberOfCascades, 4);
+  EXPECT_TRUE(baker->GetLightMaps()[0].SelectedByPlanes());
+  EXPECT_EQ(baker->GetLightMaps()[0].GetNumberOfCascades(), 4);
   EXPECT_GT(cascaded, 500);
   EXPECT_NEAR(faces, cascaded, 0.03 * cascaded);
   // The debug view's colours: one per partition (cascade colours of csmShadowFS.glsl).
@@ -87,10 +87,10 @@ TEST(Passes, FacePartitionsShadeLikeCascades)
   for (int k = 0; k < 4; ++k)
     EXPECT_GT(seen[k], 200) << "partition " << k;
   // Back to cascades: no face partitions.
-  baker->SetFacePartitions(0);
+  baker->GetPlanner()->SetFacePartitions(0);
   pass->SetDebugMode(vtkCascadedShadowMapPass::DEBUG_OFF);
   EXPECT_EQ(DarkenedPixels(scene.Render(), plain), cascaded);
-  EXPECT_FALSE(baker->GetLightMaps()[0].Faces);
+  EXPECT_FALSE(baker->GetLightMaps()[0].SelectedByPlanes());
 }
 
 // Face partitions need a directional light and a perspective camera: a spot light and a
@@ -101,26 +101,27 @@ TEST(Passes, FacePartitionsFallBackToCascadesWhereTheyDoNotApply)
   auto plain = scene.Render();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
-  baker->SetFacePartitions(2);
-  EXPECT_EQ(baker->GetFacePartitions(), 2);
-  baker->SetFacePartitions(99); // clamped
-  EXPECT_EQ(baker->GetFacePartitions(), vtkCascadedShadowMapPlanner::MAXIMUM_FACE_Z_PARTITIONS);
+  baker->GetPlanner()->SetFacePartitions(2);
+  EXPECT_EQ(baker->GetPlanner()->GetFacePartitions(), 2);
+  baker->GetPlanner()->SetFacePartitions(99); // clamped
+  EXPECT_EQ(baker->GetPlanner()->GetFacePartitions(),
+    vtkCascadedShadowMapPlanner::MAXIMUM_FACE_Z_PARTITIONS);
   vtkCamera* camera = scene.Renderer->GetActiveCamera();
   camera->ParallelProjectionOn();
   camera->SetParallelScale(8.0);
   scene.Render();
   ASSERT_EQ(baker->GetLightMaps().size(), 1u);
-  EXPECT_FALSE(baker->GetLightMaps()[0].Faces);
-  EXPECT_GT(baker->GetLightMaps()[0].NumberOfCascades, 0);
+  EXPECT_FALSE(baker->GetLightMaps()[0].SelectedByPlanes());
+  EXPECT_GT(baker->GetLightMaps()[0].GetNumberOfCascades(), 0);
   camera->ParallelProjectionOff();
   scene.Render();
-  EXPECT_TRUE(baker->GetLightMaps()[0].Faces); // back in perspective: face partitions
+  EXPECT_TRUE(baker->GetLightMaps()[0].SelectedByPlanes()); // back in perspective: face partitions
   scene.Light->SetPositional(true);
   scene.Light->SetPosition(0, 10, 0);
   scene.Light->SetConeAngle(40);
   const long spot = DarkenedPixels(scene.Render(), plain);
   ASSERT_EQ(baker->GetLightMaps().size(), 1u);
-  EXPECT_FALSE(baker->GetLightMaps()[0].Faces);
+  EXPECT_FALSE(baker->GetLightMaps()[0].SelectedByPlanes());
   EXPECT_GT(spot, 300);
 }
 
@@ -141,12 +142,12 @@ TEST(Passes, CameraSpaceMapShadesLikeCascades)
   pass->SetPCFSize(1);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   const long cascaded = DarkenedPixels(scene.Render(), plain);
-  EXPECT_EQ(baker->GetLightMaps()[0].DepthW[0], 0.0);
-  baker->CameraSpaceOn();
+  EXPECT_EQ(baker->GetLightMaps()[0].Cascades[0].DepthW, 0.0);
+  baker->GetPlanner()->CameraSpaceOn();
   const long cssm = DarkenedPixels(scene.Render(), plain);
   ASSERT_EQ(baker->GetLightMaps().size(), 1u);
-  EXPECT_EQ(baker->GetLightMaps()[0].NumberOfCascades, 1);
-  EXPECT_GT(baker->GetLightMaps()[0].DepthW[0], 0.0);
+  EXPECT_EQ(baker->GetLightMaps()[0].GetNumberOfCascades(), 1);
+  EXPECT_GT(baker->GetLightMaps()[0].Cascades[0].DepthW, 0.0);
   EXPECT_GT(cascaded, 500);
   EXPECT_NEAR(cssm, cascaded, 0.03 * cascaded);
   // The light from straight behind the viewer (inside the view's cone): the dueling frustum
@@ -157,15 +158,15 @@ TEST(Passes, CameraSpaceMapShadesLikeCascades)
   camera->GetFocalPoint(focal);
   scene.Light->SetPosition(position);
   scene.Light->SetFocalPoint(focal);
-  baker->CameraSpaceOff();
+  baker->GetPlanner()->CameraSpaceOff();
   const long behindCascaded = DarkenedPixels(scene.Render(), plain);
-  baker->CameraSpaceOn();
+  baker->GetPlanner()->CameraSpaceOn();
   const long behind = DarkenedPixels(scene.Render(), plain);
   const auto& maps = baker->GetLightMaps()[0];
-  EXPECT_EQ(maps.NumberOfCascades, 4);
-  EXPECT_TRUE(maps.Faces);
+  EXPECT_EQ(maps.GetNumberOfCascades(), 4);
+  EXPECT_TRUE(maps.SelectedByPlanes());
   for (int c = 0; c < 4; ++c)
-    EXPECT_GT(maps.DepthW[c], 0.0);
+    EXPECT_GT(maps.Cascades[c].DepthW, 0.0);
   EXPECT_GT(behindCascaded, 100);
   EXPECT_NEAR(behind, behindCascaded, 0.05 * behindCascaded + 10);
 }
@@ -186,17 +187,18 @@ TEST(Passes, CameraSpaceSpotLightShadesLikeItsStandardMap)
   auto standardImage = scene.Render();
   const long standard = DarkenedPixels(standardImage, plain);
   ASSERT_EQ(baker->GetLightMaps().size(), 1u);
-  std::vector<double> standardMatrix(
-    baker->GetLightMaps()[0].WorldToMap[0], baker->GetLightMaps()[0].WorldToMap[0] + 16);
-  baker->CameraSpaceOn();
+  std::vector<double> standardMatrix(baker->GetLightMaps()[0].Cascades[0].WorldToMap,
+    baker->GetLightMaps()[0].Cascades[0].WorldToMap + 16);
+  baker->GetPlanner()->CameraSpaceOn();
   auto cssmImage = scene.Render();
   const long cssm = DarkenedPixels(cssmImage, plain);
   ASSERT_EQ(baker->GetLightMaps().size(), 1u);
   const auto& maps = baker->GetLightMaps()[0];
-  EXPECT_EQ(maps.NumberOfCascades, 1);
+  EXPECT_EQ(maps.GetNumberOfCascades(), 1);
   // Another map: its shadow edges fall on other pixels.
   EXPECT_GT(DifferingValues(standardImage, cssmImage, 8), 0);
-  EXPECT_FALSE(std::equal(standardMatrix.begin(), standardMatrix.end(), maps.WorldToMap[0]));
+  EXPECT_FALSE(
+    std::equal(standardMatrix.begin(), standardMatrix.end(), maps.Cascades[0].WorldToMap));
   EXPECT_GT(standard, 500);
   EXPECT_NEAR(cssm, standard, 0.05 * standard);
   std::printf("spot light: standard map %ld darkened pixels, camera space map %ld; %ld values "
@@ -204,12 +206,12 @@ TEST(Passes, CameraSpaceSpotLightShadesLikeItsStandardMap)
     standard, cssm, static_cast<long>(DifferingValues(standardImage, cssmImage, 8)));
   // The light in the view (in front of the camera, facing the ground): the standard map.
   scene.Light->SetPosition(0, 4, 4);
-  baker->CameraSpaceOff();
+  baker->GetPlanner()->CameraSpaceOff();
   scene.Render();
-  standardMatrix.assign(
-    baker->GetLightMaps()[0].WorldToMap[0], baker->GetLightMaps()[0].WorldToMap[0] + 16);
-  baker->CameraSpaceOn();
+  standardMatrix.assign(baker->GetLightMaps()[0].Cascades[0].WorldToMap,
+    baker->GetLightMaps()[0].Cascades[0].WorldToMap + 16);
+  baker->GetPlanner()->CameraSpaceOn();
   scene.Render();
   EXPECT_TRUE(std::equal(
-    standardMatrix.begin(), standardMatrix.end(), baker->GetLightMaps()[0].WorldToMap[0]));
+    standardMatrix.begin(), standardMatrix.end(), baker->GetLightMaps()[0].Cascades[0].WorldToMap));
 }

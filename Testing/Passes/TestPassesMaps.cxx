@@ -46,19 +46,19 @@ TEST(Passes, OneAtlasServesEveryCountAndOneFittedMapGetsItAll)
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->SetResolution(256);
-  baker->SetNumberOfCascades(4);
+  baker->GetPlanner()->SetNumberOfCascades(4);
   bool sawFitted = false;
   vtkTextureObject* texture = nullptr;
   for (bool fitted : { true, false })
   {
     // (A target no count meets gets no scene-fitted map: the count of least error is taken.
     // Without one, a target more than any count can give: every map at its ceiling.)
-    baker->SetErrorTarget(fitted ? 1.0 : 0.05);
-    baker->SetSceneFittedCascades(fitted);
+    baker->GetPlanner()->SetErrorTarget(fitted ? 1.0 : 0.05);
+    baker->GetPlanner()->SetSceneFittedCascades(fitted);
     const long shadowed = DarkenedPixels(scene.Render(), plain);
     ASSERT_EQ(baker->GetLightMaps().size(), 1u);
     const auto& maps = baker->GetLightMaps()[0];
-    const int n = maps.NumberOfCascades;
+    const int n = maps.GetNumberOfCascades();
     ASSERT_GE(n, 1);
     ASSERT_LT(n, 4); // the box over the plane is a short view: fewer than four
     EXPECT_EQ(maps.Atlas->GetWidth(), 512u);
@@ -66,25 +66,25 @@ TEST(Passes, OneAtlasServesEveryCountAndOneFittedMapGetsItAll)
     EXPECT_TRUE(texture == nullptr || texture == maps.Atlas.Get());
     texture = maps.Atlas;
     const int tile = n == 1 ? 512 : 256;
-    EXPECT_EQ(maps.Resolution[0], tile) << n << " cascades";
-    EXPECT_EQ(maps.Resolution[1], tile);
+    EXPECT_EQ(maps.Cascades[0].Tile[2], tile) << n << " cascades";
+    EXPECT_EQ(maps.Cascades[0].Tile[3], tile);
     bool anyFitted = false;
     for (int c = 0; c < n; ++c)
     {
-      anyFitted = anyFitted || maps.SceneFitted[c];
+      anyFitted = anyFitted || maps.Cascades[c].IsSceneFitted();
       for (int axis = 0; axis < 2; ++axis)
       {
-        if (maps.SceneFitted[c])
+        if (maps.Cascades[c].IsSceneFitted())
         {
-          EXPECT_EQ(maps.CascadeResolution[c][axis], tile) << c << " of " << n;
+          EXPECT_EQ(maps.Cascades[c].Resolution[axis], tile) << c << " of " << n;
         }
         else if (fitted)
         {
-          EXPECT_LE(maps.CascadeResolution[c][axis], 256) << c << " of " << n; // from need
+          EXPECT_LE(maps.Cascades[c].Resolution[axis], 256) << c << " of " << n; // from need
         }
         else
         {
-          EXPECT_EQ(maps.CascadeResolution[c][axis], 256) << c << " of " << n;
+          EXPECT_EQ(maps.Cascades[c].Resolution[axis], 256) << c << " of " << n;
         }
       }
     }
@@ -96,10 +96,10 @@ TEST(Passes, OneAtlasServesEveryCountAndOneFittedMapGetsItAll)
   // Four fixed cascades: the four tiles of Resolution in the same texture, the same shadow
   // within the penumbra's change.
   const long shadowed = DarkenedPixels(scene.Render(), plain);
-  baker->AdaptiveCascadesOff();
+  baker->GetPlanner()->AdaptiveCascadesOff();
   const long four = DarkenedPixels(scene.Render(), plain);
-  EXPECT_EQ(baker->GetLightMaps()[0].NumberOfCascades, 4);
-  EXPECT_EQ(baker->GetLightMaps()[0].Resolution[0], 256);
+  EXPECT_EQ(baker->GetLightMaps()[0].GetNumberOfCascades(), 4);
+  EXPECT_EQ(baker->GetLightMaps()[0].Cascades[0].Tile[2], 256);
   EXPECT_EQ(baker->GetLightMaps()[0].Atlas.Get(), texture);
   EXPECT_EQ(baker->GetLightMaps()[0].Atlas->GetWidth(), 512u);
   EXPECT_EQ(baker->GetLightMaps()[0].Atlas->GetHeight(), 512u);
@@ -114,7 +114,7 @@ TEST(Passes, SceneFittedMapServesEveryViewOfAnOrbit)
   BoxOverPlane scene;
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
-  EXPECT_TRUE(baker->GetSceneFittedCascades()); // the default
+  EXPECT_TRUE(baker->GetPlanner()->GetSceneFittedCascades()); // the default
   scene.Frame();
   const int first = baker->GetLastFrameStatistics().CascadesRendered;
   EXPECT_GE(first, 1);
@@ -124,8 +124,8 @@ TEST(Passes, SceneFittedMapServesEveryViewOfAnOrbit)
     scene.Renderer->GetActiveCamera()->Azimuth(35.0);
     auto image = scene.Frame();
     const auto& maps = baker->GetLightMaps().at(0);
-    ASSERT_GE(maps.NumberOfCascades, 1);
-    const int last = maps.NumberOfCascades - 1;
+    ASSERT_GE(maps.GetNumberOfCascades(), 1);
+    const int last = maps.GetNumberOfCascades() - 1;
     EXPECT_TRUE(baker->GetPlanner()->GetCascadeSceneFitted(last)) << "frame " << frame;
     kept += baker->GetLastFrameStatistics().CascadesKept;
     EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, last)
@@ -146,12 +146,12 @@ TEST(Passes, SceneFittedMapServesEveryViewOfAnOrbit)
   scene.Frame();
   EXPECT_GE(baker->GetLastFrameStatistics().CascadesRendered, 1);
   // Off: the farthest cascade follows the view, and a turn draws it again.
-  baker->SceneFittedCascadesOff();
+  baker->GetPlanner()->SceneFittedCascadesOff();
   scene.Frame();
   scene.Renderer->GetActiveCamera()->Azimuth(35.0);
   scene.Frame();
-  EXPECT_FALSE(
-    baker->GetPlanner()->GetCascadeSceneFitted(baker->GetLightMaps().at(0).NumberOfCascades - 1));
+  EXPECT_FALSE(baker->GetPlanner()->GetCascadeSceneFitted(
+    baker->GetLightMaps().at(0).GetNumberOfCascades() - 1));
   EXPECT_GE(baker->GetLastFrameStatistics().CascadesRendered, 1);
 }
 
@@ -178,25 +178,26 @@ TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
   };
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
-  baker->SceneFittedCascadesOff(); // (a scene-fitted map has all the texels of its tile)
-  baker->SetErrorTarget(0.0);
+  baker->GetPlanner()
+    ->SceneFittedCascadesOff(); // (a scene-fitted map has all the texels of its tile)
+  baker->GetPlanner()->SetErrorTarget(0.0);
   const long full = halfDark(scene.Render());
-  for (int c = 0; c < baker->GetLightMaps().at(0).NumberOfCascades; ++c)
+  for (int c = 0; c < baker->GetLightMaps().at(0).GetNumberOfCascades(); ++c)
   {
     // (Its tile: NumberOfCascades of them share four full maps' texels.)
     const auto& full = baker->GetLightMaps().at(0);
-    EXPECT_EQ(full.CascadeResolution[c][0], full.Resolution[0]);
-    EXPECT_EQ(full.CascadeResolution[c][1], full.Resolution[1]);
+    EXPECT_EQ(full.Cascades[c].Resolution[0], full.Cascades[0].Tile[2]);
+    EXPECT_EQ(full.Cascades[c].Resolution[1], full.Cascades[0].Tile[3]);
   }
-  baker->SetErrorTarget(1.0);
+  baker->GetPlanner()->SetErrorTarget(1.0);
   const long needed = halfDark(scene.Render());
   const auto& maps = baker->GetLightMaps().at(0);
   vtkCascadedShadowMapPlanner* planner = baker->GetPlanner();
   long texels = 0;
   const int ceiling[2] = { baker->GetResolution(), baker->GetResolution() };
-  for (int c = 0; c < maps.NumberOfCascades; ++c)
+  for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
-    const int* r = maps.CascadeResolution[c];
+    const int* r = maps.Cascades[c].Resolution;
     // The planner's choice for this 240-pixel-high view, and fewer texels than the ceiling.
     int planned[2] = { 0, 0 };
     planner->GetCascadeResolution(
@@ -219,13 +220,13 @@ TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
   // A larger window needs more texels (up to the ceiling).
   scene.Window->SetSize(960, 720);
   scene.Render();
-  for (int c = 0; c < maps.NumberOfCascades; ++c)
+  for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
     int planned[2] = { 0, 0 };
     planner->GetCascadeResolution(
       c, 720, vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, ceiling, planned);
-    EXPECT_EQ(baker->GetLightMaps().at(0).CascadeResolution[c][0], planned[0]);
-    EXPECT_EQ(baker->GetLightMaps().at(0).CascadeResolution[c][1], planned[1]);
+    EXPECT_EQ(baker->GetLightMaps().at(0).Cascades[c].Resolution[0], planned[0]);
+    EXPECT_EQ(baker->GetLightMaps().at(0).Cascades[c].Resolution[1], planned[1]);
   }
 }
 
@@ -239,8 +240,8 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
   b->GetShadowMapBakerPass()->SetInteractiveMapBorder(0.0);
   b->GetShadowMapBakerPass()->SetMapReuseTolerance(1.0); // re-render whenever the camera moves
   // (The cascades that follow the view: a scene-fitted map would serve every view here.)
-  a->GetShadowMapBakerPass()->SceneFittedCascadesOff();
-  b->GetShadowMapBakerPass()->SceneFittedCascadesOff();
+  a->GetShadowMapBakerPass()->GetPlanner()->SceneFittedCascadesOff();
+  b->GetShadowMapBakerPass()->GetPlanner()->SceneFittedCascadesOff();
   keep.Frame();
   fresh.Frame();
   keep.Window->SetDesiredUpdateRate(15.0); // as vtkRenderWindowInteractor while dragging
@@ -254,7 +255,8 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
     auto ib = fresh.Frame();
     kept += a->GetShadowMapBakerPass()->GetLastFrameStatistics().CascadesKept;
     rendered += b->GetShadowMapBakerPass()->GetLastFrameStatistics().CascadesRendered;
-    cascades += b->GetShadowMapBakerPass()->GetLightMaps(fresh.Renderer).at(0).NumberOfCascades;
+    cascades +=
+      b->GetShadowMapBakerPass()->GetLightMaps(fresh.Renderer).at(0).GetNumberOfCascades();
     // <= 0.5 % of the pixels differ by more than 0.1 of the range (26 levels).
     const long differing = csmTest::DifferingPixels(ia, ib, 26);
     EXPECT_GE(differing, 0);
@@ -265,10 +267,10 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
   // While dragging, the maps have at most InteractiveResolution texels a side.
   vtkCascadedShadowMapBakerPass* baker = a->GetShadowMapBakerPass();
   const auto& dragged = baker->GetLightMaps(keep.Renderer).at(0);
-  for (int c = 0; c < dragged.NumberOfCascades; ++c)
+  for (int c = 0; c < dragged.GetNumberOfCascades(); ++c)
   {
-    EXPECT_LE(dragged.CascadeResolution[c][0], baker->GetInteractiveResolution());
-    EXPECT_LE(dragged.CascadeResolution[c][1], baker->GetInteractiveResolution());
+    EXPECT_LE(dragged.Cascades[c].Resolution[0], baker->GetInteractiveResolution());
+    EXPECT_LE(dragged.Cascades[c].Resolution[1], baker->GetInteractiveResolution());
   }
   // The still frame after dragging returns to tight maps (full quality): identical images.
   keep.Window->SetDesiredUpdateRate(0.0001);
@@ -276,12 +278,12 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
   EXPECT_EQ(DifferingValues(keep.Frame(), fresh.Frame()), 0);
   const auto& still = baker->GetLightMaps(keep.Renderer).at(0);
   const auto& reference = b->GetShadowMapBakerPass()->GetLightMaps(fresh.Renderer).at(0);
-  for (int c = 0; c < still.NumberOfCascades; ++c)
+  for (int c = 0; c < still.GetNumberOfCascades(); ++c)
   {
-    EXPECT_EQ(still.CascadeResolution[c][0], reference.CascadeResolution[c][0]);
-    EXPECT_EQ(still.CascadeResolution[c][1], reference.CascadeResolution[c][1]);
+    EXPECT_EQ(still.Cascades[c].Resolution[0], reference.Cascades[c].Resolution[0]);
+    EXPECT_EQ(still.Cascades[c].Resolution[1], reference.Cascades[c].Resolution[1]);
   }
-  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, still.NumberOfCascades);
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, still.GetNumberOfCascades());
 }
 
 namespace
@@ -313,10 +315,11 @@ std::vector<float> cascadeDepths(
   atlas->Bind();
   glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, all.data());
   atlas->Deactivate();
-  const int x = static_cast<int>(std::lround(maps.Tile[c][0] * width));
-  const int y = static_cast<int>(std::lround(maps.Tile[c][1] * height));
-  const int w = static_cast<int>(std::lround(maps.Tile[c][2] * width));
-  const int h = static_cast<int>(std::lround(maps.Tile[c][3] * height));
+  // The map fills the lower left of its tile.
+  const int x = maps.Cascades[c].Tile[0], y = maps.Cascades[c].Tile[1];
+  const int w = maps.Cascades[c].Resolution[0], h = maps.Cascades[c].Resolution[1];
+  EXPECT_LE(x + w, width);
+  EXPECT_LE(y + h, height);
   std::vector<float> tile;
   for (int row = y; row < y + h; ++row)
   {
@@ -354,8 +357,8 @@ TEST(Passes, AMapReRenderedBesideKeptOnesHoldsOnlyItsOwnCasters)
   }
   vtkCascadedShadowMapPass* a = vtkCascadedShadowMapPass::UseShadowsOn(keep.Renderer);
   vtkCascadedShadowMapPass* b = vtkCascadedShadowMapPass::UseShadowsOn(fresh.Renderer);
-  a->GetShadowMapBakerPass()->SetErrorTarget(0.5);
-  b->GetShadowMapBakerPass()->SetErrorTarget(0.5);
+  a->GetShadowMapBakerPass()->GetPlanner()->SetErrorTarget(0.5);
+  b->GetShadowMapBakerPass()->GetPlanner()->SetErrorTarget(0.5);
   b->GetShadowMapBakerPass()->SetMapReuseTolerance(1.0); // re-render whenever the camera moves
   keep.Window->SetDesiredUpdateRate(15.0);
   fresh.Window->SetDesiredUpdateRate(15.0);
@@ -376,12 +379,15 @@ TEST(Passes, AMapReRenderedBesideKeptOnesHoldsOnlyItsOwnCasters)
     }
     const auto& mk = baker->GetLightMaps(keep.Renderer).at(0);
     const auto& mf = b->GetShadowMapBakerPass()->GetLightMaps(fresh.Renderer).at(0);
-    ASSERT_EQ(mk.NumberOfCascades, mf.NumberOfCascades);
-    for (int c = 0; c < mk.NumberOfCascades; ++c)
+    ASSERT_EQ(mk.GetNumberOfCascades(), mf.GetNumberOfCascades());
+    for (int c = 0; c < mk.GetNumberOfCascades(); ++c)
     {
       // The re-rendered cascades: planned for this camera, as the reference's.
-      if (!std::equal(mk.WorldToMap[c], mk.WorldToMap[c] + 16, mf.WorldToMap[c]) ||
-        !std::equal(mk.Tile[c], mk.Tile[c] + 4, mf.Tile[c]))
+      if (!std::equal(
+            mk.Cascades[c].WorldToMap, mk.Cascades[c].WorldToMap + 16, mf.Cascades[c].WorldToMap) ||
+        !std::equal(mk.Cascades[c].Tile, mk.Cascades[c].Tile + 4, mf.Cascades[c].Tile) ||
+        !std::equal(
+          mk.Cascades[c].Resolution, mk.Cascades[c].Resolution + 2, mf.Cascades[c].Resolution))
       {
         continue;
       }
@@ -413,25 +419,25 @@ TEST(Passes, MoreThanFourCascadesOnlyInStillFrames)
   auto plain = scene.Render();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
-  baker->SetErrorTarget(0.05); // out of reach: as many as pay
+  baker->GetPlanner()->SetErrorTarget(0.05); // out of reach: as many as pay
   // (Of the cascades that follow the view: one scene-fitted map of the box's footprint would
   // meet even this.)
-  baker->SceneFittedCascadesOff();
+  baker->GetPlanner()->SceneFittedCascadesOff();
   const long still = DarkenedPixels(scene.Render(), plain);
   const auto& maps = baker->GetLightMaps().at(0);
-  EXPECT_GT(maps.NumberOfCascades, 4);
+  EXPECT_GT(maps.GetNumberOfCascades(), 4);
   int turned = 0;
-  for (int c = 0; c < maps.NumberOfCascades; ++c)
+  for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
-    EXPECT_NE(maps.Resolution[0], maps.Resolution[1]) << "tall tiles";
-    turned += maps.MapTurned[c];
+    EXPECT_NE(maps.Cascades[0].Tile[2], maps.Cascades[0].Tile[3]) << "tall tiles";
+    turned += maps.Cascades[c].Turned;
   }
-  std::printf("still: %d cascades (%d turned), tiles %d x %d\n", maps.NumberOfCascades, turned,
-    maps.Resolution[0], maps.Resolution[1]);
+  std::printf("still: %d cascades (%d turned), tiles %d x %d\n", maps.GetNumberOfCascades(), turned,
+    maps.Cascades[0].Tile[2], maps.Cascades[0].Tile[3]);
   const vtkMTimeType shaders = pass->GetShaderStageMTime();
   scene.Window->SetDesiredUpdateRate(15.0); // as vtkRenderWindowInteractor while dragging
   const long dragged = DarkenedPixels(scene.Render(), plain);
-  EXPECT_LE(baker->GetLightMaps().at(0).NumberOfCascades, 4);
+  EXPECT_LE(baker->GetLightMaps().at(0).GetNumberOfCascades(), 4);
   // The count changes with the view: the shaders stay (a rebuild of every shader would cost a
   // frame).
   EXPECT_EQ(pass->GetShaderStageMTime(), shaders);
@@ -444,9 +450,10 @@ TEST(Passes, LeavingAKeptMapReRendersItInThatFrame)
   BoxOverPlane scene, reference;
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   // (The cascades that follow the view: a scene-fitted map would serve every view here.)
-  pass->GetShadowMapBakerPass()->SceneFittedCascadesOff();
+  pass->GetShadowMapBakerPass()->GetPlanner()->SceneFittedCascadesOff();
   vtkCascadedShadowMapPass::UseShadowsOn(reference.Renderer)
     ->GetShadowMapBakerPass()
+    ->GetPlanner()
     ->SceneFittedCascadesOff();
   scene.Window->SetDesiredUpdateRate(15.0);
   reference.Window->SetDesiredUpdateRate(15.0);

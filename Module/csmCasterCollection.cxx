@@ -1,0 +1,806 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "csmCasterCollection.h"
+
+#include "csmCasterBlocks.h"
+#include "csmClosedSurface.h"
+
+#include "vtkActor.h"
+#include "vtkCascadedShadowBlockMapper.h"
+#include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkCascadedShadowMapPlanner.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCommunicator.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProp.h"
+#include "vtkPropCollection.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+namespace
+{
+/// Most receiver boxes a caster without self-shadow is tested against
+/// (CullCastersWithoutReceivers); beyond, every caster is drawn.
+constexpr size_t kMaxReceiverTests = 4096;
+
+/// Bounds of a prop that draws 3D geometry, or false (2D actors, invisible, no bounds).
+bool propBounds(vtkProp* prop, double bounds[6])
+{
+  if (!prop || !prop->GetVisibility() || !prop->GetUseBounds())
+  {
+    return false;
+  }
+  const double* b = prop->GetBounds();
+  if (!b || !(b[0] <= b[1] && b[2] <= b[3] && b[4] <= b[5]))
+  {
+    return false;
+  }
+  std::copy(b, b + 6, bounds);
+  return true;
+}
+
+/// Does any caster draw lines wider or points bigger than one pixel (its map then depends on
+/// the main view)?
+template <typename Caster>
+bool hasScreenSizedCasters(const std::vector<Caster>& casters)
+{
+  vtkNew<vtkPropCollection> actors;
+  for (const Caster& caster : casters)
+  {
+    caster.Prop->GetActors(actors);
+  }
+  vtkCollectionSimpleIterator it;
+  actors->InitTraversal(it);
+  while (vtkProp* prop = actors->GetNextProp(it))
+  {
+    float sizes[2];
+    vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, sizes);
+    if (sizes[0] > 1.0f || sizes[1] > 1.0f)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+} // namespace
+
+csmCasterCollection::csmCasterCollection()
+  : StopWorkers(std::make_shared<std::atomic<bool>>(false))
+{
+}
+
+csmCasterCollection::~csmCasterCollection()
+{
+  // Preparations under way stop at their next check (their futures wait for them below).
+  this->StopWorkers->store(true);
+  this->Closures.clear();
+  this->Blocks.clear();
+}
+
+double csmCasterCollection::CellsOf(vtkProp* prop)
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkMapper* mapper = actor ? actor->GetMapper() : nullptr;
+  vtkDataObject* data =
+    mapper && mapper->GetNumberOfInputPorts() > 0 && mapper->GetNumberOfInputConnections(0) > 0
+    ? mapper->GetInputDataObject(0, 0)
+    : nullptr;
+  return data ? static_cast<double>(data->GetNumberOfElements(vtkDataObject::CELL)) : 0.0;
+}
+
+void csmCasterCollection::ForgetTheGone(vtkWindow* window)
+{
+  // Forget the closed-surface answers for data that is gone, and the blocks of data or props
+  // that are gone (releasing their buffers in this window's context, which is current).
+  for (auto it = this->Closures.begin(); it != this->Closures.end();)
+  {
+    it = it->second.Data ? std::next(it) : this->Closures.erase(it);
+  }
+  for (auto it = this->Blocks.begin(); it != this->Blocks.end();)
+  {
+    const bool gone = !it->second.Window || !it->second.Data;
+    if (gone && it->second.Window == window && it->second.Mapper)
+    {
+      it->second.Mapper->ReleaseGraphicsResources(window);
+    }
+    it = gone ? this->Blocks.erase(it) : std::next(it);
+  }
+  for (auto it = this->Proxies.begin(); it != this->Proxies.end();)
+  {
+    it = it->second.Window && it->second.Prop ? std::next(it) : this->Proxies.erase(it);
+  }
+}
+
+csmCasterCollection::Counts csmCasterCollection::Collect(vtkRenderer* renderer,
+  const Options& options, long long frame, bool viewMoved, csmFrameCasters& props)
+{
+  this->FrameNumber = frame;
+  this->ViewMoved = viewMoved;
+  this->ForgetTheGone(renderer->GetRenderWindow());
+  Counts counts;
+  // Casters: visible opaque props. Receivers: every visible prop; their boxes fit the cascades.
+  vtkPropCollection* collection = renderer->GetViewProps();
+  vtkCollectionSimpleIterator pit;
+  collection->InitTraversal(pit);
+  while (vtkProp* prop = collection->GetNextProp(pit))
+  {
+    std::array<double, 6> b;
+    if (!propBounds(prop, b.data()))
+    {
+      continue;
+    }
+    props.Receivers.push_back(b);
+    if (!prop->HasOpaqueGeometry())
+    {
+      continue;
+    }
+    const int closure = this->ClosureOf(prop, options.CullClosedCasters);
+    counts.ClosedCasters += closure != 0 ? 1 : 0;
+    const size_t first = props.Casters.size();
+    if (options.CompactCasters &&
+      this->AddCompactCaster(
+        prop, closure, static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow()), props))
+    {
+      ++counts.CompactCasters;
+    }
+    else
+    {
+      csmFrameCasters::Caster caster;
+      caster.Prop = prop;
+      caster.Bounds = b;
+      caster.Closure = closure;
+      caster.Cells = csmCasterCollection::CellsOf(prop);
+      props.Casters.push_back(caster);
+    }
+    const bool itself = this->ShadowsItself(prop, options.CullCastersWithoutReceivers);
+    for (size_t i = first; i < props.Casters.size(); ++i)
+    {
+      csmFrameCasters::Caster& caster = props.Casters[i];
+      caster.ShadowsItself = itself;
+      caster.Receiver = static_cast<int>(props.Receivers.size()) - 1;
+      float sizes[2];
+      vtkCascadedShadowMapBakerPass::GetScreenSizes(caster.Prop, sizes);
+      const bool screenSized = sizes[0] > 1.0f || sizes[1] > 1.0f;
+      if (caster.Compact < 0)
+      {
+        props.CasterLoads.push_back(
+          { caster.Bounds, caster.Cells, caster.Receiver, itself, screenSized });
+        continue;
+      }
+      const csmFrameCasters::Compact& compact = props.Compacts[static_cast<size_t>(caster.Compact)];
+      for (size_t k = 0; k < compact.Bounds.size(); ++k)
+      {
+        props.CasterLoads.push_back(
+          { compact.Bounds[k], compact.Cells[k], caster.Receiver, itself, screenSized });
+      }
+    }
+  }
+  props.ScreenSized = hasScreenSizedCasters(props.Casters);
+  return counts;
+}
+
+namespace
+{
+/// The positions and the triangles of a polydata's polygons (fans) and strips (false: no points).
+/// Calls f(a, b, c) for every triangle of a polydata's polygons (fans) and strips, wound as
+/// drawn; safe beside the main thread's own reading (each traversal has its own iterator).
+/// Stops early (returning false) once `stop` is set.
+template <typename F>
+bool forEachTriangle(vtkPolyData* data, F&& f, const std::atomic<bool>* stop = nullptr)
+{
+  vtkIdType n;
+  const vtkIdType* ids;
+  vtkIdType visited = 0;
+  auto stopped = [&visited, stop]()
+  { return stop && (++visited & 0xfff) == 0 && stop->load(std::memory_order_relaxed); };
+  auto polys = vtk::TakeSmartPointer(data->GetPolys()->NewIterator());
+  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
+  {
+    if (stopped())
+    {
+      return false;
+    }
+    polys->GetCurrentCell(n, ids);
+    for (vtkIdType k = 2; k < n; ++k)
+    {
+      f(ids[0], ids[k - 1], ids[k]);
+    }
+  }
+  auto strips = vtk::TakeSmartPointer(data->GetStrips()->NewIterator());
+  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
+  {
+    if (stopped())
+    {
+      return false;
+    }
+    strips->GetCurrentCell(n, ids);
+    for (vtkIdType k = 2; k < n; ++k)
+    {
+      // Every other triangle of a strip is wound the other way round.
+      if (k % 2 == 0)
+      {
+        f(ids[k - 2], ids[k - 1], ids[k]);
+      }
+      else
+      {
+        f(ids[k - 1], ids[k - 2], ids[k]);
+      }
+    }
+  }
+  return true;
+}
+
+/// Triangles of a polydata (polygons as fans, strips) without traversing them.
+double triangleCount(vtkPolyData* data)
+{
+  const double polys = static_cast<double>(data->GetPolys()->GetNumberOfConnectivityIds()) -
+    2.0 * static_cast<double>(data->GetPolys()->GetNumberOfCells());
+  const double strips = static_cast<double>(data->GetStrips()->GetNumberOfConnectivityIds()) -
+    2.0 * static_cast<double>(data->GetStrips()->GetNumberOfCells());
+  return std::max(0.0, polys) + std::max(0.0, strips);
+}
+
+/// A big caster's triangles in compact blocks (csm::orderIntoBlocks), for
+/// vtkCascadedShadowBlockMapper: the corners block after block, each block's triangles and its
+/// box in the data's coordinates. Empty where the mesh has no usable triangle.
+} // namespace
+
+struct csmPreparedBlocks
+{
+  std::vector<std::uint32_t> Corners;
+  std::vector<std::pair<std::size_t, std::size_t>> Blocks;
+  std::vector<std::array<double, 6>> Bounds;
+};
+
+struct csmPreparedClosure
+{
+  csm::SurfaceClosure Closure;
+};
+
+namespace
+{
+std::shared_ptr<csmPreparedBlocks> prepareBlocks(
+  vtkSmartPointer<vtkPolyData> data, std::size_t perBlock, const std::atomic<bool>* stop)
+{
+  auto result = std::make_shared<csmPreparedBlocks>();
+  vtkPoints* points = data->GetPoints();
+  const vtkIdType pointCount = points ? points->GetNumberOfPoints() : 0;
+  if (pointCount == 0 ||
+    pointCount > static_cast<vtkIdType>(std::numeric_limits<std::uint32_t>::max()))
+  {
+    return result;
+  }
+  std::vector<std::uint32_t> corners;
+  std::vector<glm::vec3> centroids;
+  corners.reserve(3 * static_cast<size_t>(triangleCount(data)));
+  centroids.reserve(static_cast<size_t>(triangleCount(data)));
+  bool valid = true;
+  valid = forEachTriangle(
+            data,
+            [&](vtkIdType a, vtkIdType b, vtkIdType c)
+            {
+              if (a < 0 || b < 0 || c < 0 || a >= pointCount || b >= pointCount || c >= pointCount)
+              {
+                valid = false;
+                return;
+              }
+              if (a == b || b == c || c == a)
+              {
+                return; // covers no texel
+              }
+              double pa[3], pb[3], pc[3];
+              points->GetPoint(a, pa);
+              points->GetPoint(b, pb);
+              points->GetPoint(c, pc);
+              corners.insert(corners.end(),
+                { static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
+                  static_cast<std::uint32_t>(c) });
+              centroids.emplace_back(static_cast<float>((pa[0] + pb[0] + pc[0]) / 3.0),
+                static_cast<float>((pa[1] + pb[1] + pc[1]) / 3.0),
+                static_cast<float>((pa[2] + pb[2] + pc[2]) / 3.0));
+            },
+            stop) &&
+    valid;
+  if (!valid || centroids.empty())
+  {
+    return result;
+  }
+  csm::BlockOrder order = csm::orderIntoBlocks(centroids, perBlock);
+  std::vector<glm::vec3>().swap(centroids);
+  if (order.blocks.empty() || (stop && stop->load()))
+  {
+    return result;
+  }
+  result->Corners.resize(corners.size());
+  for (size_t i = 0; i < order.order.size(); ++i)
+  {
+    std::copy_n(corners.begin() + 3 * static_cast<std::ptrdiff_t>(order.order[i]), 3,
+      result->Corners.begin() + 3 * static_cast<std::ptrdiff_t>(i));
+  }
+  std::vector<std::uint32_t>().swap(corners);
+  std::vector<std::uint32_t>().swap(order.order);
+  result->Blocks = std::move(order.blocks);
+  for (const auto& [first, count] : result->Blocks)
+  {
+    std::array<double, 6> box = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+      VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    for (size_t i = 3 * first; i < 3 * (first + count); ++i)
+    {
+      double p[3];
+      points->GetPoint(result->Corners[i], p);
+      for (int k = 0; k < 3; ++k)
+      {
+        box[2 * k] = std::min(box[2 * k], p[k]);
+        box[2 * k + 1] = std::max(box[2 * k + 1], p[k]);
+      }
+    }
+    result->Bounds.push_back(box);
+  }
+  return result;
+}
+
+bool trianglesOf(vtkPolyData* data, std::vector<glm::dvec3>& positions,
+  std::vector<std::array<std::int64_t, 3>>& triangles, const std::atomic<bool>* stop = nullptr)
+{
+  // (Cell iterators and GetPoint into a buffer: safe beside the main thread's own reading.)
+  vtkPoints* points = data->GetPoints();
+  if (!points || points->GetNumberOfPoints() == 0)
+  {
+    return false;
+  }
+  positions.resize(static_cast<size_t>(points->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    positions[static_cast<size_t>(i)] = glm::dvec3(p[0], p[1], p[2]);
+  }
+  triangles.clear();
+  return forEachTriangle(
+    data,
+    [&triangles](vtkIdType a, vtkIdType b, vtkIdType c) {
+      triangles.push_back({ a, b, c });
+    },
+    stop);
+}
+
+/// csm::classifySurface of a polydata.
+csm::SurfaceClosure classifyPolyData(vtkPolyData* data, const std::atomic<bool>* stop = nullptr)
+{
+  std::vector<glm::dvec3> positions;
+  std::vector<std::array<std::int64_t, 3>> triangles;
+  return trianglesOf(data, positions, triangles, stop) ? csm::classifySurface(positions, triangles)
+                                                       : csm::SurfaceClosure();
+}
+
+/// The polydata of a prop that may be drawn from compact blocks: a plain actor and mapper,
+/// polygons or strips drawn as a surface, nothing else (see CompactCasters).
+vtkPolyData* compactableData(vtkProp* prop)
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkProperty* property = actor ? actor->GetProperty() : nullptr;
+  vtkPolyDataMapper* mapper = actor ? vtkPolyDataMapper::SafeDownCast(actor->GetMapper()) : nullptr;
+  vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
+  // Subclasses (followers, LOD actors, impostor and splat mappers) draw what their class knows.
+  if (!data || !property || std::strcmp(actor->GetClassName(), "vtkOpenGLActor") != 0 ||
+    std::strcmp(mapper->GetClassName(), "vtkOpenGLPolyDataMapper") != 0 ||
+    property->GetRepresentation() != VTK_SURFACE || mapper->GetNumberOfClippingPlanes() > 0 ||
+    data->GetNumberOfVerts() > 0 || data->GetNumberOfLines() > 0 ||
+    data->GetNumberOfPolys() + data->GetNumberOfStrips() == 0)
+  {
+    return nullptr;
+  }
+  return data;
+}
+
+}
+
+const csmCasterCollection::Closure& csmCasterCollection::ClassifiedShape(vtkPolyData* data)
+{
+  Closure& closure = this->Closures[data];
+  if (closure.Data == data && closure.Time == data->GetMTime())
+  {
+    return closure;
+  }
+  closure.Data = data;
+  // Until it is classified, a shape counts as open (drawn with both sides, its full bias) and
+  // as one that may shadow itself: correct, only without the savings of a closed one.
+  closure.Orientation = 0;
+  closure.Planar = false;
+  closure.ShadowsItself = true;
+  const double triangles = triangleCount(data);
+  if (triangles > vtkCascadedShadowMapBakerPass::MOST_CLASSIFIED_TRIANGLES)
+  {
+    closure.Time = data->GetMTime(); // not classified: what it costs outweighs what it saves
+    return closure;
+  }
+  csm::SurfaceClosure c;
+  if (triangles <= vtkCascadedShadowMapBakerPass::SYNCHRONOUS_PREPARATION_TRIANGLES)
+  {
+    c = classifyPolyData(data);
+  }
+  else
+  {
+    // A big mesh is classified by a worker thread; frames go on meanwhile.
+    if (!closure.Pending.valid() || closure.PendingTime != data->GetMTime())
+    {
+      // (From the second frame that draws it on, as its blocks.)
+      if (closure.SeenTime != data->GetMTime() || closure.SeenFrame >= this->FrameNumber ||
+        !this->ViewMoved)
+      {
+        if (closure.SeenTime != data->GetMTime())
+        {
+          closure.SeenTime = data->GetMTime();
+          closure.SeenFrame = this->FrameNumber;
+        }
+        return closure;
+      }
+      auto copy = vtkSmartPointer<vtkPolyData>::New();
+      copy->ShallowCopy(data);
+      closure.PendingTime = data->GetMTime();
+      std::shared_ptr<std::atomic<bool>> stop = this->StopWorkers;
+      closure.Pending = std::async(std::launch::async,
+        [copy, stop]()
+        {
+          auto prepared = std::make_shared<csmPreparedClosure>();
+          prepared->Closure = classifyPolyData(copy, stop.get());
+          return prepared;
+        });
+      return closure;
+    }
+    if (closure.Pending.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    {
+      return closure;
+    }
+    c = closure.Pending.get()->Closure;
+  }
+  closure.Time = data->GetMTime();
+  closure.Orientation = c.closed && c.volume != 0.0 ? (c.volume > 0.0 ? 1 : -1) : 0;
+  closure.Planar = c.planar;
+  closure.ShadowsItself = c.canShadowItself();
+  return closure;
+}
+
+bool csmCasterCollection::ShadowsItself(vtkProp* prop, bool cullWithoutReceivers)
+{
+  // Only surfaces drawn as they are, by the plain mapper (impostor and splat mappers draw
+  // spheres and discs around the points, which stand out of a plane): lines and points may be
+  // drawn as tubes and spheres, and the user's clipping planes open a solid (its inside then
+  // shows).
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkPolyDataMapper* mapper = actor ? vtkPolyDataMapper::SafeDownCast(actor->GetMapper()) : nullptr;
+  vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
+  vtkProperty* property = actor ? actor->GetProperty() : nullptr;
+  if (!cullWithoutReceivers || !data || !property ||
+    std::strcmp(mapper->GetClassName(), "vtkOpenGLPolyDataMapper") != 0 ||
+    property->GetRepresentation() != VTK_SURFACE || data->GetNumberOfVerts() > 0 ||
+    data->GetNumberOfLines() > 0)
+  {
+    return true;
+  }
+  const Closure& closure = this->ClassifiedShape(data);
+  return mapper->GetNumberOfClippingPlanes() > 0 ? !closure.Planar : closure.ShadowsItself;
+}
+
+int csmCasterCollection::ClosureOf(vtkProp* prop, bool cullClosed)
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkPolyDataMapper* mapper = actor ? vtkPolyDataMapper::SafeDownCast(actor->GetMapper()) : nullptr;
+  vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
+  vtkProperty* property = actor ? actor->GetProperty() : nullptr;
+  if (!cullClosed || !data || !property || property->GetRepresentation() != VTK_SURFACE ||
+    property->GetBackfaceCulling() || property->GetFrontfaceCulling() ||
+    mapper->GetNumberOfClippingPlanes() > 0 || data->GetNumberOfVerts() > 0 ||
+    data->GetNumberOfLines() > 0)
+  {
+    return 0;
+  }
+  const Closure& closure = this->ClassifiedShape(data);
+  const double determinant = actor->GetMatrix()->Determinant();
+  if (closure.Orientation == 0 || !std::isfinite(determinant) || determinant == 0.0)
+  {
+    return 0;
+  }
+  return determinant > 0.0 ? closure.Orientation : -closure.Orientation;
+}
+
+bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindow* window)
+{
+  // The data's blocks in this window, prepared again when the data changed: a small mesh at
+  // once, a big one by a worker thread while the frames draw the prop as it is (correct, only
+  // without culling inside it) until the blocks are ready.
+  CasterBlocks& blocks = this->Blocks[{ window, data }];
+  const vtkMTimeType dataTime = data->GetMTime();
+  const bool current = blocks.Data == data && blocks.Window == window && blocks.Time == dataTime &&
+    blocks.Mapper && blocks.Mapper->HasTriangles();
+  if (!current)
+  {
+    if (!blocks.Pending.valid() || blocks.PendingTime != dataTime || blocks.Data != data ||
+      blocks.Window != window)
+    {
+      const size_t triangles = static_cast<size_t>(triangleCount(data));
+      const bool now =
+        triangles <= vtkCascadedShadowMapBakerPass::SYNCHRONOUS_PREPARATION_TRIANGLES;
+      // A big mesh is prepared once a later frame's view moved (the maps that follow a moving
+      // view are drawn again and again; a still view keeps its maps): a single image (a
+      // screenshot, a batch frame, even rendered twice) never waits for, nor holds the memory
+      // of, its preparation.
+      const bool seen = blocks.SeenTime == dataTime && blocks.Data == data &&
+        blocks.Window == window && blocks.SeenFrame < this->FrameNumber && this->ViewMoved;
+      if (!seen)
+      {
+        blocks.SeenFrame = this->FrameNumber;
+      }
+      blocks.Window = window;
+      blocks.Data = data;
+      blocks.SeenTime = dataTime;
+      if (!now && !seen)
+      {
+        return false;
+      }
+      auto copy = vtkSmartPointer<vtkPolyData>::New();
+      copy->ShallowCopy(data); // the prop's own points and cells, held while prepared
+      const size_t perBlock =
+        std::max<size_t>(vtkCascadedShadowMapBakerPass::MINIMUM_BLOCK_TRIANGLES,
+          (triangles + vtkCascadedShadowMapBakerPass::MAXIMUM_BLOCKS - 1) /
+            vtkCascadedShadowMapBakerPass::MAXIMUM_BLOCKS);
+      blocks.PendingTime = dataTime;
+      blocks.Pending = std::async(now ? std::launch::deferred : std::launch::async,
+        [copy, perBlock, stop = this->StopWorkers]()
+        { return prepareBlocks(copy, perBlock, stop.get()); });
+      if (!now)
+      {
+        return false; // (picked up in a later frame, whenever it is ready)
+      }
+    }
+    if (blocks.Pending.wait_for(std::chrono::seconds(0)) == std::future_status::timeout)
+    {
+      return false;
+    }
+    std::shared_ptr<csmPreparedBlocks> prepared = blocks.Pending.get();
+    if (blocks.Mapper)
+    {
+      blocks.Mapper->ReleaseGraphicsResources(window);
+    }
+    blocks.Mapper = nullptr;
+    blocks.Bounds.clear();
+    blocks.Cells.clear();
+    blocks.Time = dataTime;
+    blocks.Build = ++this->BlockBuilds;
+    if (prepared->Blocks.empty())
+    {
+      return false; // nothing usable (no area, a bad index or position): drawn as it is
+    }
+    // The prop's own points (the vertex buffer its mapper uploads serves both, through the
+    // window's buffer cache), the blocks' triangles.
+    auto input = vtkSmartPointer<vtkPolyData>::New();
+    input->SetPoints(data->GetPoints());
+    blocks.Mapper = vtkSmartPointer<vtkCascadedShadowBlockMapper>::New();
+    blocks.Mapper->SetInputData(input);
+    blocks.Mapper->ScalarVisibilityOff();
+    for (const auto& block : prepared->Blocks)
+    {
+      blocks.Cells.push_back(static_cast<double>(block.second));
+    }
+    blocks.Bounds = std::move(prepared->Bounds);
+    blocks.Mapper->SetBlocks(std::move(prepared->Corners), std::move(prepared->Blocks));
+  }
+  return blocks.Mapper != nullptr;
+}
+
+bool csmCasterCollection::AddCompactCaster(
+  vtkProp* prop, int closure, vtkOpenGLRenderWindow* window, csmFrameCasters& props)
+{
+  vtkPolyData* data = compactableData(prop);
+  if (!data || !window)
+  {
+    return false;
+  }
+  if (!this->PreparedBlocks(data, window))
+  {
+    return false;
+  }
+  const CasterBlocks& blocks = this->Blocks[{ window, data }];
+  // The prop's actor for its blocks: its property, a copy of its matrix.
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  CasterProxy& proxy = this->Proxies[{ window, prop }];
+  if (proxy.Prop != prop || proxy.Window != window || proxy.Data != data ||
+    proxy.Build != blocks.Build)
+  {
+    proxy.Prop = prop;
+    proxy.Window = window;
+    proxy.Data = data;
+    proxy.Build = blocks.Build;
+    proxy.Matrix = vtkSmartPointer<vtkMatrix4x4>::New();
+    proxy.Actor = vtkSmartPointer<vtkActor>::New();
+    proxy.Actor->SetMapper(blocks.Mapper);
+    proxy.Actor->SetUserMatrix(proxy.Matrix);
+  }
+  vtkMatrix4x4* matrix = actor->GetMatrix();
+  if (!std::equal(matrix->GetData(), matrix->GetData() + 16, proxy.Matrix->GetData()))
+  {
+    proxy.Matrix->DeepCopy(matrix);
+  }
+  proxy.Actor->SetProperty(actor->GetProperty());
+  csmFrameCasters::Compact compact;
+  compact.Mapper = blocks.Mapper;
+  compact.Cells = blocks.Cells;
+  for (const std::array<double, 6>& local : blocks.Bounds)
+  {
+    // The block's box in world space: the box of its corners' images.
+    std::array<double, 6> world = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX,
+      -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const double p[4] = { local[corner & 1], local[2 + ((corner >> 1) & 1)],
+        local[4 + ((corner >> 2) & 1)], 1.0 };
+      double q[4];
+      matrix->MultiplyPoint(p, q);
+      for (int k = 0; k < 3; ++k)
+      {
+        const double v = q[k] / q[3];
+        world[2 * k] = std::min(world[2 * k], v);
+        world[2 * k + 1] = std::max(world[2 * k + 1], v);
+      }
+    }
+    if (!std::all_of(world.begin(), world.end(), [](double v) { return std::isfinite(v); }))
+    {
+      return false; // a matrix that sends a corner to infinity: the prop is drawn as it is
+    }
+    compact.Bounds.push_back(world);
+  }
+  std::array<double, 6> whole = compact.Bounds.front();
+  for (const auto& box : compact.Bounds)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      whole[2 * k] = std::min(whole[2 * k], box[2 * k]);
+      whole[2 * k + 1] = std::max(whole[2 * k + 1], box[2 * k + 1]);
+    }
+  }
+  csmFrameCasters::Caster caster;
+  caster.Prop = proxy.Actor;
+  caster.Bounds = whole;
+  caster.Closure = closure;
+  caster.Compact = static_cast<int>(props.Compacts.size());
+  props.Compacts.push_back(std::move(compact));
+  props.Casters.push_back(caster);
+  return true;
+}
+
+bool csmFrameCasters::CasterHasReceivers(const Caster& caster, const double* travel) const
+{
+  // Directional lights only.
+  if (caster.ShadowsItself || caster.Receiver < 0 || !travel ||
+    this->Receivers.size() > kMaxReceiverTests)
+  {
+    return true;
+  }
+  // A shadow shorter than a millionth of the scene is no shadow (the lookup's bias hides it).
+  const double* s = this->SceneBounds;
+  const double minimum = 1e-6 *
+    std::sqrt((s[1] - s[0]) * (s[1] - s[0]) + (s[3] - s[2]) * (s[3] - s[2]) +
+      (s[5] - s[4]) * (s[5] - s[4]));
+  for (size_t r = 0; r < this->Receivers.size(); ++r)
+  {
+    if (static_cast<int>(r) != caster.Receiver &&
+      vtkCascadedShadowMapPlanner::CasterBoxReachesBox(
+        travel, caster.Bounds.data(), this->Receivers[r].data(), minimum))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+void csmFrameCasters::GatherAcrossProcesses(vtkMultiProcessController* controller)
+{
+  // All processes plan from the global bounds and the same receiver boxes, and re-render when
+  // any of them saw a change.
+  double* sceneBounds = this->SceneBounds;
+  double lo[3] = { sceneBounds[0], sceneBounds[2], sceneBounds[4] };
+  double hi[3] = { sceneBounds[1], sceneBounds[3], sceneBounds[5] };
+  double globalLo[3], globalHi[3];
+  controller->AllReduce(lo, globalLo, 3, vtkCommunicator::MIN_OP);
+  controller->AllReduce(hi, globalHi, 3, vtkCommunicator::MAX_OP);
+  for (int i = 0; i < 3; ++i)
+  {
+    sceneBounds[2 * i] = globalLo[i];
+    sceneBounds[2 * i + 1] = globalHi[i];
+  }
+  int changed = this->Changed ? 1 : 0, anyChanged = 0;
+  controller->AllReduce(&changed, &anyChanged, 1, vtkCommunicator::MAX_OP);
+  this->Changed = anyChanged != 0;
+  // The caster loads of every process (padded with loads of no cells).
+  {
+    // Box, cells, shadows itself, screen-sized (their receiver indices are each process's
+    // own: dropped).
+    constexpr size_t n = 9;
+    std::vector<csmFrameCasters::CasterLoad>& loads = this->CasterLoads;
+    int mineCount = static_cast<int>(loads.size()), mostLoads = 0;
+    controller->AllReduce(&mineCount, &mostLoads, 1, vtkCommunicator::MAX_OP);
+    std::vector<double> mineLoads(n * static_cast<size_t>(mostLoads), 0.0), allLoads;
+    for (int i = 0; i < mineCount; ++i)
+    {
+      double* out = mineLoads.data() + n * i;
+      std::copy(loads[i].Bounds.begin(), loads[i].Bounds.end(), out);
+      out[6] = loads[i].Cells;
+      out[7] = loads[i].ShadowsItself ? 1.0 : 0.0;
+      out[8] = loads[i].ScreenSized ? 1.0 : 0.0;
+    }
+    allLoads.resize(mineLoads.size() * controller->GetNumberOfProcesses());
+    controller->AllGather(
+      mineLoads.data(), allLoads.data(), static_cast<vtkIdType>(mineLoads.size()));
+    loads.clear();
+    for (size_t i = 0; i + n <= allLoads.size(); i += n)
+    {
+      if (allLoads[i + 6] > 0.0) // (padding has no cells)
+      {
+        csmFrameCasters::CasterLoad load;
+        std::copy(allLoads.begin() + i, allLoads.begin() + i + 6, load.Bounds.begin());
+        load.Cells = allLoads[i + 6];
+        load.ShadowsItself = allLoads[i + 7] != 0.0;
+        load.ScreenSized = allLoads[i + 8] != 0.0;
+        loads.push_back(load);
+      }
+    }
+  }
+  // The receiver boxes of every process (padded with empty boxes).
+  std::vector<std::array<double, 6>>& receivers = this->Receivers;
+  int count = static_cast<int>(receivers.size()), most = 0;
+  controller->AllReduce(&count, &most, 1, vtkCommunicator::MAX_OP);
+  std::vector<double> mine(6 * static_cast<size_t>(most), 0.0), all;
+  for (int i = 0; i < most; ++i)
+  {
+    for (int k = 0; k < 6; ++k)
+    {
+      mine[6 * i + k] = i < count ? receivers[i][k] : (k % 2 == 0 ? 1.0 : -1.0);
+    }
+  }
+  all.resize(mine.size() * controller->GetNumberOfProcesses());
+  controller->AllGather(mine.data(), all.data(), static_cast<vtkIdType>(mine.size()));
+  receivers.clear();
+  for (size_t i = 0; i + 5 < all.size(); i += 6)
+  {
+    if (all[i] <= all[i + 1])
+    {
+      receivers.push_back({ all[i], all[i + 1], all[i + 2], all[i + 3], all[i + 4], all[i + 5] });
+    }
+  }
+}
+
+void csmCasterCollection::ReleaseGraphicsResources(vtkWindow* w)
+{
+  for (auto it = this->Blocks.begin(); it != this->Blocks.end();)
+  {
+    if (w && it->second.Window != w)
+    {
+      ++it;
+      continue;
+    }
+    vtkWindow* context = w ? w : it->second.Window.GetPointer();
+    if (it->second.Mapper && context)
+    {
+      it->second.Mapper->ReleaseGraphicsResources(context);
+    }
+    it = this->Blocks.erase(it);
+  }
+  for (auto it = this->Proxies.begin(); it != this->Proxies.end();)
+  {
+    it = !w || it->second.Window == w ? this->Proxies.erase(it) : std::next(it);
+  }
+}

@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The casters and receivers of a frame (vtkCascadedShadowMapBakerPass's internal part): which
+// visible props cast, their world boxes, their closed-surface classification and compact blocks
+// (kept across frames while their data does not change, big meshes prepared by worker threads),
+// and which of them can shadow anything under a light.
+#ifndef csmCasterCollection_h
+#define csmCasterCollection_h
+
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+#include "vtkWeakPointer.h"
+
+#include <array>
+#include <atomic>
+#include <future>
+#include <map>
+#include <memory>
+#include <utility>
+#include <vector>
+
+class vtkActor;
+class vtkCascadedShadowBlockMapper;
+class vtkMatrix4x4;
+class vtkMultiProcessController;
+class vtkOpenGLRenderWindow;
+class vtkPolyData;
+class vtkProp;
+class vtkRenderer;
+class vtkWindow;
+struct csmPreparedBlocks;  // a big caster's blocks, prepared by a worker thread
+struct csmPreparedClosure; // a big caster's closed-surface classification, likewise
+
+/// What a frame draws: the visible props' boxes and the opaque ones among them.
+struct csmFrameCasters
+{
+  double SceneBounds[6] = { 1, -1, 1, -1, 1, -1 };
+  bool Changed = true; ///< a prop, light, option or the window size changed: render every map
+  struct Caster
+  {
+    vtkProp* Prop = nullptr;      ///< a visible opaque prop, or an actor of a prop's blocks
+    std::array<double, 6> Bounds; ///< world box
+    /// 0 draw both sides; +1 / -1 closed, its counter-clockwise faces (after the actor's
+    /// matrix) turned outward / inward.
+    int Closure = 0;
+    /// Drawn from compact blocks (CompactCasters): its entry in Compacts (-1: as it is).
+    int Compact = -1;
+    /// The prop may shadow itself (false: planar, or closed and convex).
+    bool ShadowsItself = true;
+    /// Its prop's box in Receivers (-1: none).
+    int Receiver = -1;
+    double Cells = 0.0; ///< of its data: triangles, strips, lines, vertices
+  };
+  std::vector<Caster> Casters;
+  /// A prop drawn from compact blocks: the mapper that draws the chosen ones, and each
+  /// block's world box and triangles.
+  struct Compact
+  {
+    vtkCascadedShadowBlockMapper* Mapper = nullptr;
+    std::vector<std::array<double, 6>> Bounds;
+    std::vector<double> Cells;
+  };
+  std::vector<Compact> Compacts;
+  std::vector<std::array<double, 6>> Receivers;
+  /// What the cascade count and the scene-fitted map are judged by
+  /// (vtkCascadedShadowMapPlanner::AddCasterLoad), per caster; all processes' when
+  /// distributed (then without receiver boxes).
+  struct CasterLoad
+  {
+    std::array<double, 6> Bounds;
+    double Cells = 0.0; ///< of its data: triangles, strips, lines, vertices
+    int Receiver = -1;  ///< its prop's box in Receivers (-1: none)
+    bool ShadowsItself = true;
+    bool ScreenSized = false; ///< drawn wider than its data (tubes, spheres, wide lines)
+  };
+  std::vector<CasterLoad> CasterLoads;
+  /// Some caster draws lines wider or points bigger than one pixel (its map then depends on the
+  /// main view).
+  bool ScreenSized = false;
+
+  /// Does the caster shadow anything under a directional light that travels along
+  /// lightTravel (CullCastersWithoutReceivers)? Always true for a caster that may shadow
+  /// itself, for spot lights (lightTravel null) and with too many receivers to test.
+  bool CasterHasReceivers(const Caster& caster, const double* lightTravel) const;
+  /// Every process's scene bounds, change, caster loads and receiver boxes (distributed data).
+  void GatherAcrossProcesses(vtkMultiProcessController* controller);
+};
+
+/// The visible props of a renderer as casters and receivers, and the caches that make that
+/// cheap across frames.
+class csmCasterCollection
+{
+public:
+  struct Options
+  {
+    bool CullClosedCasters = true;
+    bool CompactCasters = true;
+    bool CullCastersWithoutReceivers = true;
+  };
+  /// What the last Collect() found: casters drawn from behind, and from compact blocks.
+  struct Counts
+  {
+    int ClosedCasters = 0;
+    int CompactCasters = 0;
+  };
+
+  csmCasterCollection();
+  ~csmCasterCollection(); // stops the worker threads' preparations
+  csmCasterCollection(const csmCasterCollection&) = delete;
+  csmCasterCollection& operator=(const csmCasterCollection&) = delete;
+
+  /// The renderer's visible props into casters, receivers and caster loads (props.SceneBounds
+  /// and props.Changed are the caller's). frame numbers the Render() calls; viewMoved: this
+  /// frame's camera moved (big meshes are prepared only then).
+  Counts Collect(vtkRenderer* renderer, const Options& options, long long frame, bool viewMoved,
+    csmFrameCasters& props);
+
+  /// +1 / -1: the prop's data is closed, its counter-clockwise faces turned outward / inward in
+  /// world space; 0: draw both sides (or cullClosed is off).
+  int ClosureOf(vtkProp* prop, bool cullClosed);
+
+  /// The blocks and proxies drawn in this window (all of them for no window).
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+  /// Cells of an actor's input data (0 for other props or without data).
+  static double CellsOf(vtkProp* prop);
+
+private:
+  struct Closure;
+  const Closure& ClassifiedShape(vtkPolyData* data);
+  bool ShadowsItself(vtkProp* prop, bool cullWithoutReceivers);
+  /// For a prop drawn from compact blocks, appends its blocks to the casters with their world
+  /// boxes and returns true; false: the prop is drawn as it is.
+  bool AddCompactCaster(
+    vtkProp* prop, int closure, vtkOpenGLRenderWindow* window, csmFrameCasters& props);
+  /// The data's blocks in this window, prepared (or their preparation started); false while
+  /// there are none to draw.
+  bool PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindow* window);
+  void ForgetTheGone(vtkWindow* window);
+
+  long long FrameNumber = 0;
+  bool ViewMoved = false;
+  /// csm::classifySurface's answer per polydata, kept while the data does not change.
+  struct Closure
+  {
+    vtkWeakPointer<vtkPolyData> Data;
+    vtkMTimeType Time = 0;
+    int Orientation = 0; ///< +1 outward, -1 inward, 0 open
+    bool Planar = false;
+    bool ShadowsItself = true; ///< csm::SurfaceClosure::canShadowItself
+    std::future<std::shared_ptr<csmPreparedClosure>> Pending; ///< a big mesh's, under way
+    vtkMTimeType PendingTime = 0;
+    vtkMTimeType SeenTime = 0;
+    long long SeenFrame = 0;
+  };
+  std::map<vtkPolyData*, Closure> Closures;
+  /// Compact blocks of a polydata in one window (the mapper holds that context's buffers),
+  /// and the preparation under way (a worker thread's, for a big mesh).
+  struct CasterBlocks
+  {
+    vtkWeakPointer<vtkWindow> Window;
+    vtkWeakPointer<vtkPolyData> Data;
+    vtkMTimeType Time = 0; ///< of the data the blocks were prepared from
+    int Build = 0;         ///< which build: the proxy of a prop follows it
+    vtkSmartPointer<vtkCascadedShadowBlockMapper> Mapper;
+    std::vector<std::array<double, 6>> Bounds; ///< per block, in the data's coordinates
+    std::vector<double> Cells;                 ///< per block: its triangles
+    std::future<std::shared_ptr<csmPreparedBlocks>> Pending;
+    vtkMTimeType PendingTime = 0;
+    vtkMTimeType SeenTime = 0; ///< of the data a frame drew as it is, not yet prepared
+    long long SeenFrame = 0;   ///< that frame
+  };
+  std::map<std::pair<vtkWindow*, vtkPolyData*>, CasterBlocks> Blocks;
+  /// The actor that draws a prop's blocks in one window (its property, a copy of its matrix).
+  struct CasterProxy
+  {
+    vtkWeakPointer<vtkWindow> Window;
+    vtkWeakPointer<vtkProp> Prop;
+    vtkPolyData* Data = nullptr;
+    int Build = 0;
+    vtkSmartPointer<vtkActor> Actor;
+    vtkSmartPointer<vtkMatrix4x4> Matrix;
+  };
+  std::map<std::pair<vtkWindow*, vtkProp*>, CasterProxy> Proxies;
+  int BlockBuilds = 0;
+  /// Set when the collection goes: the worker threads' preparations stop early.
+  std::shared_ptr<std::atomic<bool>> StopWorkers;
+};
+
+#endif
