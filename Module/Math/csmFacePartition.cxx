@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace csm
 {
@@ -138,26 +140,183 @@ glm::dmat4 lightView(
   m[3] = glm::dvec4(-glm::dot(x, wsEye), -glm::dot(y, wsEye), -glm::dot(z, wsEye), 1.0);
   return m;
 }
+
+/// Why computeFacePartitions cannot partition (empty: it can).
+std::string inputError(
+  const Camera& camera, const glm::dvec3& wsLightDirection, const FacePartitionSettings& settings)
+{
+  std::string message = cameraError(camera);
+  if (message.empty())
+  {
+    message = lightDirectionError(wsLightDirection);
+  }
+  if (message.empty() && camera.parallel)
+  {
+    message = "face partitioning needs a perspective camera (a parallel view has no faces "
+              "that widen with depth)";
+  }
+  if (message.empty() && (settings.k < 1 || settings.k > kMaxSplits))
+  {
+    message = "number of z-partitions per face must be in [1, 64]";
+  }
+  return message;
+}
+
+/// What the pieces of one side face share: the face's side edges (a, b), its light space (x, y,
+/// z: Lloyd et al. 2006, §5.1) and the wedge planes through its side edges and the light.
+struct Face
+{
+  int index = 0;
+  int a = 0, b = 1;
+  glm::dvec3 x{ 0.0 }, y{ 0.0 }, z{ 0.0 };
+  Plane wedgeA, wedgeB;
+  glm::dmat4 wsToLs{ 1.0 };
+};
+
+/// The side face `index` when the folded light enters through it (false: it does not, or sees
+/// it edge-on).
+bool enteredFace(const Pyramid& p, int index, const glm::dvec3& y, const glm::dvec3& yFolded,
+  const glm::dvec3& wsEye, Face& face)
+{
+  face.index = index;
+  face.a = index;
+  face.b = (index + 1) & 3;
+  const glm::dvec3& ea = p.edges[face.a];
+  const glm::dvec3& eb = p.edges[face.b];
+  glm::dvec3 normal = glm::normalize(glm::cross(ea, eb));
+  if (glm::dot(normal, p.view) > 0.0)
+  {
+    normal = -normal; // outward: the pyramid widens with depth
+  }
+  if (!(glm::dot(normal, yFolded) < -kEdgeOn))
+  {
+    return false; // the folded light does not enter through this face (or sees it edge-on)
+  }
+  // Lloyd et al. 2006, §5.1: the bisector of the side edges projected along the light.
+  const glm::dvec3 eaProjected = glm::normalize(ea - glm::dot(ea, y) * y);
+  const glm::dvec3 ebProjected = glm::normalize(eb - glm::dot(eb, y) * y);
+  face.y = y;
+  face.z = glm::normalize(eaProjected + ebProjected);
+  face.x = glm::cross(y, face.z);
+  face.wedgeA = wedgePlane(ea, y, eb);
+  face.wedgeB = wedgePlane(eb, y, ea);
+  face.wsToLs = lightView(face.x, face.y, face.z, wsEye);
+  return true;
+}
+
+/// Piece i of the face (between splits[i] and splits[i + 1]): its half-spaces and its body
+/// (camera-centred world space). False when it has no volume.
+bool cutPiece(const Pyramid& p, const Face& face, const std::vector<double>& splits, int i,
+  double n, double f, double epsilon, std::vector<Plane>& cuts, std::vector<glm::dvec3>& cwsBody)
+{
+  cuts = { face.wedgeA, face.wedgeB };
+  if (i > 0)
+  {
+    cuts.push_back(splitPlane(p, face.a, face.b, splits[i], face.y, false));
+  }
+  if (i + 2 < static_cast<int>(splits.size()))
+  {
+    cuts.push_back(splitPlane(p, face.a, face.b, splits[i + 1], face.y, true));
+  }
+  ConvexBody body = frustum(p, n, f);
+  for (const Plane& cut : cuts)
+  {
+    body.clip(cut, epsilon);
+  }
+  cwsBody = body.vertices(epsilon);
+  // No volume: cannot happen for a face the light enters, but be safe.
+  return cwsBody.size() >= 4;
+}
+
+/// The warped map of a piece between the face's split depths s0 and s1 (its body cwsBody, the
+/// near depth n): matrix, n', gamma_lim and the aliasing maxima (map.wsBody already set).
+void warpPiece(const Pyramid& p, const Face& face, const Camera& camera,
+  const std::vector<glm::dvec3>& cwsBody, double s0, double s1, double n, WarpMode warpMode,
+  Cascade& map)
+{
+  const int a = face.a, b = face.b;
+  const glm::dvec3 &x = face.x, &z = face.z;
+  const glm::dvec3& ea = p.edges[a];
+  const glm::dvec3& eb = p.edges[b];
+  // The face's trapezoid of this piece seen from the light: n, f its nearest and farthest
+  // ls z from the eye, a, b half its widths along ls x at s_i and s_i+1.
+  PartitionShape shape;
+  shape.n = std::min(glm::dot(p.edgePoint(a, s0), z), glm::dot(p.edgePoint(b, s0), z));
+  shape.f = std::max(glm::dot(p.edgePoint(a, s1), z), glm::dot(p.edgePoint(b, s1), z));
+  shape.a = 0.5 * std::abs(glm::dot(eb - ea, x)) * s0;
+  shape.b = 0.5 * std::abs(glm::dot(eb - ea, x)) * s1;
+  map.gammaLimDeg = gammaLim(shape) / kDegree;
+
+  const std::vector<glm::dvec3> lsPoints = lightSpacePoints(cwsBody, x, face.y, z, n);
+  double lsZMin = kInf, lsZMax = -kInf;
+  for (const glm::dvec3& q : lsPoints)
+  {
+    lsZMin = std::min(lsZMin, q.z);
+    lsZMax = std::max(lsZMax, q.z);
+  }
+  const double lsDepth = lsZMax - lsZMin;
+  // Seen from the light the piece is a trapezoid opening along z, as the frustum is for an
+  // overhead light: the warp mode's n' at gamma = 90 deg (Lloyd et al. 2006, §5.1 fits LiSPSM).
+  double warp = shape.n > 0.0 ? nPrime(warpMode, 0.5 * kPi, shape) : kInf;
+  if (!(warp <= kOrthoRatio * lsDepth))
+  {
+    warp = kInf;
+  }
+  warp = std::max(warp, 1e-9 * lsDepth);
+  map.nPrime = warp;
+  // The centre lies n' before the face's near edge (Lloyd et al. 2006, §4.1: n' is measured
+  // to the near plane of the trapezoid) when that is outside the body, else n' before the
+  // body (PSM's n' = n with the near face stretched over).
+  const double zNear = shape.n - warp < lsZMin ? shape.n : lsZMin;
+  const glm::dmat4 lsToWarped = warpMatrix(warp, zNear);
+  map.wsToClip = focusMatrix(lsPoints, lsToWarped) * lsToWarped * face.wsToLs;
+
+  // Lloyd et al. 2006, §4.4 and Eq. 12: maxima over the vertices, along the map's own axes.
+  for (const glm::dvec3& q : map.wsBody)
+  {
+    const Aliasing m = aliasingAt(map.wsToClip, camera, x, z, q);
+    map.Mx = std::max(map.Mx, m.mx);
+    map.Mz = std::max(map.Mz, m.mz);
+  }
+  map.storage = map.Mx * map.Mz / camera.aspect;
+}
+
+/// Piece i of the face as a FacePartition (false: it has no volume).
+bool facePiece(const Pyramid& p, const Face& face, const Camera& camera,
+  const std::vector<double>& splits, int i, double epsilon, WarpMode warpMode, FacePartition& part)
+{
+  std::vector<Plane> cuts;
+  std::vector<glm::dvec3> cwsBody;
+  if (!cutPiece(p, face, splits, i, camera.vsNear, camera.vsFar, epsilon, cuts, cwsBody))
+  {
+    return false;
+  }
+  part.face = static_cast<FrustumFace>(face.index);
+  part.zIndex = i;
+  part.wsMapX = face.x;
+  part.wsMapZ = face.z;
+  for (const Plane& cut : cuts)
+  {
+    // From camera-centred to world space: dot(N, p - eye) + d = dot(N, p) + d - dot(N, eye).
+    part.wsPlanes.emplace_back(cut.normal, cut.offset - glm::dot(cut.normal, camera.wsPosition));
+  }
+  Cascade& map = part.map;
+  map.vsNear = splits[i];
+  map.vsFar = splits[i + 1];
+  for (const glm::dvec3& q : cwsBody)
+  {
+    map.wsBody.push_back(q + camera.wsPosition);
+  }
+  warpPiece(p, face, camera, cwsBody, map.vsNear, map.vsFar, camera.vsNear, warpMode, map);
+  return true;
+}
 } // namespace
 
 FacePartitioning computeFacePartitions(
   const Camera& camera, const glm::dvec3& wsLightDirection, const FacePartitionSettings& settings)
 {
   FacePartitioning result;
-  result.message = cameraError(camera);
-  if (result.message.empty())
-  {
-    result.message = lightDirectionError(wsLightDirection);
-  }
-  if (result.message.empty() && camera.parallel)
-  {
-    result.message = "face partitioning needs a perspective camera (a parallel view has no faces "
-                     "that widen with depth)";
-  }
-  if (result.message.empty() && (settings.k < 1 || settings.k > kMaxSplits))
-  {
-    result.message = "number of z-partitions per face must be in [1, 64]";
-  }
+  result.message = inputError(camera, wsLightDirection, settings);
   if (!result.message.empty())
   {
     result.status = Status::InvalidInput;
@@ -177,116 +336,21 @@ FacePartitioning computeFacePartitions(
   result.splits = splitDepths(split, n, f, 0.0);
   const double epsilon = 1e-12 * (f + glm::length(p.edgePoint(2, f)));
 
-  for (int face = 0; face < 4; ++face)
+  for (int index = 0; index < 4; ++index)
   {
-    const int a = face;
-    const int b = (face + 1) & 3;
-    const glm::dvec3& ea = p.edges[a];
-    const glm::dvec3& eb = p.edges[b];
-    glm::dvec3 normal = glm::normalize(glm::cross(ea, eb));
-    if (glm::dot(normal, p.view) > 0.0)
+    Face face;
+    if (!enteredFace(p, index, y, yFolded, camera.wsPosition, face))
     {
-      normal = -normal; // outward: the pyramid widens with depth
+      continue;
     }
-    if (!(glm::dot(normal, yFolded) < -kEdgeOn))
-    {
-      continue; // the folded light does not enter through this face (or sees it edge-on)
-    }
-    // Lloyd et al. 2006, §5.1: the bisector of the side edges projected along the light.
-    const glm::dvec3 eaProjected = glm::normalize(ea - glm::dot(ea, y) * y);
-    const glm::dvec3 ebProjected = glm::normalize(eb - glm::dot(eb, y) * y);
-    const glm::dvec3 z = glm::normalize(eaProjected + ebProjected);
-    const glm::dvec3 x = glm::cross(y, z);
-    const Plane wedgeA = wedgePlane(ea, y, eb);
-    const Plane wedgeB = wedgePlane(eb, y, ea);
-    const glm::dmat4 wsToLs = lightView(x, y, z, camera.wsPosition);
-
     for (int i = 0; i + 1 < static_cast<int>(result.splits.size()); ++i)
     {
-      const double s0 = result.splits[i];
-      const double s1 = result.splits[i + 1];
-      std::vector<Plane> cuts = { wedgeA, wedgeB };
-      if (i > 0)
-      {
-        cuts.push_back(splitPlane(p, a, b, s0, y, false));
-      }
-      if (i + 2 < static_cast<int>(result.splits.size()))
-      {
-        cuts.push_back(splitPlane(p, a, b, s1, y, true));
-      }
-      ConvexBody body = frustum(p, n, f);
-      for (const Plane& cut : cuts)
-      {
-        body.clip(cut, epsilon);
-      }
-      const std::vector<glm::dvec3> cwsBody = body.vertices(epsilon);
-      if (cwsBody.size() < 4)
-      {
-        continue; // no volume (cannot happen for a face the light enters, but be safe)
-      }
-
       FacePartition part;
-      part.face = static_cast<FrustumFace>(face);
-      part.zIndex = i;
-      part.wsMapX = x;
-      part.wsMapZ = z;
-      for (const Plane& cut : cuts)
+      if (facePiece(p, face, camera, result.splits, i, epsilon, settings.warp, part))
       {
-        // From camera-centred to world space: dot(N, p - eye) + d = dot(N, p) + d - dot(N, eye).
-        part.wsPlanes.emplace_back(
-          cut.normal, cut.offset - glm::dot(cut.normal, camera.wsPosition));
+        result.storageTotal += part.map.storage;
+        result.partitions.push_back(std::move(part));
       }
-      Cascade& map = part.map;
-      map.vsNear = s0;
-      map.vsFar = s1;
-      for (const glm::dvec3& q : cwsBody)
-      {
-        map.wsBody.push_back(q + camera.wsPosition);
-      }
-
-      // The face's trapezoid of this piece seen from the light: n, f its nearest and farthest
-      // ls z from the eye, a, b half its widths along ls x at s_i and s_i+1.
-      PartitionShape shape;
-      shape.n = std::min(glm::dot(p.edgePoint(a, s0), z), glm::dot(p.edgePoint(b, s0), z));
-      shape.f = std::max(glm::dot(p.edgePoint(a, s1), z), glm::dot(p.edgePoint(b, s1), z));
-      shape.a = 0.5 * std::abs(glm::dot(eb - ea, x)) * s0;
-      shape.b = 0.5 * std::abs(glm::dot(eb - ea, x)) * s1;
-      map.gammaLimDeg = gammaLim(shape) / kDegree;
-
-      const std::vector<glm::dvec3> lsPoints = lightSpacePoints(cwsBody, x, y, z, n);
-      double lsZMin = kInf, lsZMax = -kInf;
-      for (const glm::dvec3& q : lsPoints)
-      {
-        lsZMin = std::min(lsZMin, q.z);
-        lsZMax = std::max(lsZMax, q.z);
-      }
-      const double lsDepth = lsZMax - lsZMin;
-      // Seen from the light the piece is a trapezoid opening along z, as the frustum is for an
-      // overhead light: the warp mode's n' at gamma = 90 deg (Lloyd et al. 2006, §5.1 fits LiSPSM).
-      double warp = shape.n > 0.0 ? nPrime(settings.warp, 0.5 * kPi, shape) : kInf;
-      if (!(warp <= kOrthoRatio * lsDepth))
-      {
-        warp = kInf;
-      }
-      warp = std::max(warp, 1e-9 * lsDepth);
-      map.nPrime = warp;
-      // The centre lies n' before the face's near edge (Lloyd et al. 2006, §4.1: n' is measured
-      // to the near plane of the trapezoid) when that is outside the body, else n' before the
-      // body (PSM's n' = n with the near face stretched over).
-      const double zNear = shape.n - warp < lsZMin ? shape.n : lsZMin;
-      const glm::dmat4 lsToWarped = warpMatrix(warp, zNear);
-      map.wsToClip = focusMatrix(lsPoints, lsToWarped) * lsToWarped * wsToLs;
-
-      // Lloyd et al. 2006, §4.4 and Eq. 12: maxima over the vertices, along the map's own axes.
-      for (const glm::dvec3& q : map.wsBody)
-      {
-        const Aliasing m = aliasingAt(map.wsToClip, camera, x, z, q);
-        map.Mx = std::max(map.Mx, m.mx);
-        map.Mz = std::max(map.Mz, m.mz);
-      }
-      map.storage = map.Mx * map.Mz / camera.aspect;
-      result.storageTotal += map.storage;
-      result.partitions.push_back(std::move(part));
     }
   }
 
