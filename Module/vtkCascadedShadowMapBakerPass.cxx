@@ -396,9 +396,11 @@ int vtkCascadedShadowMapBakerPass::MaximumShadowedLights(vtkOpenGLRenderWindow* 
     units = std::min<GLint>(units, free);
   }
   const int byUnits = static_cast<int>(units) - kMapperTextureUnits;
-  const int perLight = kUniformComponentsPerLight +
-    (this->Planner->GetFacePartitions() > 0 ? kFacePlaneComponentsPerLight : 0) +
+  int perLight = kUniformComponentsPerLight;
+#if CSM_COMPARISON_TECHNIQUES
+  perLight += (this->Planner->GetFacePartitions() > 0 ? kFacePlaneComponentsPerLight : 0) +
     (this->Planner->GetCameraSpace() ? kMaxCascades * 4 : 0);
+#endif
   const int byUniforms = (static_cast<int>(components) - kMapperUniformComponents) / perLight;
   return std::max(0, std::min(byUnits, byUniforms));
 }
@@ -1634,15 +1636,21 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer, vtkOpenGLR
       this->Planner->Plan(camera, aspect, light, sceneBounds, imageHeight, ceiling, mostCascades);
     state.VisibleDepthsUsed = state.VisibleDepthsUsed || this->Planner->GetVisibleDepthsUsed();
     maps.NumberOfCascades = std::min(count, kMaxCascades);
+#if CSM_COMPARISON_TECHNIQUES
     maps.Faces =
       count > 0 && !light->GetPositional() && this->Planner->GetCascadesSelectedByPlanes();
+#endif
     light->GetTransformedPosition(maps.LightGeometry);
     light->GetTransformedFocalPoint(maps.LightGeometry + 3);
     maps.LightGeometry[6] = light->GetPositional() ? light->GetConeAngle() : -1.0;
+#if CSM_COMPARISON_TECHNIQUES
     // (Face partitions and camera space maps are re-rendered every frame: compareKeptMap
     // measures the error along the cascades' map axes, which their maps do not have.)
     const bool ownMapAxes =
       this->Planner->GetFacePartitions() > 0 || this->Planner->GetCameraSpace();
+#else
+    const bool ownMapAxes = false;
+#endif
     const LightMaps* kept = !props.Changed && depthClamp && !ownMapAxes &&
         slot < state.Maps.size() && state.Maps[slot].Light == light &&
         std::equal(maps.LightGeometry, maps.LightGeometry + 7, state.Maps[slot].LightGeometry) &&
@@ -1686,8 +1694,10 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer, vtkOpenGLR
       this->Planner->GetCascadeMatrix(c, m, cascadeBorder, resolution);
       std::copy(m->GetData(), m->GetData() + 16, maps.WorldToMap[c]);
       maps.SplitFar[c] = this->Planner->GetCascadeFar(c);
+#if CSM_COMPARISON_TECHNIQUES
       this->Planner->GetCascadePlanes(c, maps.Planes[c]);
       maps.DepthW[c] = this->Planner->GetCascadeDepthW(c);
+#endif
       // A kept map serves if it has the texels this view needs (or all its tile holds, where the
       // GL's texture size limit made the tiles smaller than Resolution): while the user
       // interacts, within MapReuseTolerance of a fresh map with the same border; in a still
@@ -1975,9 +1985,11 @@ csmForwardToPlanner(DepthClamp, bool)
 csmForwardToPlanner(SceneFittedCascades, bool)
 csmForwardToPlanner(ErrorTarget, double)
 csmForwardToPlanner(AdaptiveCascades, bool)
+#if CSM_COMPARISON_TECHNIQUES
 csmForwardToPlanner(FacePartitions, int)
 csmForwardToPlanner(CameraSpace, bool)
 csmForwardToPlanner(CameraSpaceFocus, double)
+#endif
 #undef csmForwardToPlanner
 
 vtkMTimeType vtkCascadedShadowMapBakerPass::GetMTime()

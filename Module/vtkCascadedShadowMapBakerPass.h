@@ -141,21 +141,6 @@ public:
   vtkBooleanMacro(AdaptiveCascades, bool);
   ///@}
 
-  ///@{
-  /// Face partitioning instead of cascades (a comparison technique, forwarded to GetPlanner(),
-  /// which documents it): 0 off (default), 1 FP+W, 2 FP+ZP+W. Its maps are re-rendered every
-  /// frame; with NumberOfCascades below 4 they share a smaller atlas.
-  void SetFacePartitions(int zPartitionsPerFace);
-  int GetFacePartitions();
-  /// Camera space shadow maps (general case; a comparison technique, forwarded to GetPlanner(),
-  /// which documents it). Default off; re-rendered every frame.
-  void SetCameraSpace(bool cameraSpace);
-  bool GetCameraSpace();
-  vtkBooleanMacro(CameraSpace, bool);
-  /// Its focus range (forwarded to GetPlanner(), which documents it; 0, the default: automatic).
-  void SetCameraSpaceFocus(double viewDepth);
-  double GetCameraSpaceFocus();
-  ///@}
   /// Resolutions chosen from ErrorTarget are multiples of this.
   static constexpr int RESOLUTION_STEP = 64;
 
@@ -422,6 +407,24 @@ public:
   vtkGetMacro(MeasureTimes, bool);
   vtkBooleanMacro(MeasureTimes, bool);
   ///@}
+
+#if CSM_COMPARISON_TECHNIQUES
+  ///@{
+  /// Face partitioning instead of cascades (a comparison technique, forwarded to GetPlanner(),
+  /// which documents it): 0 off (default), 1 FP+W, 2 FP+ZP+W. Its maps are re-rendered every
+  /// frame; with NumberOfCascades below 4 they share a smaller atlas.
+  void SetFacePartitions(int zPartitionsPerFace);
+  int GetFacePartitions();
+  /// Camera space shadow maps (general case; a comparison technique, forwarded to GetPlanner(),
+  /// which documents it). Default off; re-rendered every frame.
+  void SetCameraSpace(bool cameraSpace);
+  bool GetCameraSpace();
+  vtkBooleanMacro(CameraSpace, bool);
+  /// Its focus range (forwarded to GetPlanner(), which documents it; 0, the default: automatic).
+  void SetCameraSpaceFocus(double viewDepth);
+  double GetCameraSpaceFocus();
+  ///@}
+#endif
 
 protected:
   vtkCascadedShadowMapBakerPass();

@@ -14,6 +14,13 @@
 namespace csmScenes
 {
 
+std::string NoComparisonTechniques(const std::string& what)
+{
+  return what +
+    ": this build has no comparison techniques (configure with "
+    "-DCSM_COMPARISON_TECHNIQUES=ON)";
+}
+
 ShadowOptions::ShadowOptions()
 {
   static const ShadowOptions defaults(vtkNew<vtkCascadedShadowMapPass>().GetPointer());
@@ -36,9 +43,11 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->CullCastersWithoutReceivers = baker->GetCullCastersWithoutReceivers();
   this->VisibleDepthFit = baker->GetVisibleDepthFit();
   this->SceneFittedCascades = baker->GetSceneFittedCascades();
+#if CSM_COMPARISON_TECHNIQUES
   this->FacePartitions = baker->GetFacePartitions();
   this->CameraSpace = baker->GetCameraSpace();
   this->CameraSpaceFocus = baker->GetCameraSpaceFocus();
+#endif
   this->DepthClamp = baker->GetDepthClamp();
   this->PCF = pass->GetPCFSize();
   this->Kernel = pass->GetPCFKernel();
@@ -66,9 +75,11 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetCullCastersWithoutReceivers(o.CullCastersWithoutReceivers);
   baker->SetVisibleDepthFit(o.VisibleDepthFit);
   baker->SetSceneFittedCascades(o.SceneFittedCascades);
+#if CSM_COMPARISON_TECHNIQUES
   baker->SetFacePartitions(o.FacePartitions);
   baker->SetCameraSpace(o.CameraSpace);
   baker->SetCameraSpaceFocus(o.CameraSpaceFocus);
+#endif
   baker->SetDepthClamp(o.DepthClamp);
   pass->SetPCFSize(o.PCF);
   pass->SetPCFKernel(o.Kernel);
