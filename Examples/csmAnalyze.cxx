@@ -2,12 +2,15 @@
 // csm-analyze: the analytic planner. For a view frustum and a light angle it prints the split
 // depths, warp parameters and perspective aliasing error (Lloyd et al. 2006) of each cascade.
 // With --partition face it prints the face partitions (Lloyd et al. 2006, §5.1) instead: one warped
-// map per side face the light enters, z-partitioned along the face with --cascades K (FP+ZP+W).
+// map per side face the light enters, z-partitioned along the face with --cascades K (FP+ZP+W;
+// a comparison technique, in a build with CSM_COMPARISON_TECHNIQUES).
 // With --table it prints a speed-against-error table for a CAD-like configuration.
 #include "csmAtlas.h"
 #include "csmCascadeCount.h"
-#include "csmFacePartition.h"
 #include "csmSetup.h"
+#if CSM_COMPARISON_TECHNIQUES
+#include "csmFacePartition.h"
+#endif
 
 #include <glm/geometric.hpp>
 
@@ -57,10 +60,15 @@ void usage()
     "  --gamma DEG       angle between light and view, [0, 180]: 0 light from behind,\n"
     "                    90 perpendicular, 180 facing the viewer [90]\n"
     "  --warp MODE       none | psm | lispsm | generalized     [generalized]\n"
+#if CSM_COMPARISON_TECHNIQUES
     "  --partition S     single | uniform | log | practical | adaptive | face [adaptive]\n"
     "                    face: one map per side face of the view frustum the light enters\n"
     "                    (Lloyd et al. 2006, 5.1), each z-partitioned into K log partitions\n"
     "  --cascades K      number of partitions (>= 1), per face with --partition face [2]\n"
+#else
+    "  --partition S     single | uniform | log | practical | adaptive [adaptive]\n"
+    "  --cascades K      number of partitions (>= 1) [2]\n"
+#endif
     "  --alpha A         adaptive: far partitions' f/n at gamma 0 (> 1) [2]\n"
     "  --lambda L        practical: weight of the log splits, [0, 1] [0.5]\n"
     "  --error-target M  > 0: the number of cascades from the error model, as the pass's\n"
@@ -153,8 +161,14 @@ Options parse(int argc, char** argv)
     else if (flag == "--partition")
     {
       o.face = value && std::strcmp(value, "face") == 0;
+#if !CSM_COMPARISON_TECHNIQUES
+      if (o.face)
+        fail("--partition face: this build has no comparison techniques (configure with "
+             "-DCSM_COMPARISON_TECHNIQUES=ON)");
+#endif
       if (!o.face && !csm::parseSplitScheme(value, o.settings.split.scheme))
-        fail("--partition must be one of single, uniform, log, practical, adaptive, face");
+        fail("--partition must be one of single, uniform, log, practical, adaptive" +
+          std::string(CSM_COMPARISON_TECHNIQUES ? ", face" : ""));
       ++i;
     }
     else
@@ -283,6 +297,7 @@ void printText(const Options& o, const csm::ShadowSetup& s)
   }
 }
 
+#if CSM_COMPARISON_TECHNIQUES
 void printFaceJson(const Options& o, const csm::FacePartitioning& s)
 {
   std::printf("{\"inputs\": {\"near\": %s, \"far\": %s, \"fovy\": %s, \"aspect\": %s, "
@@ -328,6 +343,7 @@ void printFaceText(const Options& o, const csm::FacePartitioning& s)
   std::printf("storage total %.6g, optimal %.6g (ratio %.3g)\n", s.storageTotal, s.storageOptimal,
     s.storageTotal / s.storageOptimal);
 }
+#endif
 
 // Speed against error for common settings: maps rendered per frame (the cost on the GPU), the
 // time of the math per frame, and the storage factor S (critical texels / image pixels) over
@@ -408,6 +424,7 @@ int main(int argc, char** argv)
     printTable();
     return 0;
   }
+#if CSM_COMPARISON_TECHNIQUES
   if (o.face)
   {
     csm::FacePartitionSettings settings;
@@ -423,6 +440,7 @@ int main(int argc, char** argv)
       printFaceText(o, s);
     return 0;
   }
+#endif
   const csm::ShadowSetup s = o.errorTarget > 0.0
     ? csm::computeShadowSetupForError(makeCamera(o), lightDirection(o.gamma), nullptr, o.settings,
         nullptr, o.imageHeight, o.resolution, o.errorTarget, 0)

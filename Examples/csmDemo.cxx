@@ -38,10 +38,16 @@ namespace
 {
 const char* const kWarps[] = { "none", "psm", "lispsm", "generalized" };
 const char* const kPartitions[] = { "single", "uniform", "log", "practical", "adaptive" };
-/// --partition: the split schemes, then face partitioning (FP+W) and face partitions with two
-/// z-partitions each (FP+ZP+W).
+/// --partition: the split schemes, then face partitioning (FP+W), face partitions with two
+/// z-partitions each (FP+ZP+W) and camera space shadow maps: the comparison techniques, in a build
+/// with them.
 const char* const kPartitionChoices[] = { "single", "uniform", "log", "practical", "adaptive",
   "face", "face-zp", "cssm" };
+#if CSM_COMPARISON_TECHNIQUES
+constexpr int kPartitionChoiceCount = 8;
+#else
+constexpr int kPartitionChoiceCount = 5;
+#endif
 const char* const kDebug[] = { "off", "cascades", "error", "factor" };
 const char* const kKernels[] = { "grid", "jittered" };
 
@@ -114,6 +120,20 @@ void usage()
 {
   const Options o; // the defaults: csm-demo's own, and the pass's (ShadowOptions reads them)
   const csmScenes::ShadowOptions& d = o.Shadow;
+  // The comparison techniques' choices, in a build with them.
+  std::ostringstream comparisonUsage;
+#if CSM_COMPARISON_TECHNIQUES
+  comparisonUsage
+    << " |\n"
+       "                     face (face partitioning, Lloyd et al. 2006, 5.1: FP+W) |\n"
+       "                     face-zp (two z-partitions per face: FP+ZP+W) |\n"
+       "                     cssm (camera space shadow maps: one map, or four in the\n"
+       "                     dueling frustum case)\n"
+       "  --cssm-focus D     cssm's focus range: the view depth in front of which the view\n"
+       "                     gets half the map; 0: sqrt(near far) of the fitted range ["
+    << d.CameraSpaceFocus << "]";
+#endif
+  const std::string comparison = comparisonUsage.str();
   std::printf(
     "usage: csm-demo [options]        (defaults in [])\n"
     "  --scene S          platform | platform-beams (its bars as lines drawn as tubes) |\n"
@@ -122,13 +142,7 @@ void usage()
     "                     tessellation) [%lld]\n"
     "  --technique T      csm (ours) | vtk (vtkShadowMapPass) | none [%s]\n"
     "  --warp W           none | psm | lispsm | generalized [%s]\n"
-    "  --partition P      single | uniform | log | practical | adaptive [%s] |\n"
-    "                     face (face partitioning, Lloyd et al. 2006, 5.1: FP+W) |\n"
-    "                     face-zp (two z-partitions per face: FP+ZP+W) |\n"
-    "                     cssm (camera space shadow maps: one map, or four in the\n"
-    "                     dueling frustum case)\n"
-    "  --cssm-focus D     cssm's focus range: the view depth in front of which the view\n"
-    "                     gets half the map; 0: sqrt(near far) of the fitted range [%g]\n"
+    "  --partition P      single | uniform | log | practical | adaptive [%s]%s\n"
     "  --cascades K       1..%d [%d]      --lambda L  practical weight [%g]\n"
     "  --adaptive-cascades on|off  the fewest cascades, up to K, that meet --error-target [%s]\n"
     "  --cull-closed on|off  closed casters drawn into the maps from behind only [%s]\n"
@@ -164,7 +178,7 @@ void usage()
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
     "  t technique, l light angle +15 deg\n",
     o.Scene.c_str(), csmScenes::PlatformMaxTriangles(), o.Triangles, d.Technique.c_str(),
-    kWarps[d.Warp], kPartitions[d.Partition], d.CameraSpaceFocus,
+    kWarps[d.Warp], kPartitions[d.Partition], comparison.c_str(),
     vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda,
     d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
     d.CompactCasters ? "on" : "off", d.CullCastersWithoutReceivers ? "on" : "off",
@@ -252,9 +266,15 @@ Options parse(int argc, char** argv)
     }
     else if (f == "--partition")
     {
-      const int partition = choice(f, v, kPartitionChoices, 8);
+      // (A comparison technique in a build without them: say why, not just "must be one of".)
+      for (int i = kPartitionChoiceCount; v && i < 8; ++i)
+        if (std::strcmp(v, kPartitionChoices[i]) == 0)
+          fail(csmScenes::NoComparisonTechniques(f + " " + v), false);
+      const int partition = choice(f, v, kPartitionChoices, kPartitionChoiceCount);
+#if CSM_COMPARISON_TECHNIQUES
       o.Shadow.FacePartitions = partition == 5 || partition == 6 ? partition - 4 : 0;
       o.Shadow.CameraSpace = partition == 7;
+#endif
       o.Shadow.Partition = partition >= 5 ? o.Shadow.Partition : partition;
       next();
     }
@@ -375,7 +395,13 @@ Options parse(int argc, char** argv)
       else if (f == "--error-target")
         o.Shadow.ErrorTarget = range(0, 1.0e6);
       else if (f == "--cssm-focus")
+      {
+#if CSM_COMPARISON_TECHNIQUES
         o.Shadow.CameraSpaceFocus = range(0, 1.0e300);
+#else
+        fail(csmScenes::NoComparisonTechniques(f), false);
+#endif
+      }
       else if (f == "--pcf")
       {
         o.Shadow.PCF = whole(1, 7);
@@ -487,9 +513,13 @@ struct App
       << static_cast<int>(this->LastFrameMs) << " ms";
     if (s.Technique == "csm")
       t << "\nwarp " << kWarps[s.Warp] << " | partition "
+#if CSM_COMPARISON_TECHNIQUES
         << (s.CameraSpace             ? "cssm"
                : s.FacePartitions > 0 ? kPartitionChoices[4 + s.FacePartitions]
                                       : kPartitions[s.Partition])
+#else
+        << kPartitions[s.Partition]
+#endif
         << " | cascades " << s.Cascades << " | pcf " << s.PCF << " " << kKernels[s.Kernel]
         << " | debug " << kDebug[s.Debug];
     this->Text->SetInput(t.str().c_str());

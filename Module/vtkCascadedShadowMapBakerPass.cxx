@@ -338,9 +338,11 @@ int vtkCascadedShadowMapBakerPass::MaximumShadowedLights(vtkOpenGLRenderWindow* 
     units = std::min<GLint>(units, free);
   }
   const int byUnits = static_cast<int>(units) - kMapperTextureUnits;
-  const int perLight = kUniformComponentsPerLight +
-    (this->Planner->GetFacePartitions() > 0 ? kFacePlaneComponentsPerLight : 0) +
+  int perLight = kUniformComponentsPerLight;
+#if CSM_COMPARISON_TECHNIQUES
+  perLight += (this->Planner->GetFacePartitions() > 0 ? kFacePlaneComponentsPerLight : 0) +
     (this->Planner->GetCameraSpace() ? kMaxCascades * 4 : 0);
+#endif
   const int byUniforms = (static_cast<int>(components) - kMapperUniformComponents) / perLight;
   return std::max(0, std::min(byUnits, byUniforms));
 }
@@ -991,11 +993,16 @@ void vtkCascadedShadowMapBakerPass::PlanLight(vtkRenderer* renderer, RendererMap
 vtkCascadedShadowMapBakerPass::MapKind vtkCascadedShadowMapBakerPass::PlannedMapKind(
   vtkLight* light) const
 {
+#if CSM_COMPARISON_TECHNIQUES
   if (!light->GetPositional() && this->Planner->GetCascadesSelectedByPlanes())
   {
     return MapKind::FacePartition;
   }
   return this->Planner->GetCameraSpace() ? MapKind::CameraSpace : MapKind::FollowsView;
+#else
+  (void)light;
+  return MapKind::FollowsView;
+#endif
 }
 
 bool vtkCascadedShadowMapBakerPass::PlanCascade(const FramePlan& frame, vtkCamera* camera,
@@ -1032,8 +1039,10 @@ bool vtkCascadedShadowMapBakerPass::PlanCascade(const FramePlan& frame, vtkCamer
   this->Planner->GetCascadeMatrix(c, m, border, map.Resolution);
   std::copy(m->GetData(), m->GetData() + 16, map.WorldToMap);
   map.SplitFar = this->Planner->GetCascadeFar(c);
+#if CSM_COMPARISON_TECHNIQUES
   this->Planner->GetCascadePlanes(c, map.Planes);
   map.DepthW = this->Planner->GetCascadeDepthW(c);
+#endif
   if (!kept)
   {
     return false;

@@ -263,10 +263,12 @@ public:
   /// The kinds of map a cascade has.
   enum class MapKind
   {
-    FollowsView,   ///< planned for the view: re-rendered when the view moves out of what it serves
-    SceneFitted,   ///< fixed in the world: kept while the scene and the light stay
+    FollowsView, ///< planned for the view: re-rendered when the view moves out of what it serves
+    SceneFitted, ///< fixed in the world: kept while the scene and the light stay
+#if CSM_COMPARISON_TECHNIQUES
     FacePartition, ///< a face partition, selected by its planes (comparison technique)
     CameraSpace    ///< a camera space map (comparison technique)
+#endif
   };
 
   /// One cascade's map, as the shadow pass reads it.
@@ -285,13 +287,18 @@ public:
     /// The main view its screen-sized casters (tubes, spheres, wide lines, big points) were
     /// sized for: world -> view (row-major) and the pixel size (the baker's casterView()).
     double CasterView[18] = {};
+#if CSM_COMPARISON_TECHNIQUES
     /// Face partitions: the 4 world half-spaces of the piece
     /// (vtkCascadedShadowMapPlanner::GetCascadePlanes).
     double Planes[16] = {};
     /// Camera space maps: the smallest w of the map (its constant bias scales by it over the
     /// point's w); 0 otherwise.
     double DepthW = 0.0;
-    bool IsSceneFitted() const { return this->Kind == MapKind::SceneFitted; }
+#endif
+    bool IsSceneFitted() const
+    {
+      return this->Kind == MapKind::SceneFitted;
+    }
   };
 
   /// The maps of one shadowed light, as the shadow pass reads them.
@@ -312,11 +319,13 @@ public:
     vtkSmartPointer<vtkTextureObject> Atlas;
 
     int GetNumberOfCascades() const { return static_cast<int>(this->Cascades.size()); }
+#if CSM_COMPARISON_TECHNIQUES
     /// The maps are face partitions, selected by their planes.
     bool SelectedByPlanes() const
     {
       return !this->Cascades.empty() && this->Cascades[0].Kind == MapKind::FacePartition;
     }
+#endif
     /// Were these maps rendered for the same light geometry as other's?
     bool SameGeometry(const LightMaps& other) const
     {
@@ -343,7 +352,10 @@ public:
   /// only its faces turned away from the light (CullClosedCasters): its lit faces cannot shadow
   /// themselves, so the lookup may bias them less
   /// (vtkCascadedShadowMapPass::ClosedSurfaceBiasFactor).
-  bool DrawsFromBehind(vtkProp* prop) { return this->ClosureOf(prop) != 0; }
+  bool DrawsFromBehind(vtkProp* prop)
+  {
+    return this->ClosureOf(prop) != 0;
+  }
 
   /// What the last Render() did, for tests and benchmarks (machine-independent counts; the
   /// seconds only with MeasureTimes).
@@ -374,7 +386,10 @@ public:
         : 0.0;
     }
   };
-  const FrameStatistics& GetLastFrameStatistics() const { return this->Statistics; }
+  const FrameStatistics& GetLastFrameStatistics() const
+  {
+    return this->Statistics;
+  }
 
   ///@{
   /**

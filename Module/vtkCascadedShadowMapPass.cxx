@@ -24,6 +24,9 @@
 #include "vtkTextureObject.h"
 
 #include "csmShadowFS.h" // the GLSL of Module/glsl/csmShadowFS.glsl
+#if CSM_COMPARISON_TECHNIQUES
+#include "csmComparisonFS.h" // the comparison techniques' lookup, Module/glsl/csmComparisonFS.glsl
+#endif
 
 #include <algorithm>
 #include <sstream>
@@ -140,34 +143,21 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
       {
         u.Texel.push_back(1.0f / static_cast<float>(std::max(1, map.Resolution[axis])));
       }
-      // A face partition's half-spaces in view space: the world plane (a row) times view -> world.
-      for (int k = 0; k < 4; ++k)
-      {
-        const double* plane = map.Planes + 4 * k;
-        const bool used = maps.SelectedByPlanes() && c < count;
-        for (int column = 0; column < 4; ++column)
-        {
-          double value = 0.0;
-          for (int row = 0; row < 4; ++row)
-          {
-            value += plane[row] * viewToWorld->GetElement(row, column);
-          }
-          u.Planes.push_back(static_cast<float>(used ? value : (column == 3 ? 1.0 : 0.0)));
-        }
-      }
-      u.DepthW.push_back(static_cast<float>(map.DepthW));
-      u.CameraSpace = u.CameraSpace || map.DepthW > 0.0;
     }
-    u.Faces = u.Faces || maps.SelectedByPlanes();
+#if CSM_COMPARISON_TECHNIQUES
+    this->PackComparison(maps, viewToWorld);
+#endif
     maps.Atlas->Activate();
     u.TextureUnit.push_back(maps.Atlas->GetTextureUnit());
     signature += std::to_string(maps.LightIndex) + ";";
   }
   // The kernel, its size (for few lights) and the debug view are compiled into the lookup (see
   // csmShadowFS.glsl).
-  signature += " kernel " + std::to_string(this->PCFKernel) + " debug " +
-    std::to_string(this->DebugMode) + (u.Faces ? " faces" : "") +
-    (u.CameraSpace ? " camera space" : "");
+  signature +=
+    " kernel " + std::to_string(this->PCFKernel) + " debug " + std::to_string(this->DebugMode);
+#if CSM_COMPARISON_TECHNIQUES
+  signature += std::string(u.Faces ? " faces" : "") + (u.CameraSpace ? " camera space" : "");
+#endif
   if (this->ConstantKernelSize())
   {
     signature += " radius " + std::to_string(this->PCFSize / 2);
@@ -220,14 +210,9 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader
   std::ostringstream decl;
   decl << vtkCascadedShadowMapPass::GetShaderDefinitions(static_cast<int>(this->Uniforms.Lights()),
     this->PCFKernel, this->DebugMode, this->ConstantKernelSize() ? this->PCFSize / 2 : -1);
-  if (this->Uniforms.Faces)
-  {
-    decl << "#define CSM_FACES\n"; // maps selected by their half-spaces (face partitions)
-  }
-  if (this->Uniforms.CameraSpace)
-  {
-    decl << "#define CSM_CAMERA_SPACE\n"; // a depth bias that follows each ray's w
-  }
+#if CSM_COMPARISON_TECHNIQUES
+  decl << this->ComparisonDefinitions();
+#endif
   if (impostor)
   {
     decl << "#define CSM_IMPOSTOR\n";
@@ -317,6 +302,71 @@ std::string vtkCascadedShadowMapPass::GetShaderDefinitions(
   return decl.str();
 }
 
+#if CSM_COMPARISON_TECHNIQUES
+void vtkCascadedShadowMapPass::PackComparison(
+  const vtkCascadedShadowMapBakerPass::LightMaps& maps, vtkMatrix4x4* viewToWorld)
+{
+  ShaderUniforms& u = this->Uniforms;
+  const int count = maps.GetNumberOfCascades();
+  for (int c = 0; c < kMaxCascades; ++c)
+  {
+    static const vtkCascadedShadowMapBakerPass::CascadeMap none;
+    const vtkCascadedShadowMapBakerPass::CascadeMap& map = c < count ? maps.Cascades[c] : none;
+    // A face partition's half-spaces in view space: the world plane (a row) times view -> world.
+    for (int k = 0; k < 4; ++k)
+    {
+      const double* plane = map.Planes + 4 * k;
+      const bool used = maps.SelectedByPlanes() && c < count;
+      for (int column = 0; column < 4; ++column)
+      {
+        double value = 0.0;
+        for (int row = 0; row < 4; ++row)
+        {
+          value += plane[row] * viewToWorld->GetElement(row, column);
+        }
+        u.Planes.push_back(static_cast<float>(used ? value : (column == 3 ? 1.0 : 0.0)));
+      }
+    }
+    u.DepthW.push_back(static_cast<float>(map.DepthW));
+    u.CameraSpace = u.CameraSpace || map.DepthW > 0.0;
+  }
+  u.Faces = u.Faces || maps.SelectedByPlanes();
+}
+
+std::string vtkCascadedShadowMapPass::ComparisonDefinitions() const
+{
+  if (!this->Uniforms.Faces && !this->Uniforms.CameraSpace)
+  {
+    return std::string();
+  }
+  std::ostringstream decl;
+  if (this->Uniforms.Faces)
+  {
+    decl << "#define CSM_FACES\n"; // maps selected by their half-spaces (face partitions)
+  }
+  if (this->Uniforms.CameraSpace)
+  {
+    decl << "#define CSM_CAMERA_SPACE\n"; // a depth bias that follows each ray's w
+  }
+  decl << csmComparisonFS << "\n";
+  return decl.str();
+}
+
+void vtkCascadedShadowMapPass::SetComparisonUniforms(vtkShaderProgram* program) const
+{
+  const ShaderUniforms& u = this->Uniforms;
+  const int lights = static_cast<int>(u.Lights());
+  if (u.Faces)
+  {
+    program->SetUniform4fv("csmPlanes", lights * kMaxCascades * 4, u.Planes.data());
+  }
+  if (u.CameraSpace)
+  {
+    program->SetUniform1fv("csmDepthW", lights * kMaxCascades, u.DepthW.data());
+  }
+}
+#endif
+
 bool vtkCascadedShadowMapPass::ConstantKernelSize() const
 {
   return this->Uniforms.Lights() <= static_cast<size_t>(MAXIMUM_LIGHTS_WITH_CONSTANT_KERNEL);
@@ -368,14 +418,9 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   program->SetUniform4fv("csmTile", lights * kMaxCascades, u.Tile.data());
   program->SetUniform2fv("csmTexel", lights * kMaxCascades, u.Texel.data());
   program->SetUniform1fv("csmSplitFar", lights * kMaxCascades, u.SplitFar.data());
-  if (u.Faces)
-  {
-    program->SetUniform4fv("csmPlanes", lights * kMaxCascades * 4, u.Planes.data());
-  }
-  if (u.CameraSpace)
-  {
-    program->SetUniform1fv("csmDepthW", lights * kMaxCascades, u.DepthW.data());
-  }
+#if CSM_COMPARISON_TECHNIQUES
+  this->SetComparisonUniforms(program);
+#endif
   program->SetUniform1fv("csmSplitNear", lights, u.SplitNear.data());
   program->SetUniform1iv("csmCount", lights, u.Count.data());
   program->SetUniform1fv("csmAttenuation", lights, u.Attenuation.data());

@@ -186,11 +186,13 @@ protected:
     std::vector<float> SplitFar;               ///< per cascade
     std::vector<float>
       Texel; ///< per cascade: one texel along s and t in the cascade's [0,1] coordinates
+    size_t Lights() const { return this->Count.size(); }
+#if CSM_COMPARISON_TECHNIQUES
     std::vector<float> Planes; ///< per cascade: 4 view-space half-spaces (face partitions)
     bool Faces = false;        ///< some light's maps are face partitions
     std::vector<float> DepthW; ///< per cascade: a camera space map's smallest w (0: none)
     bool CameraSpace = false;  ///< some light's map is a camera space map
-    size_t Lights() const { return this->Count.size(); }
+#endif
   };
   ShaderUniforms Uniforms;
   /// Render() with the baker's maps: the uniforms, then the renderer's geometry.
@@ -200,6 +202,15 @@ protected:
   void ReportOnce(const std::string& message);
   bool ConstantKernelSize() const; // is the PCF radius compiled in (few lights)?
   vtkTimeStamp ShaderTime;
+#if CSM_COMPARISON_TECHNIQUES
+  /// The comparison techniques: a light's planes and w packed into Uniforms, the #defines and
+  /// GLSL of their lookup (Module/glsl/csmComparisonFS.glsl; empty where no map needs it), and
+  /// their uniforms uploaded.
+  void PackComparison(
+    const vtkCascadedShadowMapBakerPass::LightMaps& maps, vtkMatrix4x4* viewToWorld);
+  std::string ComparisonDefinitions() const;
+  void SetComparisonUniforms(vtkShaderProgram* program) const;
+#endif
 
 private:
   vtkCascadedShadowMapPass(const vtkCascadedShadowMapPass&) = delete;

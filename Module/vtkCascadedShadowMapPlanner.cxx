@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapPlanner.h"
+#include "vtkCascadedShadowMapPlannerInternals.h"
 
 #include "csmAliasing.h"
 #include "csmAtlas.h"
-#include "csmCameraSpace.h"
 #include "csmCascadeCount.h"
 #include "csmCulling.h"
-#include "csmFacePartition.h"
 #include "csmReuse.h"
 #include "csmSetup.h"
 #include "csmSpotSetup.h"
@@ -21,8 +20,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -42,56 +39,6 @@ static_assert(vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES <= csm::kM
   "the passes cannot use more cascades than the math plans");
 
 vtkStandardNewMacro(vtkCascadedShadowMapPlanner);
-
-struct vtkCascadedShadowMapPlanner::Internals
-{
-  csm::ShadowSetup Setup;
-  /// The atlas of the last plan, and the largest map that follows the view it was planned for.
-  csm::AtlasPlan Atlas;
-  int MapCeiling = 0;
-  std::vector<csm::Bounds> Receivers;
-  std::vector<csm::CasterLoad> Casters; // what a map pass draws (AddCasterLoad)
-  /// The error last reported per light (nullptr: plans from a direction) and the light's MTime
-  /// then, so that a bad light is reported once until it changes.
-  struct Reported
-  {
-    vtkMTimeType Time = 0;
-    std::string Message;
-  };
-  std::map<const void*, Reported> ReportedErrors;
-  /// The number of cascades last planned per light (AdaptiveCascades' hysteresis).
-  std::map<const void*, int> LastCount;
-  // What the last plan was made for (compares kept maps with it).
-  csm::Camera Camera;
-  glm::dvec3 wsLightDirection{ 0.0, -1.0, 0.0 };
-  bool Directional = true;
-  // SetVisibleDepths(): the camera that measured them and their view depths; used by the last plan.
-  csm::Camera VisibleCamera;
-  csm::DepthRange Visible;
-  bool VisibleUsed = false;
-  /// Face partitions of the last plan: each piece's world half-spaces (empty for cascades).
-  std::vector<std::vector<glm::dvec4>> Planes;
-
-  /// CameraSpace: the smallest w of each of the last plan's maps (empty: not camera space maps).
-  std::vector<double> DepthW;
-  /// CameraSpace: why the last plan's map is not focused at CameraSpaceFocus (empty: it is, or
-  /// the focus is automatic), and the focus last warned about (warned once per focus).
-  std::string FocusClamped;
-  double WarnedFocus = 0.0;
-  /// The message for a camera space map whose focus was clamped (csm::CameraSpaceMap).
-  void NoteFocus(const csm::CameraSpaceMap& map, double focus, const csm::Camera& fitted);
-
-  /// Setup (and DepthW, and Planes for the dueling case) for CameraSpace: the camera space
-  /// maps of the fitted frustum; false (Setup untouched) where neither case applies.
-  /// focus: CameraSpaceFocus (0: the fitted range's geometric mean).
-  bool PlanCameraSpace(const csm::Camera& camera, const glm::dvec3& direction,
-    const csm::Bounds* scene, const csm::Settings& settings, const std::vector<csm::Bounds>* parts,
-    double focus);
-
-  /// Setup and Planes for FacePartitions k: the face partitions of the fitted frustum.
-  void PlanFaces(const csm::Camera& camera, const glm::dvec3& direction, const csm::Bounds* scene,
-    const csm::Settings& settings, const std::vector<csm::Bounds>* parts, int k);
-};
 
 vtkCascadedShadowMapPlanner::vtkCascadedShadowMapPlanner()
   : Internal(new Internals)
@@ -223,22 +170,14 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   this->Internal->Camera = cam;
   this->Internal->wsLightDirection = direction;
   this->Internal->Directional = true;
-  this->Internal->Planes.clear();
-  this->Internal->DepthW.clear();
-  this->Internal->FocusClamped.clear();
-  // The comparison techniques (perspective views only), else the cascades.
   const csm::Bounds* sceneOrNull = bounds ? &scene : nullptr;
-  bool planned = false;
-  if (this->FacePartitions > 0 && !cam.parallel)
-  {
-    this->Internal->PlanFaces(cam, direction, sceneOrNull, settings, parts, this->FacePartitions);
-    planned = true;
-  }
-  else if (this->CameraSpace && !cam.parallel)
-  {
-    planned = this->Internal->PlanCameraSpace(
-      cam, direction, sceneOrNull, settings, parts, this->CameraSpaceFocus);
-  }
+#if CSM_COMPARISON_TECHNIQUES
+  // The comparison techniques (perspective views only), else the cascades.
+  const bool planned = this->Internal->PlanComparison(this->FacePartitions, this->CameraSpace,
+    this->CameraSpaceFocus, cam, direction, sceneOrNull, settings, parts);
+#else
+  const bool planned = false;
+#endif
   if (!planned && this->AdaptiveCascades && this->ErrorTarget > 0.0 && imageHeight > 0 &&
     maximumResolution > 0)
   {
@@ -268,163 +207,9 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
     this->Internal->LastCount.clear(); // lights come and go: keep the memory bounded
   }
   this->Internal->LastCount[lightKey] = static_cast<int>(this->Internal->Setup.cascades.size());
+#if CSM_COMPARISON_TECHNIQUES
   this->WarnFocusClamped();
-}
-
-void vtkCascadedShadowMapPlanner::Internals::NoteFocus(
-  const csm::CameraSpaceMap& map, double focus, const csm::Camera& fitted)
-{
-  if (map.status != csm::Status::Ok || !map.focusClamped || !(focus > 0.0))
-  {
-    return;
-  }
-  std::ostringstream message;
-  message << "CameraSpaceFocus " << focus
-          << " lies beyond the farthest view depth a camera space map can focus on in this view ("
-          << map.vsFocus << "; the depth range fitted to the scene is " << fitted.vsNear << " to "
-          << fitted.vsFar << "): the map is focused there";
-  this->FocusClamped = message.str();
-}
-
-void vtkCascadedShadowMapPlanner::WarnFocusClamped()
-{
-  // Once per focus: the view depth it can reach changes with every camera move.
-  if (!this->Internal->FocusClamped.empty() &&
-    this->CameraSpaceFocus != this->Internal->WarnedFocus)
-  {
-    this->Internal->WarnedFocus = this->CameraSpaceFocus;
-    vtkWarningMacro(<< this->Internal->FocusClamped);
-  }
-}
-
-namespace
-{
-/// The single-cascade plan of the frustum clipped by the scene (the same input checks and depth
-/// fit as the cascades'), and the camera narrowed to its fitted depth range: what the comparison
-/// techniques partition.
-csm::ShadowSetup fitDepthRange(const csm::Camera& camera, const glm::dvec3& direction,
-  const csm::Bounds* scene, const csm::Settings& settings, const std::vector<csm::Bounds>* parts,
-  csm::Camera& fitted)
-{
-  csm::Settings one = settings;
-  one.split.scheme = csm::SplitScheme::Single;
-  one.split.k = 1;
-  csm::ShadowSetup setup = csm::computeShadowSetup(camera, direction, scene, one, parts);
-  fitted = camera;
-  fitted.vsNear = setup.vsNear;
-  fitted.vsFar = setup.vsFar;
-  return setup;
-}
-}
-
-void vtkCascadedShadowMapPlanner::Internals::PlanFaces(const csm::Camera& camera,
-  const glm::dvec3& direction, const csm::Bounds* scene, const csm::Settings& settings,
-  const std::vector<csm::Bounds>* parts, int k)
-{
-  // The face partitions of the part of the frustum the scene fills.
-  csm::Camera fitted;
-  csm::ShadowSetup& setup = this->Setup;
-  setup = fitDepthRange(camera, direction, scene, settings, parts, fitted);
-  if (setup.status != csm::Status::Ok)
-  {
-    return;
-  }
-  csm::FacePartitionSettings faces;
-  faces.warp = settings.warp;
-  faces.k = k;
-  const csm::FacePartitioning fp = csm::computeFacePartitions(fitted, direction, faces);
-  if (fp.status != csm::Status::Ok)
-  {
-    setup.status = fp.status;
-    setup.message = fp.message;
-    setup.cascades.clear();
-    return;
-  }
-  setup.splits = fp.splits;
-  setup.cascades.clear();
-  for (const csm::FacePartition& piece : fp.partitions)
-  {
-    setup.cascades.push_back(piece.map);
-    setup.cascades.back().vsNear = fitted.vsNear; // selected by their planes, not by depth
-    setup.cascades.back().vsFar = fitted.vsFar;
-    this->Planes.push_back(piece.wsPlanes);
-  }
-  setup.storageTotal = fp.storageTotal;
-  setup.storageOptimal = fp.storageOptimal;
-}
-
-bool vtkCascadedShadowMapPlanner::Internals::PlanCameraSpace(const csm::Camera& camera,
-  const glm::dvec3& direction, const csm::Bounds* scene, const csm::Settings& settings,
-  const std::vector<csm::Bounds>* parts, double focus)
-{
-  csm::Camera fitted;
-  csm::ShadowSetup setup = fitDepthRange(camera, direction, scene, settings, parts, fitted);
-  if (setup.status != csm::Status::Ok || setup.cascades.empty())
-  {
-    this->Setup = setup;
-    return true; // nothing to shadow, or bad input: the same answer as the cascades'
-  }
-  // The general case (one plane), else the dueling frustum case (four planes through t).
-  std::vector<csm::CameraSpaceFace> maps;
-  const csm::CameraSpaceMap general = csm::computeCameraSpaceMap(
-    fitted, direction, focus > 0.0 ? focus : std::sqrt(fitted.vsNear * fitted.vsFar));
-  if (general.status == csm::Status::Ok)
-  {
-    maps.push_back({ general.wsToClip, {}, general.wMin });
-    this->NoteFocus(general, focus, fitted);
-  }
-  else
-  {
-    maps = csm::computeCameraSpaceDueling(fitted, direction);
-  }
-  if (maps.empty())
-  {
-    return false; // neither applies (t at infinity): the cascades
-  }
-  csm::Cascade cascade = setup.cascades[0];
-  cascade.nPrime = 0.0;
-  cascade.Mx = 0.0; // Lloyd's M is defined for light-space maps: the maps get the ceiling
-  cascade.Mz = 0.0;
-  cascade.storage = 0.0;
-  setup.cascades.clear();
-  for (const csm::CameraSpaceFace& face : maps)
-  {
-    cascade.wsToClip = face.wsToClip;
-    setup.cascades.push_back(cascade);
-    this->DepthW.push_back(face.wMin);
-    if (maps.size() > 1)
-    {
-      this->Planes.push_back(face.wsPlanes);
-    }
-  }
-  setup.storageTotal = 0.0;
-  this->Setup = setup;
-  return true;
-}
-
-double vtkCascadedShadowMapPlanner::GetCascadeDepthW(int i) const
-{
-  const auto& w = this->Internal->DepthW;
-  return i >= 0 && i < static_cast<int>(w.size()) ? w[i] : 0.0;
-}
-
-bool vtkCascadedShadowMapPlanner::GetCascadesSelectedByPlanes() const
-{
-  return !this->Internal->Planes.empty();
-}
-
-void vtkCascadedShadowMapPlanner::GetCascadePlanes(int i, double planes[16]) const
-{
-  for (int k = 0; k < 4; ++k)
-  {
-    const bool some = i >= 0 && i < static_cast<int>(this->Internal->Planes.size()) &&
-      k < static_cast<int>(this->Internal->Planes[i].size());
-    const glm::dvec4 plane = some ? this->Internal->Planes[i][k] : glm::dvec4(0.0, 0.0, 0.0, 1.0);
-    for (int c = 0; c < 4; ++c)
-    {
-      planes[4 * k + c] = plane[c];
-    }
-  }
+#endif
 }
 
 int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight* light,
@@ -448,9 +233,9 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
   }
   // A spot light: one perspective map fitted to the lit part of the visible scene.
   this->Internal->VisibleUsed = false;
-  this->Internal->Planes.clear();
-  this->Internal->DepthW.clear();
-  this->Internal->FocusClamped.clear();
+#if CSM_COMPARISON_TECHNIQUES
+  this->Internal->ClearComparison();
+#endif
   csm::Camera cam;
   toCamera(camera, aspect, cam);
   const csm::Bounds scene = toBounds(bounds);
@@ -468,27 +253,14 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
       csm::computeSpotSetup(cam, glm::dvec3(position[0], position[1], position[2]),
         glm::dvec3(direction[0], direction[1], direction[2]), light->GetConeAngle(),
         bounds ? &scene : nullptr, this->DepthClamp);
-    csm::ShadowSetup& setup = this->Internal->Setup;
-    if (this->CameraSpace && this->DepthClamp && !cam.parallel && setup.status == csm::Status::Ok &&
-      setup.cascades.size() == 1)
-    {
-      // Camera space (Kolić & Mihajlović §6.2) over the depth range the standard map was fitted
-      // to; where the paper takes a standard map (the light in or near the view), that map.
-      csm::Camera fitted = cam;
-      fitted.vsNear = setup.cascades[0].vsNear;
-      fitted.vsFar = setup.cascades[0].vsFar;
-      const csm::CameraSpaceMap map =
-        csm::computeCameraSpaceSpot(fitted, glm::dvec3(position[0], position[1], position[2]),
-          this->CameraSpaceFocus > 0.0 ? this->CameraSpaceFocus
-                                       : std::sqrt(fitted.vsNear * fitted.vsFar));
-      if (map.status == csm::Status::Ok)
-      {
-        setup.cascades[0].wsToClip = map.wsToClip;
-        this->Internal->NoteFocus(map, this->CameraSpaceFocus, fitted);
-      }
-    }
+#if CSM_COMPARISON_TECHNIQUES
+    this->Internal->PlanComparisonSpot(this->CameraSpace && this->DepthClamp,
+      this->CameraSpaceFocus, cam, glm::dvec3(position[0], position[1], position[2]));
+#endif
   }
+#if CSM_COMPARISON_TECHNIQUES
   this->WarnFocusClamped();
+#endif
   return this->Report(light, light->GetMTime());
 }
 
@@ -818,9 +590,11 @@ void vtkCascadedShadowMapPlanner::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SceneFittedCascades: " << (this->SceneFittedCascades ? "on" : "off") << "\n";
   os << indent << "ErrorTarget: " << this->ErrorTarget << "\n";
   os << indent << "AdaptiveCascades: " << (this->AdaptiveCascades ? "on" : "off") << "\n";
+#if CSM_COMPARISON_TECHNIQUES
   os << indent << "FacePartitions: " << this->FacePartitions << "\n";
   os << indent << "CameraSpace: " << (this->CameraSpace ? "on" : "off") << "\n";
   os << indent << "CameraSpaceFocus: " << this->CameraSpaceFocus << "\n";
+#endif
   os << indent << "PlannedCascades: " << this->GetNumberOfPlannedCascades() << "\n";
   os << indent << "VisibleDepthsUsed: " << (this->Internal->VisibleUsed ? "yes" : "no") << "\n";
 }

@@ -16,7 +16,8 @@
 #ifndef vtkCascadedShadowMapPlanner_h
 #define vtkCascadedShadowMapPlanner_h
 
-#include "vtkCascadedShadowsSetMacro.h" // for vtkSetFiniteClampMacro
+#include "vtkCascadedShadowsConfigure.h" // for CSM_COMPARISON_TECHNIQUES
+#include "vtkCascadedShadowsSetMacro.h"  // for vtkSetFiniteClampMacro
 #include "vtkObject.h"
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 
@@ -119,6 +120,9 @@ public:
   vtkBooleanMacro(AdaptiveCascades, bool);
   ///@}
 
+#if CSM_COMPARISON_TECHNIQUES
+  // The comparison techniques of csm-bench (built with -DCSM_COMPARISON_TECHNIQUES=ON).
+
   /// The most z-partitions a face partition may have (4 faces of them fill the cascade slots).
   static constexpr int MAXIMUM_FACE_Z_PARTITIONS = MAXIMUM_NUMBER_OF_CASCADES / 4;
 
@@ -183,8 +187,15 @@ public:
   double GetCascadeDepthW(int i) const;
 
   /// Are the last plan's maps selected per point by their planes (face partitions, camera
-  /// space maps of the dueling frustum case), not by view depth?
+  /// space maps of the dueling frustum case), not by view depth? Their GetCascadeNear() and
+  /// GetCascadeFar() are the whole fitted range then.
   bool GetCascadesSelectedByPlanes() const;
+
+  /// The half-spaces that hold piece i of a face partitioning (world space, 4 planes of 4
+  /// numbers: a point p is inside when a p_x + b p_y + c p_z + d >= 0; (0, 0, 0, 1) where a
+  /// piece has fewer); all (0, 0, 0, 1) for cascades.
+  void GetCascadePlanes(int i, double planes[16]) const;
+#endif
 
   ///@{
   /// Fit the light depth range to the receivers only and let the GPU clamp casters in front of
@@ -298,13 +309,7 @@ public:
   void GetCascadeMatrix(
     int i, vtkMatrix4x4* worldToLightClip, double border, const int resolution[2]) const;
 
-  /// The half-spaces that hold piece i of a face partitioning (world space, 4 planes of 4
-  /// numbers: a point p is inside when a p_x + b p_y + c p_z + d >= 0; (0, 0, 0, 1) where a
-  /// piece has fewer); all (0, 0, 0, 1) for cascades.
-  void GetCascadePlanes(int i, double planes[16]) const;
-
-  /// Split depths of cascade i along the view direction (for face partitions: the whole fitted
-  /// range, they are selected by their planes).
+  /// Split depths of cascade i along the view direction.
   double GetCascadeNear(int i) const;
   double GetCascadeFar(int i) const;
 
@@ -414,9 +419,11 @@ protected:
   bool SceneFittedCascades = true;
   double ErrorTarget = 0.7;
   bool AdaptiveCascades = true;
+#if CSM_COMPARISON_TECHNIQUES
   int FacePartitions = 0;
   bool CameraSpace = false;
   double CameraSpaceFocus = 0.0;
+#endif
   int AtlasResolution = 0;
   int MaximumTextureSize = 0;
 
@@ -429,9 +436,11 @@ private:
     int mostCascades = 0);
   /// Reports an invalid plan once per light (null: a direction) until the light or message changes.
   int Report(const void* light, vtkMTimeType lightTime);
+#if CSM_COMPARISON_TECHNIQUES
   /// Warns, once per CameraSpaceFocus, that the last plan's camera space map could not be
   /// focused there (csm::CameraSpaceMap::focusClamped).
   void WarnFocusClamped();
+#endif
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

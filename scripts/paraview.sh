@@ -14,6 +14,8 @@
 #
 #   bash scripts/paraview.sh [all|prepare|single|mpi|readme|defaults]
 #   build dir: build-paraview/ (or $CSM_PV_BUILD_DIR)
+#   CSM_COMPARISON_TECHNIQUES=ON: the plugin with the comparison techniques (off by default, as
+#   for a user; CTest's paraview.* tests pass the main build's setting)
 #   all (default): prepare, build, run every test. prepare: install the packages and unpack
 #   the prefix, nothing else (scripts/test.sh runs it, through setup.sh). The other modes run
 #   one test each and install and unpack nothing (CTest: paraview.View, paraview.ViewMPI,
@@ -64,7 +66,8 @@ unpack_paraview_prefix() {
 configure_and_build() {
   echo "Configuring and building the plugin in $BUILD (Release)"
   if ! cmake -S "$ROOT/ParaView" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release \
-    -DParaView_DIR="$PV_LIB/cmake/paraview-5.11" >"$LOGS/configure.log" 2>&1; then
+    -DParaView_DIR="$PV_LIB/cmake/paraview-5.11" \
+    -DCSM_COMPARISON_TECHNIQUES="${CSM_COMPARISON_TECHNIQUES:-OFF}" >"$LOGS/configure.log" 2>&1; then
     grep -A5 "CMake Error" "$LOGS/configure.log" | head -n 20 >&2 ||
       tail -n 20 "$LOGS/configure.log" >&2
     die "CMake configure of the plugin failed (full log: $LOGS/configure.log)"
@@ -125,7 +128,7 @@ fi
 if [ "$MODE" = all ] || [ "$MODE" = defaults ]; then
   echo "== pvbatch: each default_values of the plugin's XML against the C++ getter"
   "${XVFB[@]}" "$PREFIX/usr/bin/pvbatch" "$TESTING/TestXMLDefaults.py" "$PLUGIN" \
-    "$ROOT/ParaView/Plugin/View/CascadedShadowsView.xml" 2>&1 | tee "$LOGS/test-defaults.log" ||
+    "$BUILD/CascadedShadowsView.xml" 2>&1 | tee "$LOGS/test-defaults.log" ||
     failed+=("XML defaults (log: $LOGS/test-defaults.log)")
 fi
 

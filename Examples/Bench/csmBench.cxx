@@ -183,6 +183,7 @@ std::vector<Technique> Techniques(const Options& o)
     add("ours k2 pcf5", "csm", ours[0], ours[1], 2, 5);
     add("ours k3 pcf5", "csm", ours[0], ours[1], 3, 5);
     add("ours k4 pcf5", "csm", ours[0], ours[1], 4, 5);
+#if CSM_COMPARISON_TECHNIQUES
     // Face partitioning (Lloyd et al. 2006, §5.1): a generalized-warped map per side face the
     // light enters (up to 4, FP+W), or two log z-partitions per face (up to 8, FP+ZP+W), in the
     // atlas of four maps of half the budget (the same texels as the rows above).
@@ -194,6 +195,7 @@ std::vector<Technique> Techniques(const Options& o)
     // in the dueling frustum case.
     add("cssm", "csm", P::WARP_GENERALIZED, P::SPLIT_ADAPTIVE, 1, 3);
     list.back().Shadow.CameraSpace = true;
+#endif
   }
   if (!o.Labels.empty())
   {
@@ -612,7 +614,8 @@ Options Parse(int argc, char** argv)
         "map times (glFinish around them) and the maps rendered / kept; each path\n"
         "frame printed with its clear, each map's size and time, and the rest (the\n"
         "main view with the lookup).\n"
-        "--labels a,b,...: only these techniques (their labels as in the CSV).\n"
+        "--labels a,b,...: only these techniques (their labels as in the CSV; the comparison\n"
+        "techniques fp-w, fp-zp-w and cssm in a build with -DCSM_COMPARISON_TECHNIQUES=ON).\n"
         "--error-images DIR: per measured view and technique, DIR/scene-label-view.png:\n"
         "false shadow red, false light blue, right light / dark grey, not compared dark.\n");
       std::exit(0);
@@ -636,7 +639,13 @@ Options Parse(int argc, char** argv)
       std::stringstream list(argv[++i]);
       std::string label;
       while (std::getline(list, label, ','))
+      {
+#if !CSM_COMPARISON_TECHNIQUES
+        if (label == "fp-w" || label == "fp-zp-w" || label == "cssm")
+          fail(csmScenes::NoComparisonTechniques("--labels " + label));
+#endif
         o.Labels.push_back(label);
+      }
     }
     else if (f == "--size")
     {
@@ -1050,10 +1059,12 @@ int main(int argc, char** argv)
       const bool csm = t.Shadow.Technique == "csm";
       csv << sceneName << "," << t.Shadow.Technique << "," << t.Label << ","
           << (csm ? kWarps[t.Shadow.Warp] : "none") << ","
-          << (!csm                              ? "single"
+          << (!csm ? "single"
+#if CSM_COMPARISON_TECHNIQUES
                  : t.Shadow.CameraSpace         ? "cssm"
                  : t.Shadow.FacePartitions == 1 ? "face"
                  : t.Shadow.FacePartitions == 2 ? "face+log"
+#endif
                                                 : kPartitions[t.Shadow.Partition])
           << "," << t.Shadow.Cascades << "," << t.Shadow.Resolution << ","
           << (csm ? t.Shadow.PCF : 1) << "," << t.Texels << "," << t.MemoryMB << ","

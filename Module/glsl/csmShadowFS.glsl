@@ -6,7 +6,9 @@
 
 // Compile-time choices, #defined by the pass (vtkCascadedShadowMapPass): CSM_KERNEL
 // (CSM_KERNEL_GRID or CSM_KERNEL_JITTERED), CSM_DEBUG (0 off, or CSM_DEBUG_CASCADES, _ERROR,
-// _FACTOR), CSM_LIGHTS, CSM_MAX_CASCADES, and CSM_PCF_RADIUS when few lights are shadowed. Every
+// _FACTOR), CSM_LIGHTS, CSM_MAX_CASCADES, and CSM_PCF_RADIUS when few lights are shadowed; in a
+// build with the comparison techniques, CSM_FACES and CSM_CAMERA_SPACE where a light's maps need
+// their lookup (csmComparisonFS.glsl, which the pass puts before this file). Every
 // fragment makes one map lookup: a software rasterizer runs both sides of a branch, so options
 // that a uniform would switch at run time are compiled in or out instead. The kernel radius is a
 // constant where it can be (the loops unroll, the tap weights fold); with many shadowed lights the
@@ -160,34 +162,8 @@ uniform vec4 csmTile[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform vec2 csmTexel[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmSplitFar[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmSplitNear[CSM_LIGHTS];
-#ifdef CSM_CAMERA_SPACE
-uniform float csmDepthW[CSM_LIGHTS * CSM_MAX_CASCADES];
-#endif
 uniform int csmCount[CSM_LIGHTS];
 uniform float csmAttenuation[CSM_LIGHTS];
-
-#ifdef CSM_FACES
-// Face partitions (Lloyd et al. 2006, §5.1): each map's piece of the frustum as 4 view-space
-// half-spaces; the pieces tile the frustum, so a point belongs to the one whose smallest plane
-// distance is largest (inside it, up to rounding; the same rule as csm::partitionAt).
-uniform vec4 csmPlanes[CSM_LIGHTS * CSM_MAX_CASCADES * 4];
-int csmPartitionAt(int j, vec4 vc)
-{
-  int first = j * CSM_MAX_CASCADES;
-  int best = 0;
-  float bestDistance = -3.4e38;
-  for (int i = 0; i < csmCount[j]; ++i)
-  {
-    int p = 4 * (first + i);
-    vec4 v = vec4(vc.xyz, 1.0);
-    float d = min(min(dot(csmPlanes[p], v), dot(csmPlanes[p + 1], v)),
-      min(dot(csmPlanes[p + 2], v), dot(csmPlanes[p + 3], v)));
-    best = d > bestDistance ? i : best;
-    bestDistance = max(d, bestDistance);
-  }
-  return best;
-}
-#endif
 
 // Light j's cascade for a point at view depth `depth`: the one whose view-depth interval holds
 // it (c; Lloyd et al. 2006, §6.3), the next one, and whether this pixel of c's blend band goes
@@ -199,9 +175,9 @@ bool csmCascadeAt(int j, vec4 vc, out int c, out int next, out bool blend)
 {
   int count = csmCount[j];
 #ifdef CSM_FACES
-  // Face partitions: the piece the point lies in; no blend band (the pieces meet along planes
-  // through the light, where their maps agree).
-  c = csmPartitionAt(j, vc);
+  // Face partitions (csmComparisonFS.glsl): the piece the point lies in; no blend band (the
+  // pieces meet along planes through the light, where their maps agree).
+  c = csmPartitionAt(j, count, vc);
   next = c;
   blend = false;
   return count > 0;
@@ -251,8 +227,7 @@ vec4 csmShadowIn(sampler2DShadow map, int j, int chosen, vec4 h, vec4 hx, vec4 h
   float m;
   float biasScale = 1.0;
 #ifdef CSM_CAMERA_SPACE
-  // A camera space map's depth spans wMin / w on a ray of w (csm::computeCameraSpaceMap).
-  biasScale = csmDepthW[cascade] > 0.0 ? csmDepthW[cascade] / max(h.w, 1e-30) : 1.0;
+  biasScale = csmDepthBiasScale(cascade, h); // camera space maps (csmComparisonFS.glsl)
 #endif
   float handedness = determinant(csmToMap[cascade]) < 0.0 ? -1.0 : 1.0;
   float visibility =

@@ -14,6 +14,13 @@
 namespace csmScenes
 {
 
+std::string NoComparisonTechniques(const std::string& what)
+{
+  return what +
+    ": this build has no comparison techniques (configure with "
+    "-DCSM_COMPARISON_TECHNIQUES=ON)";
+}
+
 ShadowOptions::ShadowOptions()
 {
   static const ShadowOptions defaults(vtkNew<vtkCascadedShadowMapPass>().GetPointer());
@@ -36,9 +43,11 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->CullCastersWithoutReceivers = baker->GetCullCastersWithoutReceivers();
   this->VisibleDepthFit = baker->GetVisibleDepthFit();
   this->SceneFittedCascades = baker->GetPlanner()->GetSceneFittedCascades();
+#if CSM_COMPARISON_TECHNIQUES
   this->FacePartitions = baker->GetPlanner()->GetFacePartitions();
   this->CameraSpace = baker->GetPlanner()->GetCameraSpace();
   this->CameraSpaceFocus = baker->GetPlanner()->GetCameraSpaceFocus();
+#endif
   this->DepthClamp = baker->GetPlanner()->GetDepthClamp();
   this->PCF = pass->GetPCFSize();
   this->Kernel = pass->GetPCFKernel();
@@ -66,9 +75,11 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetCullCastersWithoutReceivers(o.CullCastersWithoutReceivers);
   baker->SetVisibleDepthFit(o.VisibleDepthFit);
   baker->GetPlanner()->SetSceneFittedCascades(o.SceneFittedCascades);
+#if CSM_COMPARISON_TECHNIQUES
   baker->GetPlanner()->SetFacePartitions(o.FacePartitions);
   baker->GetPlanner()->SetCameraSpace(o.CameraSpace);
   baker->GetPlanner()->SetCameraSpaceFocus(o.CameraSpaceFocus);
+#endif
   baker->GetPlanner()->SetDepthClamp(o.DepthClamp);
   pass->SetPCFSize(o.PCF);
   pass->SetPCFKernel(o.Kernel);

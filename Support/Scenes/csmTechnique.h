@@ -2,6 +2,7 @@
 // Installs a shadow technique on a renderer: ours (cascaded), VTK's own pass, or none.
 #pragma once
 
+#include "vtkCascadedShadowsConfigure.h" // for CSM_COMPARISON_TECHNIQUES
 #include "vtkSmartPointer.h"
 
 #include <string>
@@ -13,6 +14,10 @@ class vtkShadowMapPass;
 
 namespace csmScenes
 {
+
+/// What a program says when asked for a comparison technique (face partitioning, camera space
+/// maps) in a build without them; `what` names the request (a flag and its value).
+std::string NoComparisonTechniques(const std::string& what);
 
 /// The options of a technique, as the flags of csm-demo and csm-bench set them. The cascaded
 /// pass's options start at the pass's own defaults: a default-constructed ShadowOptions reads
@@ -40,9 +45,11 @@ struct ShadowOptions
   bool CullCastersWithoutReceivers; ///< casters that shadow nothing left out of the maps
   bool VisibleDepthFit;             ///< cascades fitted to the depths the view has samples at
   bool SceneFittedCascades;         ///< the farthest cascade may be a map fixed in the world
-  int FacePartitions;               ///< 0 cascades; 1 FP+W, 2 FP+ZP+W (z-partitions per face)
-  bool CameraSpace;                 ///< camera space shadow maps (general case)
-  double CameraSpaceFocus;          ///< their focus range, a view depth (0: automatic)
+#if CSM_COMPARISON_TECHNIQUES
+  int FacePartitions;      ///< 0 cascades; 1 FP+W, 2 FP+ZP+W (z-partitions per face)
+  bool CameraSpace;        ///< camera space shadow maps (general case)
+  double CameraSpaceFocus; ///< their focus range, a view depth (0: automatic)
+#endif
   int PCF;
   int Kernel; ///< vtkCascadedShadowMapPass::Kernels
   double ConstantBias;

@@ -358,6 +358,7 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     LightAtGamma(t, 2.0); // light almost along the view: shadows mostly hidden behind casters
     t.MinShadowPixels = 200;
   };
+#if CSM_COMPARISON_TECHNIQUES
   cases["TestPlatformFacePartitions"] = [](Test& t)
   {
     // Face partitioning (FP+W, Lloyd et al. 2006, §5.1), the comparison technique, where it is
@@ -395,6 +396,7 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     t.Options.CameraSpace = true;
     t.MinShadowPixels = 5000;
   };
+#endif
   // Low camera looking up at the derrick; the light comes from behind it toward the camera
   // and down: light and view directions nearly opposite (dueling frusta).
   auto duelingFrusta = [](Test& t)
@@ -411,6 +413,7 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     t.MinShadowPixels = 8000;
   };
   cases["TestPlatformDuelingFrusta"] = duelingFrusta;
+#if CSM_COMPARISON_TECHNIQUES
   cases["TestPlatformCameraSpaceDueling"] = [duelingFrusta](Test& t)
   {
     // Camera space shadow maps' dueling frustum case (Kolić & Mihajlović, Fig. 2): the view of
@@ -419,6 +422,7 @@ std::map<std::string, std::function<void(Test&)>> Cases()
     t.Options.Cascades = 4;
     t.Options.CameraSpace = true;
   };
+#endif
   cases["TestTowersLongRange"] = [](Test& t)
   {
     csmScenes::Install(csmScenes::Towers(), t.Renderer, double(t.Width) / t.Height);

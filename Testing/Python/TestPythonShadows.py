@@ -37,24 +37,68 @@ check(not hasattr(cascadedshadows, "vtkCascadedShadowCasterPass"),
       "vtkCascadedShadowCasterPass is wrapped")
 check(not hasattr(cascadedshadows.vtkRenderingCascadedShadows, "vtkCascadedShadowCasterPass"),
       "vtkCascadedShadowCasterPass is in the extension module")
-# Every option of the C++ headers (their public Set/Get methods and macros) is reachable.
-module_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Module")
-for cls in (vtkCascadedShadowMapPass, vtkCascadedShadowMapBakerPass, vtkCascadedShadowMapPlanner):
-    header = open(os.path.join(module_dir, cls.__name__ + ".h"), encoding="utf-8").read()
-    code = re.sub(r"//[^\n]*|/\*.*?\*/", "", header, flags=re.S)  # declarations, not comments
+# Every option of the C++ headers (their public Set/Get methods and macros) is reachable; those
+# under #if CSM_COMPARISON_TECHNIQUES as the build has them (CTest sets the variable: 1 or 0):
+# there with it, absent without.
+COMPARISON = os.environ.get("CSM_COMPARISON_TECHNIQUES", "0") not in ("", "0", "OFF")
+
+
+def option_names(code):
+    """The public Set/Get/Use names of a header's declarations (comments removed)."""
     public = code.split("protected:")[0]
     names = set()
     for kind, name in re.findall(r"vtk(Set|Get|Boolean)\w*Macro\(\s*(\w+)", public):
         names |= {name + "On", name + "Off"} if kind == "Boolean" else {kind + name}
     names |= set(re.findall(r"\b((?:Set|Get|Use)[A-Z]\w*)\s*\(", public))
-    # The baker's per-light map state for the shadow pass (its structs' own methods) and its
-    # frame statistics (C++ structs, for tests and benchmarks), not options.
-    if cls is vtkCascadedShadowMapBakerPass:
-        names -= {"GetLightMaps", "GetLastFrameStatistics", "GetCascadeSeconds",
-                  "GetNumberOfCascades"}
+    # The baker's per-light map state for the shadow pass (and its structs' own methods) and its
+    # frame statistics (C++ structs, for tests and benchmarks), not options. (The planner's
+    # GetNumberOfCascades is checked below.)
+    return names - {"GetLightMaps", "GetLastFrameStatistics", "GetCascadeSeconds",
+                    "GetNumberOfCascades"}
+
+
+def split_comparison(code):
+    """The code with the comparison techniques' blocks as the build has them, and the code of
+    those blocks alone (#if CSM_COMPARISON_TECHNIQUES ... #else ... #endif, nested #if kept)."""
+    kept, comparison = [], []
+    stack = []  # per open #if: True/False for the option's blocks, None for any other
+    for line in code.splitlines():
+        directive = line.strip()
+        if re.match(r"#\s*if\s+!\s*CSM_COMPARISON_TECHNIQUES\b", directive):
+            stack.append(not COMPARISON)
+            continue
+        if re.match(r"#\s*if\s+CSM_COMPARISON_TECHNIQUES\b", directive):
+            stack.append(COMPARISON)
+            continue
+        if re.match(r"#\s*if", directive):
+            stack.append(None)
+        elif re.match(r"#\s*else", directive) and stack and stack[-1] is not None:
+            stack[-1] = not stack[-1]
+            continue
+        elif re.match(r"#\s*endif", directive) and stack:
+            if stack.pop() is not None:
+                continue
+        inside = any(state is not None for state in stack)
+        (comparison if inside else kept).append(line)
+        if inside and all(state is not False for state in stack):
+            kept.append(line)
+    return "\n".join(kept), "\n".join(comparison)
+
+
+module_dir = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Module")
+for cls in (vtkCascadedShadowMapPass, vtkCascadedShadowMapBakerPass, vtkCascadedShadowMapPlanner):
+    header = open(os.path.join(module_dir, cls.__name__ + ".h"), encoding="utf-8").read()
+    code = re.sub(r"//[^\n]*|/\*.*?\*/", "", header, flags=re.S)  # declarations, not comments
+    kept, comparison = split_comparison(code)
+    names = option_names(kept)
     missing = sorted(n for n in names if not hasattr(cls, n))
     check(not missing, "%s lacks %s in Python" % (cls.__name__, ", ".join(missing)))
-    print("%s: %d options and methods reachable" % (cls.__name__, len(names)))
+    if not COMPARISON:
+        extra = sorted(n for n in option_names(comparison) - names if hasattr(cls, n))
+        check(not extra, "%s has %s in Python in a build without the comparison techniques"
+              % (cls.__name__, ", ".join(extra)))
+    print("%s: %d options and methods reachable (comparison techniques %s)"
+          % (cls.__name__, len(names), "on" if COMPARISON else "off"))
 
 planner = vtkCascadedShadowMapPlanner()
 planner.SetWarpMode(vtkCascadedShadowMapPlanner.WARP_LISPSM)
