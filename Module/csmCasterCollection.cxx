@@ -35,6 +35,10 @@ namespace
 /// Most receiver boxes a caster without self-shadow is tested against
 /// (CullCastersWithoutReceivers); beyond, every caster is drawn.
 constexpr size_t kMaxReceiverTests = 4096;
+constexpr size_t kMaxReceiverBoxes = 64;
+/// Most casters the cascade count is weighed with one by one (each is tested against every
+/// cascade of every count planned).
+constexpr size_t kMaxCasterLoads = 256;
 
 /// Bounds of a prop that draws 3D geometry, or false (2D actors, invisible, no bounds).
 bool propBounds(vtkProp* prop, double bounds[6])
@@ -802,5 +806,45 @@ void csmCasterCollection::ReleaseGraphicsResources(vtkWindow* w)
   for (auto it = this->Proxies.begin(); it != this->Proxies.end();)
   {
     it = !w || it->second.Window == w ? this->Proxies.erase(it) : std::next(it);
+  }
+}
+
+void csmFrameCasters::FeedPlanner(vtkCascadedShadowMapPlanner* planner) const
+{
+  // The receivers' boxes fit the cascades (up to kMaxReceiverBoxes; beyond, the box around all
+  // of them).
+  planner->ClearReceiverBounds();
+  if (this->Receivers.size() <= kMaxReceiverBoxes)
+  {
+    for (const auto& b : this->Receivers)
+    {
+      planner->AddReceiverBounds(b.data());
+    }
+  }
+  // What each cascade's pass would draw weighs the cascade count (up to kMaxCasterLoads
+  // casters; beyond, one load of all their cells in the scene's box, which every cascade draws).
+  // Screen-sized casters (tubes, spheres, wide lines) cost their fragments, not their cells,
+  // and have no fixed extent: with any of them the count is the fewest that meets the target
+  // and there is no scene-fitted map (Results.md, "Screen-sized casters").
+  planner->ClearCasterLoads();
+  const bool screenSizedCasters = std::any_of(this->CasterLoads.begin(), this->CasterLoads.end(),
+    [](const csmFrameCasters::CasterLoad& l) { return l.ScreenSized; });
+  if (!screenSizedCasters && this->CasterLoads.size() <= kMaxCasterLoads)
+  {
+    for (const auto& load : this->CasterLoads)
+    {
+      planner->AddCasterLoad(load.Bounds.data(), load.Cells,
+        this->Receivers.size() <= kMaxReceiverBoxes ? load.Receiver : -1, load.ShadowsItself,
+        load.ScreenSized);
+    }
+  }
+  else if (!screenSizedCasters)
+  {
+    double cells = 0.0;
+    for (const auto& load : this->CasterLoads)
+    {
+      cells += load.Cells;
+    }
+    planner->AddCasterLoad(this->SceneBounds, cells);
   }
 }

@@ -20,6 +20,7 @@
 
 class vtkActor;
 class vtkCascadedShadowBlockMapper;
+class vtkCascadedShadowMapPlanner;
 class vtkMatrix4x4;
 class vtkMultiProcessController;
 class vtkOpenGLRenderWindow;
@@ -81,6 +82,9 @@ struct csmFrameCasters
   /// lightTravel (CullCastersWithoutReceivers)? Always true for a caster that may shadow
   /// itself, for spot lights (lightTravel null) and with too many receivers to test.
   bool CasterHasReceivers(const Caster& caster, const double* lightTravel) const;
+  /// The receivers' boxes and the casters' loads, for the planner (the cascades' fit and
+  /// count).
+  void FeedPlanner(vtkCascadedShadowMapPlanner* planner) const;
   /// Every process's scene bounds, change, caster loads and receiver boxes (distributed data).
   void GatherAcrossProcesses(vtkMultiProcessController* controller);
 };

@@ -1,25 +1,20 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapBakerPass.h"
 
-#include "csmReportOnce.h"
-
-#include "csmAtlas.h" // the atlas layout
+#include "csmAtlas.h" // csm::kAtlasFullMaps
+#include "csmBakerState.h"
 #include "csmCasterCollection.h"
+#include "csmMapDrawing.h"
+#include "csmReportOnce.h"
 #include "csmReuse.h"
-#include "csmVisibleDepth.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
-#include "vtkCascadedShadowBlockMapper.h"
-#include "vtkCascadedShadowCasterPass.h"
 #include "vtkCascadedShadowMapPlanner.h"
-#include "vtkCellArray.h"
-#include "vtkCellArrayIterator.h"
 #include "vtkCommunicator.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
-#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -29,28 +24,18 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLState.h"
-#include "vtkPoints.h"
-#include "vtkPolyData.h"
-#include "vtkPolyDataMapper.h"
-#include "vtkProp.h"
 #include "vtkPropCollection.h"
 #include "vtkProperty.h"
 #include "vtkRenderState.h"
-#include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 #include "vtkTextureUnitManager.h"
 #include "vtk_glew.h"
 
 #include <algorithm>
-#include <array>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstring>
-#include <future>
-#include <limits>
-#include <memory>
 #include <sstream>
+#include <string>
 
 vtkStandardNewMacro(vtkCascadedShadowMapBakerPass);
 vtkCxxSetObjectMacro(vtkCascadedShadowMapBakerPass, Controller, vtkMultiProcessController);
@@ -58,13 +43,6 @@ vtkCxxSetObjectMacro(vtkCascadedShadowMapBakerPass, Controller, vtkMultiProcessC
 namespace
 {
 constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES;
-constexpr size_t kMaxReceiverBoxes = 64;
-/// Most casters the cascade count is weighed with one by one (each is tested against every
-/// cascade of every count planned).
-constexpr size_t kMaxCasterLoads = 256;
-/// Most receiver boxes a caster without self-shadow is tested against
-/// (CullCastersWithoutReceivers); beyond, every caster is drawn.
-constexpr size_t kMaxReceiverTests = 4096;
 // Frames per second from which the window's desired update rate means "interacting" (the
 // interactor's default is 15, its still rate 0.0001).
 constexpr double kInteractiveUpdateRate = 1.0;
@@ -79,41 +57,6 @@ constexpr int kMapperTextureUnits = 8;
 constexpr int kUniformComponentsPerLight = kMaxCascades * (16 + 4 + 4 + 4) + 16;
 constexpr int kFacePlaneComponentsPerLight = kMaxCascades * 16;
 constexpr int kMapperUniformComponents = 1024;
-// The depth pre-pass's offset behind the surfaces (glPolygonOffset factor and units): enough
-// for the same triangle drawn by another shader to pass GL_LEQUAL.
-constexpr float kPrePassOffsetFactor = 1.0f;
-constexpr float kPrePassOffsetUnits = 4.0f;
-
-/// The main view that screen-sized casters are sized for (VTK draws tubes and spheres with a
-/// width in the renderer's pixels): world -> view (row-major) in [0, 16), and the world size
-/// of one pixel at view depth d, [16] + [17] d, from the camera's projection.
-void casterView(vtkRenderer* renderer, vtkCamera* camera, double key[18])
-{
-  int width = 0, height = 0, x = 0, y = 0;
-  renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
-  vtkMatrix4x4* worldToView = camera->GetModelViewTransformMatrix();
-  std::copy(worldToView->GetData(), worldToView->GetData() + 16, key);
-  vtkMatrix4x4* projection =
-    camera->GetProjectionTransformMatrix(double(std::max(width, 1)) / std::max(height, 1), -1, 1);
-  const double p11 = projection->GetElement(1, 1);
-  const double pixel = height > 0 && std::isfinite(p11) && p11 != 0.0 ? 2.0 / (height * p11) : 0.0;
-  key[16] = pixel * projection->GetElement(3, 3);  // parallel: constant
-  key[17] = -pixel * projection->GetElement(3, 2); // perspective: grows with depth
-}
-
-/// Does the caster shadow anything in this light's maps (CullCastersWithoutReceivers)?
-/// Directional lights only; with several processes the receivers are everyone's boxes.
-bool casterHasReceivers(const csmFrameCasters& props, const csmFrameCasters::Caster& caster,
-  const vtkCascadedShadowMapBakerPass::LightMaps& maps, bool distributed)
-{
-  if (maps.Kind != vtkCascadedShadowMapBakerPass::LightKind::Directional || distributed)
-  {
-    return true;
-  }
-  const double travel[3] = { maps.FocalPoint[0] - maps.Position[0],
-    maps.FocalPoint[1] - maps.Position[1], maps.FocalPoint[2] - maps.Position[2] };
-  return props.CasterHasReceivers(caster, travel);
-}
 
 /// Does a camera look from where and where another did (its clipping range aside)?
 bool sameViewpoint(vtkCamera* a, vtkCamera* b)
@@ -145,77 +88,13 @@ bool sameView(vtkCamera* a, vtkCamera* b, double aspect)
   return std::equal(projectionA, projectionA + 16, projectionB->GetData());
 }
 
-/// Row-major double -> column-major float (GLSL's mat4).
-void toColumnMajor(const double m[16], float out[16])
-{
-  for (int row = 0; row < 4; ++row)
-  {
-    for (int column = 0; column < 4; ++column)
-    {
-      out[4 * column + row] = static_cast<float>(m[4 * row + column]);
-    }
-  }
-}
-
-/// The caster uniforms for a cascade, from its CasterView and its tile.
-vtkCascadedShadowCasterPass::CasterUniforms casterUniformsFor(
-  const vtkCascadedShadowMapBakerPass::LightMaps& maps, int c, int x, int y, int w, int h)
-{
-  const double* key = maps.Cascades[c].CasterView; // RenderCascade set it for this view
-  vtkNew<vtkMatrix4x4> worldToView, viewToWorld, worldToMap, mapToWorld;
-  worldToView->DeepCopy(key);
-  vtkMatrix4x4::Invert(worldToView, viewToWorld);
-  worldToMap->DeepCopy(maps.Cascades[c].WorldToMap);
-  vtkMatrix4x4::Invert(worldToMap, mapToWorld);
-  double mapToView[16], viewToMap[16];
-  vtkMatrix4x4::Multiply4x4(key, mapToWorld->GetData(), mapToView);
-  vtkMatrix4x4::Multiply4x4(maps.Cascades[c].WorldToMap, viewToWorld->GetData(), viewToMap);
-  vtkCascadedShadowCasterPass::CasterUniforms u;
-  toColumnMajor(mapToView, u.MapToView);
-  toColumnMajor(viewToMap, u.ViewToMap);
-  const double* position = maps.Position;
-  const double* focal = maps.FocalPoint;
-  double light[4];
-  if (maps.Kind == vtkCascadedShadowMapBakerPass::LightKind::Directional)
-  {
-    const double toward[4] = { position[0] - focal[0], position[1] - focal[1],
-      position[2] - focal[2], 0.0 };
-    worldToView->MultiplyPoint(toward, light);
-  }
-  else
-  {
-    const double at[4] = { position[0], position[1], position[2], 1.0 };
-    worldToView->MultiplyPoint(at, light);
-  }
-  for (int i = 0; i < 4; ++i)
-  {
-    u.LightView[i] = static_cast<float>(light[i]);
-  }
-  u.PixelWorld[0] = static_cast<float>(key[16]);
-  u.PixelWorld[1] = static_cast<float>(key[17]);
-  u.Viewport[0] = static_cast<float>(x);
-  u.Viewport[1] = static_cast<float>(y);
-  u.Viewport[2] = static_cast<float>(w);
-  u.Viewport[3] = static_cast<float>(h);
-  return u;
-}
-
 }
 
 vtkCascadedShadowMapBakerPass::vtkCascadedShadowMapBakerPass()
+  : Planner(vtkSmartPointer<vtkCascadedShadowMapPlanner>::New())
+  , Casters(std::make_unique<csmCasterCollection>())
+  , Drawing(std::make_unique<csmMapDrawing>())
 {
-  this->Planner = vtkSmartPointer<vtkCascadedShadowMapPlanner>::New();
-  this->LightCamera = vtkSmartPointer<vtkCamera>::New();
-  this->Projection = vtkSmartPointer<vtkMatrix4x4>::New();
-  this->CasterPass = vtkSmartPointer<vtkCascadedShadowCasterPass>::New();
-  this->Casters = std::make_unique<csmCasterCollection>();
-  // Identity view: the cascade matrix (world -> light clip) is the whole projection.
-  this->LightCamera->SetPosition(0.0, 0.0, 0.0);
-  this->LightCamera->SetFocalPoint(0.0, 0.0, -1.0);
-  this->LightCamera->SetViewUp(0.0, 1.0, 0.0);
-  this->LightCamera->SetParallelProjection(1);
-  this->LightCamera->SetExplicitProjectionTransformMatrix(this->Projection);
-  this->LightCamera->UseExplicitProjectionTransformMatrixOn();
 }
 
 vtkCascadedShadowMapBakerPass::~vtkCascadedShadowMapBakerPass()
@@ -251,31 +130,32 @@ bool vtkCascadedShadowMapBakerPass::LightCastsShadows(vtkLight* light)
     light->GetShadowAttenuation() > 0.0f; // a shadow of attenuation 0 is invisible: no maps
 }
 
-vtkCascadedShadowMapBakerPass::RendererMaps& vtkCascadedShadowMapBakerPass::MapsOf(
+csmRendererMaps& vtkCascadedShadowMapBakerPass::MapsOf(
   vtkRenderer* renderer, vtkOpenGLRenderWindow* window)
 {
   // Forget renderers that are gone (their textures free themselves with their context).
   this->Renderers.erase(std::remove_if(this->Renderers.begin(), this->Renderers.end(),
-                          [](const RendererMaps& r) { return !r.Renderer; }),
+                          [](const std::unique_ptr<csmRendererMaps>& r) { return !r->Renderer; }),
     this->Renderers.end());
-  for (RendererMaps& state : this->Renderers)
+  for (auto& entry : this->Renderers)
   {
+    csmRendererMaps& state = *entry;
     if (state.Renderer == renderer)
     {
       if (state.Window != window)
       {
-        state = RendererMaps(); // moved to another context: start afresh
+        state = csmRendererMaps(); // moved to another context: start afresh
         state.Renderer = renderer;
         state.Window = window;
       }
       return state;
     }
   }
-  RendererMaps state;
-  state.Renderer = renderer;
-  state.Window = window;
+  auto state = std::make_unique<csmRendererMaps>();
+  state->Renderer = renderer;
+  state->Window = window;
   this->Renderers.push_back(std::move(state));
-  return this->Renderers.back();
+  return *this->Renderers.back();
 }
 
 const std::vector<vtkCascadedShadowMapBakerPass::LightMaps>&
@@ -283,17 +163,17 @@ vtkCascadedShadowMapBakerPass::GetLightMaps(vtkRenderer* renderer) const
 {
   static const std::vector<LightMaps> none;
   renderer = renderer ? renderer : this->LastRenderer.GetPointer();
-  for (const RendererMaps& state : this->Renderers)
+  for (const auto& state : this->Renderers)
   {
-    if (renderer && state.Renderer == renderer)
+    if (renderer && state->Renderer == renderer)
     {
-      return state.Maps;
+      return state->Maps;
     }
   }
   return none;
 }
 
-bool vtkCascadedShadowMapBakerPass::InputsChanged(vtkRenderer* renderer, RendererMaps& state)
+bool vtkCascadedShadowMapBakerPass::InputsChanged(vtkRenderer* renderer, csmRendererMaps& state)
 {
   // Everything but the camera and the lights' geometry: a camera move is judged cascade by
   // cascade, a light's direction or position with its maps (Render()). Headlights and camera
@@ -392,170 +272,6 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
   return true;
 }
 
-void vtkCascadedShadowMapBakerPass::ClearTiles(
-  vtkOpenGLState* ostate, const LightMaps& maps, const int* renderCascade)
-{
-  // Far depth where nothing casts, all before the first draw: a clear between two cascades'
-  // draws would wait for the one drawn before it (a software rasterizer maps the texture).
-  bool all = true;
-  for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
-  {
-    all = all && renderCascade[c];
-  }
-  if (all)
-  {
-    // Nothing kept: one clear of the whole atlas, the fast clear of every driver.
-    ostate->vtkglDisable(GL_SCISSOR_TEST);
-    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
-    return;
-  }
-  // Some maps kept: only the others' tiles. Clearing the texture's rectangles directly (GL 4.4,
-  // ARB_clear_texture) is several times cheaper on software Mesa than a scissored framebuffer
-  // clear, which it draws as a quad.
-  const bool clearTexture = GLEW_VERSION_4_4 || GLEW_ARB_clear_texture;
-  ostate->vtkglEnable(GL_SCISSOR_TEST);
-  for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
-  {
-    if (!renderCascade[c])
-    {
-      continue;
-    }
-    // (The map fills the lower left of its tile.)
-    const int tile[4] = { maps.Cascades[c].Tile[0], maps.Cascades[c].Tile[1],
-      maps.Cascades[c].Resolution[0], maps.Cascades[c].Resolution[1] };
-    if (clearTexture)
-    {
-      const GLfloat farDepth = 1.0f;
-      glClearTexSubImage(maps.Atlas->GetHandle(), 0, tile[0], tile[1], 0, tile[2], tile[3], 1,
-        GL_DEPTH_COMPONENT, GL_FLOAT, &farDepth);
-    }
-    else
-    {
-      ostate->vtkglScissor(tile[0], tile[1], tile[2], tile[3]);
-      ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
-    }
-  }
-}
-
-void vtkCascadedShadowMapBakerPass::RenderCascade(vtkOpenGLRenderer* renderer,
-  vtkOpenGLFramebufferObject* frameBuffer, LightMaps& maps, int c, const csmFrameCasters& props,
-  bool depthClamp)
-{
-  vtkOpenGLState* ostate =
-    static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow())->GetState();
-  // The map fills the lower left of its tile.
-  const CascadeMap& map = maps.Cascades[c];
-  const int x = map.Tile[0], y = map.Tile[1], w = map.Resolution[0], h = map.Resolution[1];
-  ostate->vtkglViewport(x, y, w, h);
-  ostate->vtkglScissor(x, y, w, h); // ClearTiles gave it far depth
-  casterView(renderer, renderer->GetActiveCamera(), maps.Cascades[c].CasterView);
-
-  // Only the casters whose bounds reach this cascade's light volume; for the closed ones, the
-  // face to cull (the one turned toward the light). VTK's projections turn a counter-clockwise
-  // face toward the eye into a front face when their determinant is negative (as glFrustum's and
-  // glOrtho's are); a positive one swaps the sides.
-  std::map<vtkProp*, unsigned int> cullFaces;
-  const double mapDeterminant = vtkMatrix4x4::Determinant(maps.Cascades[c].WorldToMap);
-  std::vector<vtkProp*> drawn;
-  for (const csmFrameCasters::Caster& caster : props.Casters)
-  {
-    if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
-          maps.Cascades[c].WorldToMap, caster.Bounds.data(), depthClamp))
-    {
-      continue;
-    }
-    if (caster.Compact >= 0)
-    {
-      // Only its blocks that reach the cascade and may shadow something in it.
-      const csmFrameCasters::Compact& compact = props.Compacts[static_cast<size_t>(caster.Compact)];
-      std::vector<size_t> blocks;
-      csmFrameCasters::Caster block = caster;
-      for (size_t k = 0; k < compact.Bounds.size(); ++k)
-      {
-        block.Bounds = compact.Bounds[k];
-        if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
-              maps.Cascades[c].WorldToMap, block.Bounds.data(), depthClamp))
-        {
-          continue;
-        }
-        if (!casterHasReceivers(props, block, maps, this->Distributed()))
-        {
-          ++this->Statistics.CastersWithoutReceivers;
-          continue;
-        }
-        blocks.push_back(k);
-        this->Statistics.CellsDrawn += compact.Cells[k];
-      }
-      if (blocks.empty())
-      {
-        continue;
-      }
-      compact.Mapper->SetDrawnBlocks(blocks);
-      this->Statistics.BlocksDrawn += static_cast<int>(blocks.size());
-    }
-    else if (!casterHasReceivers(props, caster, maps, this->Distributed()))
-    {
-      ++this->Statistics.CastersWithoutReceivers;
-      continue;
-    }
-    else
-    {
-      this->Statistics.CellsDrawn += caster.Cells;
-    }
-    drawn.push_back(caster.Prop);
-    const int outward =
-      std::isfinite(mapDeterminant) ? caster.Closure * (mapDeterminant < 0.0 ? 1 : -1) : 0;
-    if (outward != 0)
-    {
-      cullFaces[caster.Prop] = outward > 0 ? GL_FRONT : GL_BACK;
-    }
-  }
-  ++this->Statistics.CascadesRendered;
-  this->Statistics.TexelsRendered += double(w) * double(h);
-  this->Statistics.PropsDrawn += static_cast<int>(drawn.size());
-  if (drawn.empty())
-  {
-    return;
-  }
-  vtkSmartPointer<vtkCamera> realCamera = renderer->GetActiveCamera();
-  this->SetUpLightCamera(maps, c);
-  this->CasterPass->BeginCascade(
-    ostate, casterUniformsFor(maps, c, x, y, w, h), std::move(cullFaces));
-  renderer->SetActiveCamera(this->LightCamera);
-  this->NumberOfRenderedProps += this->CasterPass->DrawCasters(renderer, frameBuffer, drawn);
-  this->CasterPass->EndCascade();
-  renderer->SetActiveCamera(realCamera);
-}
-
-void vtkCascadedShadowMapBakerPass::SetUpLightCamera(const LightMaps& maps, int c)
-{
-  // The camera's view is the light's rotation (so that what VTK's shaders offset in view space,
-  // such as vtkPointGaussianMapper's splats, faces the light); its projection the rest of the
-  // cascade's world -> light clip matrix.
-  double travel[3] = { maps.FocalPoint[0] - maps.Position[0], maps.FocalPoint[1] - maps.Position[1],
-    maps.FocalPoint[2] - maps.Position[2] };
-  const double length = vtkMath::Norm(travel);
-  this->LightCamera->SetPosition(0.0, 0.0, 0.0);
-  if (length > 0.0 && std::isfinite(length))
-  {
-    vtkMath::MultiplyScalar(travel, 1.0 / length);
-    this->LightCamera->SetFocalPoint(travel);
-    this->LightCamera->SetViewUp(
-      std::abs(travel[1]) < 0.9 ? 0.0 : 1.0, std::abs(travel[1]) < 0.9 ? 1.0 : 0.0, 0.0);
-  }
-  else
-  {
-    this->LightCamera->SetFocalPoint(0.0, 0.0, -1.0);
-    this->LightCamera->SetViewUp(0.0, 1.0, 0.0);
-  }
-  vtkNew<vtkMatrix4x4> viewToWorld;
-  vtkMatrix4x4::Invert(this->LightCamera->GetModelViewTransformMatrix(), viewToWorld);
-  vtkMatrix4x4::Multiply4x4(
-    maps.Cascades[c].WorldToMap, viewToWorld->GetData(), this->Projection->GetData());
-  this->Projection->Modified();
-  this->LightCamera->Modified();
-}
-
 void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
 {
   vtkOpenGLClearErrorMacro();
@@ -577,7 +293,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   using Clock = std::chrono::steady_clock;
   const auto planStart = Clock::now();
   this->LastRenderer = renderer;
-  RendererMaps& state = this->MapsOf(renderer, window);
+  csmRendererMaps& state = this->MapsOf(renderer, window);
   this->Statistics = FrameStatistics();
   ++this->FrameNumber;
 
@@ -621,56 +337,8 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   vtkOpenGLCheckErrorMacro("failed after rendering the cascaded shadow maps");
 }
 
-namespace
-{
-/// The nearest and farthest sample of the renderer's viewport in the framebuffer being drawn
-/// (window depths); false when they cannot be read (a multisampled framebuffer, a GL error).
-bool readWindowDepths(vtkRenderer* renderer, double range[2])
-{
-  vtkOpenGLRenderWindow* window =
-    vtkOpenGLRenderWindow::SafeDownCast(renderer ? renderer->GetRenderWindow() : nullptr);
-  if (!window)
-  {
-    return false;
-  }
-  int width = 0, height = 0, x = 0, y = 0;
-  renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
-  if (width < 1 || height < 1)
-  {
-    return false;
-  }
-  vtkOpenGLState* state = window->GetState();
-  GLint sampleBuffers = 0;
-  glGetIntegerv(GL_SAMPLE_BUFFERS, &sampleBuffers);
-  if (sampleBuffers > 0)
-  {
-    return false; // a multisampled framebuffer's depth cannot be read directly
-  }
-  vtkOpenGLClearErrorMacro();
-  // Read from the framebuffer being drawn (the window's, or the one a pass around us set).
-  unsigned int drawBinding = 0, drawBuffer = 0;
-  state->GetCurrentDrawFramebufferState(drawBinding, drawBuffer);
-  state->PushReadFramebufferBinding();
-  state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, drawBinding);
-  std::vector<float> depths(static_cast<size_t>(width) * static_cast<size_t>(height));
-  state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(x, y, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
-  const bool ok = glGetError() == GL_NO_ERROR;
-  state->PopReadFramebufferBinding();
-  if (!ok)
-  {
-    return false;
-  }
-  const csm::WindowDepthRange samples = csm::windowDepthRange(depths.data(), depths.size());
-  range[0] = samples.min;
-  range[1] = samples.max;
-  return true;
-}
-
-}
-
 void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* renderer,
-  const vtkRenderState* s, RendererMaps& state, const csmFrameCasters& props)
+  const vtkRenderState* s, csmRendererMaps& state, const csmFrameCasters& props)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
   const double aspect = renderer->GetTiledAspectRatio();
@@ -695,82 +363,14 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
     return; // measured for this very view of this scene
   }
   state.VisibleCamera = nullptr;
-  vtkOpenGLRenderWindow* window = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
   GLint sampleBuffers = 0;
   glGetIntegerv(GL_SAMPLE_BUFFERS, &sampleBuffers);
   if (sampleBuffers > 0)
   {
     return; // a multisampled depth buffer cannot be read directly: fitted to the boxes
   }
-  // The casters the view can see, their depth only, into the frame's own depth buffer (the
-  // camera pass set its viewport and scissor and cleared it), which is cleared again after.
-  int width = 0, height = 0, x = 0, y = 0;
-  renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
-  vtkMatrix4x4* worldToClip = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
-  std::vector<vtkProp*> drawn;
-  for (const csmFrameCasters::Caster& caster : props.Casters)
-  {
-    if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
-          worldToClip->GetData(), caster.Bounds.data(), false))
-    {
-      continue;
-    }
-    if (caster.Compact >= 0)
-    {
-      const csmFrameCasters::Compact& compact = props.Compacts[static_cast<size_t>(caster.Compact)];
-      std::vector<size_t> blocks;
-      for (size_t k = 0; k < compact.Bounds.size(); ++k)
-      {
-        if (vtkCascadedShadowMapPlanner::CascadeReachesBox(
-              worldToClip->GetData(), compact.Bounds[k].data(), false))
-        {
-          blocks.push_back(k);
-        }
-      }
-      compact.Mapper->SetDrawnBlocks(blocks);
-    }
-    drawn.push_back(caster.Prop);
-  }
-  vtkOpenGLState* ostate = window->GetState();
-  vtkOpenGLState::ScopedglDepthMask savedDepthMask(ostate);
-  vtkOpenGLState::ScopedglColorMask savedColorMask(ostate);
-  vtkOpenGLState::ScopedglEnableDisable savedDepthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable savedOffsetFill(ostate, GL_POLYGON_OFFSET_FILL);
-  vtkOpenGLState::ScopedglEnableDisable savedOffsetLine(ostate, GL_POLYGON_OFFSET_LINE);
-  vtkOpenGLState::ScopedglEnableDisable savedOffsetPoint(ostate, GL_POLYGON_OFFSET_POINT);
-  ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  ostate->vtkglDepthMask(GL_TRUE);
-  ostate->vtkglEnable(GL_DEPTH_TEST);
-  // The depth stays for the frame's own geometry pass, which then shades only the fragments
-  // it keeps (the lookup is its costliest part): a little farther than the surfaces, so that
-  // the same surface drawn by other shaders passes the depth test (GL_LEQUAL).
-  ostate->vtkglEnable(GL_POLYGON_OFFSET_FILL);
-  ostate->vtkglEnable(GL_POLYGON_OFFSET_LINE);
-  ostate->vtkglEnable(GL_POLYGON_OFFSET_POINT);
-  glPolygonOffset(kPrePassOffsetFactor, kPrePassOffsetUnits);
-  // Screen-sized casters as wide as this view draws them: the "map" is the view itself.
-  double key[18];
-  casterView(renderer, camera, key);
-  vtkNew<vtkMatrix4x4> viewToClip, clipToView;
-  viewToClip->DeepCopy(camera->GetProjectionTransformMatrix(aspect, -1, 1));
-  vtkMatrix4x4::Invert(viewToClip, clipToView);
-  vtkCascadedShadowCasterPass::CasterUniforms u;
-  toColumnMajor(clipToView->GetData(), u.MapToView);
-  toColumnMajor(viewToClip->GetData(), u.ViewToMap);
-  const bool parallel = camera->GetParallelProjection() != 0;
-  u.LightView[2] = parallel ? 1.0f : 0.0f; // toward the eye
-  u.LightView[3] = parallel ? 0.0f : 1.0f;
-  u.PixelWorld[0] = static_cast<float>(key[16]);
-  u.PixelWorld[1] = static_cast<float>(key[17]);
-  u.Viewport[0] = static_cast<float>(x);
-  u.Viewport[1] = static_cast<float>(y);
-  u.Viewport[2] = static_cast<float>(width);
-  u.Viewport[3] = static_cast<float>(height);
-  this->CasterPass->BeginCascade(ostate, u, {});
-  this->CasterPass->DrawCasters(renderer, s->GetFrameBuffer(), drawn);
-  this->CasterPass->EndCascade();
   double samples[2] = { 1.0, 0.0 };
-  const bool read = readWindowDepths(renderer, samples);
+  const bool read = this->Drawing->DrawViewDepth(renderer, s, props, samples);
   this->Statistics.VisibleDepthsMeasured = true;
   if (read && samples[0] <= samples[1])
   {
@@ -784,7 +384,7 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
 }
 
 void vtkCascadedShadowMapBakerPass::CollectProps(
-  vtkRenderer* renderer, RendererMaps& state, csmFrameCasters& props)
+  vtkRenderer* renderer, csmRendererMaps& state, csmFrameCasters& props)
 {
   // Bounds first: computing them brings the props' pipelines up to date, which must not count
   // as a change next frame.
@@ -805,57 +405,17 @@ int vtkCascadedShadowMapBakerPass::ClosureOf(vtkProp* prop)
   return this->Casters->ClosureOf(prop, this->CullClosedCasters);
 }
 
-void vtkCascadedShadowMapBakerPass::FeedPlanner(const csmFrameCasters& props)
-{
-  // The receivers' boxes fit the cascades (up to kMaxReceiverBoxes; beyond, the box around all
-  // of them).
-  this->Planner->ClearReceiverBounds();
-  if (props.Receivers.size() <= kMaxReceiverBoxes)
-  {
-    for (const auto& b : props.Receivers)
-    {
-      this->Planner->AddReceiverBounds(b.data());
-    }
-  }
-  // What each cascade's pass would draw weighs the cascade count (up to kMaxCasterLoads
-  // casters; beyond, one load of all their cells in the scene's box, which every cascade draws).
-  // Screen-sized casters (tubes, spheres, wide lines) cost their fragments, not their cells,
-  // and have no fixed extent: with any of them the count is the fewest that meets the target
-  // and there is no scene-fitted map (Results.md, "Screen-sized casters").
-  this->Planner->ClearCasterLoads();
-  const bool screenSizedCasters = std::any_of(props.CasterLoads.begin(), props.CasterLoads.end(),
-    [](const csmFrameCasters::CasterLoad& l) { return l.ScreenSized; });
-  if (!screenSizedCasters && props.CasterLoads.size() <= kMaxCasterLoads)
-  {
-    for (const auto& load : props.CasterLoads)
-    {
-      this->Planner->AddCasterLoad(load.Bounds.data(), load.Cells,
-        props.Receivers.size() <= kMaxReceiverBoxes ? load.Receiver : -1, load.ShadowsItself,
-        load.ScreenSized);
-    }
-  }
-  else if (!screenSizedCasters)
-  {
-    double cells = 0.0;
-    for (const auto& load : props.CasterLoads)
-    {
-      cells += load.Cells;
-    }
-    this->Planner->AddCasterLoad(props.SceneBounds, cells);
-  }
-}
-
 void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
-  RendererMaps& state, const csmFrameCasters& props, std::vector<LightMaps>& planned,
+  csmRendererMaps& state, const csmFrameCasters& props, std::vector<LightMaps>& planned,
   std::vector<int>& render)
 {
-  this->FeedPlanner(props);
+  props.FeedPlanner(this->Planner);
   // Plan every shadowed light for this frame, and decide per cascade whether the map kept from
   // an earlier frame still serves (only the camera moved, it covers, its error is bounded).
   // While the user interacts (VTK's convention: the interactor raises the window's desired
   // update rate), maps get a border and may be kept within MapReuseTolerance; a still frame
   // keeps a map while its error at this view meets what a fresh map would (MapSlack).
-  FramePlan frame;
+  csmFramePlan frame;
   frame.Interacting = vtkCascadedShadowMapBakerPass::IsInteracting(window);
   frame.Border = frame.Interacting ? this->InteractiveMapBorder : 0.0;
   // (The tolerance is against a fresh map with the same border, whose error is 1 + 2 border
@@ -873,7 +433,7 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer, vtkOpenGLR
   frame.ImageHeight = renderer->GetSize()[1];
   frame.Aspect = renderer->GetTiledAspectRatio();
   frame.Changed = props.Changed;
-  casterView(renderer, renderer->GetActiveCamera(), frame.ViewKey);
+  csmMapDrawing::MainView(renderer, renderer->GetActiveCamera(), frame.ViewKey);
   // The visible depths of this view (VisibleDepthFit; MeasureVisibleDepths).
   if (this->VisibleDepthFit && !this->Distributed() && state.VisibleCamera)
   {
@@ -931,8 +491,8 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer, vtkOpenGLR
   state.AtlasPool.resize(planned.size());
 }
 
-void vtkCascadedShadowMapBakerPass::PlanLight(vtkRenderer* renderer, RendererMaps& state,
-  const csmFrameCasters& props, const FramePlan& frame, vtkLight* light, int index,
+void vtkCascadedShadowMapBakerPass::PlanLight(vtkRenderer* renderer, csmRendererMaps& state,
+  const csmFrameCasters& props, const csmFramePlan& frame, vtkLight* light, int index,
   std::vector<LightMaps>& planned, std::vector<int>& render)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
@@ -1005,8 +565,8 @@ vtkCascadedShadowMapBakerPass::MapKind vtkCascadedShadowMapBakerPass::PlannedMap
 #endif
 }
 
-bool vtkCascadedShadowMapBakerPass::PlanCascade(const FramePlan& frame, vtkCamera* camera,
-  const RendererMaps& state, int c, bool smoothPath, const LightMaps* kept, CascadeMap& map)
+bool vtkCascadedShadowMapBakerPass::PlanCascade(const csmFramePlan& frame, vtkCamera* camera,
+  const csmRendererMaps& state, int c, bool smoothPath, const LightMaps* kept, CascadeMap& map)
 {
   // The map this cascade needs (ErrorTarget) in its tile of the planned atlas.
   this->Planner->GetCascadeTile(c, map.Tile);
@@ -1076,7 +636,7 @@ bool vtkCascadedShadowMapBakerPass::PlanCascade(const FramePlan& frame, vtkCamer
 }
 
 void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
-  vtkOpenGLRenderWindow* window, RendererMaps& state, const csmFrameCasters& props,
+  vtkOpenGLRenderWindow* window, csmRendererMaps& state, const csmFrameCasters& props,
   std::vector<LightMaps>& planned, std::vector<int>& render)
 {
   vtkOpenGLState* ostate = window->GetState();
@@ -1112,8 +672,8 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
 }
 
 void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
-  vtkOpenGLRenderWindow* window, RendererMaps& state, const csmFrameCasters& props, LightMaps& maps,
-  int* renderCascade, bool timed)
+  vtkOpenGLRenderWindow* window, csmRendererMaps& state, const csmFrameCasters& props,
+  LightMaps& maps, int* renderCascade, bool timed)
 {
   // The atlas the planner laid out, the same for every count of cascades (a new texture would
   // cost its allocation and every map's render); each cascade's map fills the lower left of
@@ -1174,7 +734,7 @@ void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
     seconds = std::chrono::duration<double>(now - since).count();
     since = now;
   };
-  this->ClearTiles(ostate, maps, renderCascade);
+  csmMapDrawing::ClearTiles(ostate, maps, renderCascade);
   if (measure)
   {
     lap(this->Statistics.ClearSeconds);
@@ -1186,7 +746,8 @@ void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
     if (renderCascade[c])
     {
       --this->Statistics.CascadesKept;
-      this->RenderCascade(renderer, state.FrameBuffer, maps, c, props, depthClamp);
+      this->NumberOfRenderedProps += this->Drawing->DrawCascade(renderer, state.FrameBuffer, maps,
+        c, props, depthClamp, this->Distributed(), this->Statistics);
       // Hand the map to the GL while the next one is set up: a software rasterizer fills
       // this one on its threads while this thread transforms and bins the next one's casters.
       glFlush();
@@ -1225,8 +786,9 @@ void vtkCascadedShadowMapBakerPass::GetScreenSizes(vtkProp* prop, float sizes[2]
 void vtkCascadedShadowMapBakerPass::ReleaseGraphicsResources(vtkWindow* w)
 {
   // The maps of the renderers drawn in this window (all of them for no window).
-  for (RendererMaps& state : this->Renderers)
+  for (auto& entry : this->Renderers)
   {
+    csmRendererMaps& state = *entry;
     if (w && state.Window != w)
     {
       continue;
@@ -1242,7 +804,7 @@ void vtkCascadedShadowMapBakerPass::ReleaseGraphicsResources(vtkWindow* w)
     state.Renderer = nullptr; // forgotten at the next Render()
   }
   this->Renderers.erase(std::remove_if(this->Renderers.begin(), this->Renderers.end(),
-                          [](const RendererMaps& r) { return !r.Renderer; }),
+                          [](const std::unique_ptr<csmRendererMaps>& r) { return !r->Renderer; }),
     this->Renderers.end());
   // The compact blocks drawn in this window (all of them for no window).
   this->Casters->ReleaseGraphicsResources(w);

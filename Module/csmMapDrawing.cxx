@@ -1,0 +1,419 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "csmMapDrawing.h"
+
+#include "csmCasterCollection.h"
+#include "csmVisibleDepth.h"
+
+#include "vtkCamera.h"
+#include "vtkCascadedShadowBlockMapper.h"
+#include "vtkCascadedShadowCasterPass.h"
+#include "vtkCascadedShadowMapPlanner.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLRenderer.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderState.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+namespace
+{
+// The depth pre-pass's offset behind the surfaces (glPolygonOffset factor and units): enough
+// for the same triangle drawn by another shader to pass GL_LEQUAL.
+constexpr float kPrePassOffsetFactor = 1.0f;
+constexpr float kPrePassOffsetUnits = 4.0f;
+
+/// Does the caster shadow anything in this light's maps (CullCastersWithoutReceivers)?
+/// Directional lights only; with several processes the receivers are everyone's boxes.
+bool casterHasReceivers(const csmFrameCasters& props, const csmFrameCasters::Caster& caster,
+  const csmMapDrawing::LightMaps& maps, bool distributed)
+{
+  if (maps.Kind != vtkCascadedShadowMapBakerPass::LightKind::Directional || distributed)
+  {
+    return true;
+  }
+  const double travel[3] = { maps.FocalPoint[0] - maps.Position[0],
+    maps.FocalPoint[1] - maps.Position[1], maps.FocalPoint[2] - maps.Position[2] };
+  return props.CasterHasReceivers(caster, travel);
+}
+
+/// Row-major double -> column-major float (GLSL's mat4).
+void toColumnMajor(const double m[16], float out[16])
+{
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int column = 0; column < 4; ++column)
+    {
+      out[4 * column + row] = static_cast<float>(m[4 * row + column]);
+    }
+  }
+}
+
+/// The caster uniforms for a cascade, from its CasterView and its tile.
+vtkCascadedShadowCasterPass::CasterUniforms casterUniformsFor(
+  const csmMapDrawing::LightMaps& maps, int c, int x, int y, int w, int h)
+{
+  const double* key = maps.Cascades[c].CasterView; // RenderCascade set it for this view
+  vtkNew<vtkMatrix4x4> worldToView, viewToWorld, worldToMap, mapToWorld;
+  worldToView->DeepCopy(key);
+  vtkMatrix4x4::Invert(worldToView, viewToWorld);
+  worldToMap->DeepCopy(maps.Cascades[c].WorldToMap);
+  vtkMatrix4x4::Invert(worldToMap, mapToWorld);
+  double mapToView[16], viewToMap[16];
+  vtkMatrix4x4::Multiply4x4(key, mapToWorld->GetData(), mapToView);
+  vtkMatrix4x4::Multiply4x4(maps.Cascades[c].WorldToMap, viewToWorld->GetData(), viewToMap);
+  vtkCascadedShadowCasterPass::CasterUniforms u;
+  toColumnMajor(mapToView, u.MapToView);
+  toColumnMajor(viewToMap, u.ViewToMap);
+  const double* position = maps.Position;
+  const double* focal = maps.FocalPoint;
+  double light[4];
+  if (maps.Kind == vtkCascadedShadowMapBakerPass::LightKind::Directional)
+  {
+    const double toward[4] = { position[0] - focal[0], position[1] - focal[1],
+      position[2] - focal[2], 0.0 };
+    worldToView->MultiplyPoint(toward, light);
+  }
+  else
+  {
+    const double at[4] = { position[0], position[1], position[2], 1.0 };
+    worldToView->MultiplyPoint(at, light);
+  }
+  for (int i = 0; i < 4; ++i)
+  {
+    u.LightView[i] = static_cast<float>(light[i]);
+  }
+  u.PixelWorld[0] = static_cast<float>(key[16]);
+  u.PixelWorld[1] = static_cast<float>(key[17]);
+  u.Viewport[0] = static_cast<float>(x);
+  u.Viewport[1] = static_cast<float>(y);
+  u.Viewport[2] = static_cast<float>(w);
+  u.Viewport[3] = static_cast<float>(h);
+  return u;
+}
+
+/// The nearest and farthest sample of the renderer's viewport in the framebuffer being drawn
+/// (window depths); false when they cannot be read (a multisampled framebuffer, a GL error).
+bool readWindowDepths(vtkRenderer* renderer, double range[2])
+{
+  vtkOpenGLRenderWindow* window =
+    vtkOpenGLRenderWindow::SafeDownCast(renderer ? renderer->GetRenderWindow() : nullptr);
+  if (!window)
+  {
+    return false;
+  }
+  int width = 0, height = 0, x = 0, y = 0;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  if (width < 1 || height < 1)
+  {
+    return false;
+  }
+  vtkOpenGLState* state = window->GetState();
+  GLint sampleBuffers = 0;
+  glGetIntegerv(GL_SAMPLE_BUFFERS, &sampleBuffers);
+  if (sampleBuffers > 0)
+  {
+    return false; // a multisampled framebuffer's depth cannot be read directly
+  }
+  vtkOpenGLClearErrorMacro();
+  // Read from the framebuffer being drawn (the window's, or the one a pass around us set).
+  unsigned int drawBinding = 0, drawBuffer = 0;
+  state->GetCurrentDrawFramebufferState(drawBinding, drawBuffer);
+  state->PushReadFramebufferBinding();
+  state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, drawBinding);
+  std::vector<float> depths(static_cast<size_t>(width) * static_cast<size_t>(height));
+  state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(x, y, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
+  const bool ok = glGetError() == GL_NO_ERROR;
+  state->PopReadFramebufferBinding();
+  if (!ok)
+  {
+    return false;
+  }
+  const csm::WindowDepthRange samples = csm::windowDepthRange(depths.data(), depths.size());
+  range[0] = samples.min;
+  range[1] = samples.max;
+  return true;
+}
+
+} // namespace
+
+csmMapDrawing::csmMapDrawing()
+  : LightCamera(vtkSmartPointer<vtkCamera>::New())
+  , Projection(vtkSmartPointer<vtkMatrix4x4>::New())
+  , CasterPass(vtkSmartPointer<vtkCascadedShadowCasterPass>::New())
+{
+  // Identity view: the cascade matrix (world -> light clip) is the whole projection.
+  this->LightCamera->SetPosition(0.0, 0.0, 0.0);
+  this->LightCamera->SetFocalPoint(0.0, 0.0, -1.0);
+  this->LightCamera->SetViewUp(0.0, 1.0, 0.0);
+  this->LightCamera->SetParallelProjection(1);
+  this->LightCamera->SetExplicitProjectionTransformMatrix(this->Projection);
+  this->LightCamera->UseExplicitProjectionTransformMatrixOn();
+}
+
+csmMapDrawing::~csmMapDrawing() = default;
+
+void csmMapDrawing::MainView(vtkRenderer* renderer, vtkCamera* camera, double key[18])
+{
+  int width = 0, height = 0, x = 0, y = 0;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  vtkMatrix4x4* worldToView = camera->GetModelViewTransformMatrix();
+  std::copy(worldToView->GetData(), worldToView->GetData() + 16, key);
+  vtkMatrix4x4* projection =
+    camera->GetProjectionTransformMatrix(double(std::max(width, 1)) / std::max(height, 1), -1, 1);
+  const double p11 = projection->GetElement(1, 1);
+  const double pixel = height > 0 && std::isfinite(p11) && p11 != 0.0 ? 2.0 / (height * p11) : 0.0;
+  key[16] = pixel * projection->GetElement(3, 3);  // parallel: constant
+  key[17] = -pixel * projection->GetElement(3, 2); // perspective: grows with depth
+}
+
+void csmMapDrawing::ClearTiles(
+  vtkOpenGLState* ostate, const LightMaps& maps, const int* renderCascade)
+{
+  // Far depth where nothing casts, all before the first draw: a clear between two cascades'
+  // draws would wait for the one drawn before it (a software rasterizer maps the texture).
+  bool all = true;
+  for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
+  {
+    all = all && renderCascade[c];
+  }
+  if (all)
+  {
+    // Nothing kept: one clear of the whole atlas, the fast clear of every driver.
+    ostate->vtkglDisable(GL_SCISSOR_TEST);
+    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+    return;
+  }
+  // Some maps kept: only the others' tiles. Clearing the texture's rectangles directly (GL 4.4,
+  // ARB_clear_texture) is several times cheaper on software Mesa than a scissored framebuffer
+  // clear, which it draws as a quad.
+  const bool clearTexture = GLEW_VERSION_4_4 || GLEW_ARB_clear_texture;
+  ostate->vtkglEnable(GL_SCISSOR_TEST);
+  for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
+  {
+    if (!renderCascade[c])
+    {
+      continue;
+    }
+    // (The map fills the lower left of its tile.)
+    const int tile[4] = { maps.Cascades[c].Tile[0], maps.Cascades[c].Tile[1],
+      maps.Cascades[c].Resolution[0], maps.Cascades[c].Resolution[1] };
+    if (clearTexture)
+    {
+      const GLfloat farDepth = 1.0f;
+      glClearTexSubImage(maps.Atlas->GetHandle(), 0, tile[0], tile[1], 0, tile[2], tile[3], 1,
+        GL_DEPTH_COMPONENT, GL_FLOAT, &farDepth);
+    }
+    else
+    {
+      ostate->vtkglScissor(tile[0], tile[1], tile[2], tile[3]);
+      ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+    }
+  }
+}
+
+int csmMapDrawing::DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebufferObject* frameBuffer,
+  LightMaps& maps, int c, const csmFrameCasters& props, bool depthClamp, bool distributed,
+  FrameStatistics& statistics)
+{
+  vtkOpenGLState* ostate =
+    static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow())->GetState();
+  // The map fills the lower left of its tile.
+  const vtkCascadedShadowMapBakerPass::CascadeMap& map = maps.Cascades[c];
+  const int x = map.Tile[0], y = map.Tile[1], w = map.Resolution[0], h = map.Resolution[1];
+  ostate->vtkglViewport(x, y, w, h);
+  ostate->vtkglScissor(x, y, w, h); // ClearTiles gave it far depth
+  csmMapDrawing::MainView(renderer, renderer->GetActiveCamera(), maps.Cascades[c].CasterView);
+
+  // Only the casters whose bounds reach this cascade's light volume; for the closed ones, the
+  // face to cull (the one turned toward the light). VTK's projections turn a counter-clockwise
+  // face toward the eye into a front face when their determinant is negative (as glFrustum's and
+  // glOrtho's are); a positive one swaps the sides.
+  std::map<vtkProp*, unsigned int> cullFaces;
+  const double mapDeterminant = vtkMatrix4x4::Determinant(maps.Cascades[c].WorldToMap);
+  std::vector<vtkProp*> drawn;
+  for (const csmFrameCasters::Caster& caster : props.Casters)
+  {
+    if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
+          maps.Cascades[c].WorldToMap, caster.Bounds.data(), depthClamp))
+    {
+      continue;
+    }
+    if (caster.Compact >= 0)
+    {
+      // Only its blocks that reach the cascade and may shadow something in it.
+      const csmFrameCasters::Compact& compact = props.Compacts[static_cast<size_t>(caster.Compact)];
+      std::vector<size_t> blocks;
+      csmFrameCasters::Caster block = caster;
+      for (size_t k = 0; k < compact.Bounds.size(); ++k)
+      {
+        block.Bounds = compact.Bounds[k];
+        if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
+              maps.Cascades[c].WorldToMap, block.Bounds.data(), depthClamp))
+        {
+          continue;
+        }
+        if (!casterHasReceivers(props, block, maps, distributed))
+        {
+          ++statistics.CastersWithoutReceivers;
+          continue;
+        }
+        blocks.push_back(k);
+        statistics.CellsDrawn += compact.Cells[k];
+      }
+      if (blocks.empty())
+      {
+        continue;
+      }
+      compact.Mapper->SetDrawnBlocks(blocks);
+      statistics.BlocksDrawn += static_cast<int>(blocks.size());
+    }
+    else if (!casterHasReceivers(props, caster, maps, distributed))
+    {
+      ++statistics.CastersWithoutReceivers;
+      continue;
+    }
+    else
+    {
+      statistics.CellsDrawn += caster.Cells;
+    }
+    drawn.push_back(caster.Prop);
+    const int outward =
+      std::isfinite(mapDeterminant) ? caster.Closure * (mapDeterminant < 0.0 ? 1 : -1) : 0;
+    if (outward != 0)
+    {
+      cullFaces[caster.Prop] = outward > 0 ? GL_FRONT : GL_BACK;
+    }
+  }
+  ++statistics.CascadesRendered;
+  statistics.TexelsRendered += double(w) * double(h);
+  statistics.PropsDrawn += static_cast<int>(drawn.size());
+  if (drawn.empty())
+  {
+    return 0;
+  }
+  vtkSmartPointer<vtkCamera> realCamera = renderer->GetActiveCamera();
+  this->SetUpLightCamera(maps, c);
+  this->CasterPass->BeginCascade(
+    ostate, casterUniformsFor(maps, c, x, y, w, h), std::move(cullFaces));
+  renderer->SetActiveCamera(this->LightCamera);
+  const int rendered = this->CasterPass->DrawCasters(renderer, frameBuffer, drawn);
+  this->CasterPass->EndCascade();
+  renderer->SetActiveCamera(realCamera);
+  return rendered;
+}
+
+void csmMapDrawing::SetUpLightCamera(const LightMaps& maps, int c)
+{
+  // The camera's view is the light's rotation (so that what VTK's shaders offset in view space,
+  // such as vtkPointGaussianMapper's splats, faces the light); its projection the rest of the
+  // cascade's world -> light clip matrix.
+  double travel[3] = { maps.FocalPoint[0] - maps.Position[0], maps.FocalPoint[1] - maps.Position[1],
+    maps.FocalPoint[2] - maps.Position[2] };
+  const double length = vtkMath::Norm(travel);
+  this->LightCamera->SetPosition(0.0, 0.0, 0.0);
+  if (length > 0.0 && std::isfinite(length))
+  {
+    vtkMath::MultiplyScalar(travel, 1.0 / length);
+    this->LightCamera->SetFocalPoint(travel);
+    this->LightCamera->SetViewUp(
+      std::abs(travel[1]) < 0.9 ? 0.0 : 1.0, std::abs(travel[1]) < 0.9 ? 1.0 : 0.0, 0.0);
+  }
+  else
+  {
+    this->LightCamera->SetFocalPoint(0.0, 0.0, -1.0);
+    this->LightCamera->SetViewUp(0.0, 1.0, 0.0);
+  }
+  vtkNew<vtkMatrix4x4> viewToWorld;
+  vtkMatrix4x4::Invert(this->LightCamera->GetModelViewTransformMatrix(), viewToWorld);
+  vtkMatrix4x4::Multiply4x4(
+    maps.Cascades[c].WorldToMap, viewToWorld->GetData(), this->Projection->GetData());
+  this->Projection->Modified();
+  this->LightCamera->Modified();
+}
+
+bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
+  const csmFrameCasters& props, double depths[2])
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const double aspect = renderer->GetTiledAspectRatio();
+  vtkOpenGLRenderWindow* window = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
+  // The casters the view can see, their depth only, into the frame's own depth buffer (the
+  // camera pass set its viewport and scissor and cleared it).
+  int width = 0, height = 0, x = 0, y = 0;
+  renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  vtkMatrix4x4* worldToClip = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+  std::vector<vtkProp*> drawn;
+  for (const csmFrameCasters::Caster& caster : props.Casters)
+  {
+    if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
+          worldToClip->GetData(), caster.Bounds.data(), false))
+    {
+      continue;
+    }
+    if (caster.Compact >= 0)
+    {
+      const csmFrameCasters::Compact& compact = props.Compacts[static_cast<size_t>(caster.Compact)];
+      std::vector<size_t> blocks;
+      for (size_t k = 0; k < compact.Bounds.size(); ++k)
+      {
+        if (vtkCascadedShadowMapPlanner::CascadeReachesBox(
+              worldToClip->GetData(), compact.Bounds[k].data(), false))
+        {
+          blocks.push_back(k);
+        }
+      }
+      compact.Mapper->SetDrawnBlocks(blocks);
+    }
+    drawn.push_back(caster.Prop);
+  }
+  vtkOpenGLState* ostate = window->GetState();
+  vtkOpenGLState::ScopedglDepthMask savedDepthMask(ostate);
+  vtkOpenGLState::ScopedglColorMask savedColorMask(ostate);
+  vtkOpenGLState::ScopedglEnableDisable savedDepthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable savedOffsetFill(ostate, GL_POLYGON_OFFSET_FILL);
+  vtkOpenGLState::ScopedglEnableDisable savedOffsetLine(ostate, GL_POLYGON_OFFSET_LINE);
+  vtkOpenGLState::ScopedglEnableDisable savedOffsetPoint(ostate, GL_POLYGON_OFFSET_POINT);
+  ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  // The depth stays for the frame's own geometry pass, which then shades only the fragments
+  // it keeps (the lookup is its costliest part): a little farther than the surfaces, so that
+  // the same surface drawn by other shaders passes the depth test (GL_LEQUAL).
+  ostate->vtkglEnable(GL_POLYGON_OFFSET_FILL);
+  ostate->vtkglEnable(GL_POLYGON_OFFSET_LINE);
+  ostate->vtkglEnable(GL_POLYGON_OFFSET_POINT);
+  glPolygonOffset(kPrePassOffsetFactor, kPrePassOffsetUnits);
+  // Screen-sized casters as wide as this view draws them: the "map" is the view itself.
+  double key[18];
+  csmMapDrawing::MainView(renderer, camera, key);
+  vtkNew<vtkMatrix4x4> viewToClip, clipToView;
+  viewToClip->DeepCopy(camera->GetProjectionTransformMatrix(aspect, -1, 1));
+  vtkMatrix4x4::Invert(viewToClip, clipToView);
+  vtkCascadedShadowCasterPass::CasterUniforms u;
+  toColumnMajor(clipToView->GetData(), u.MapToView);
+  toColumnMajor(viewToClip->GetData(), u.ViewToMap);
+  const bool parallel = camera->GetParallelProjection() != 0;
+  u.LightView[2] = parallel ? 1.0f : 0.0f; // toward the eye
+  u.LightView[3] = parallel ? 0.0f : 1.0f;
+  u.PixelWorld[0] = static_cast<float>(key[16]);
+  u.PixelWorld[1] = static_cast<float>(key[17]);
+  u.Viewport[0] = static_cast<float>(x);
+  u.Viewport[1] = static_cast<float>(y);
+  u.Viewport[2] = static_cast<float>(width);
+  u.Viewport[3] = static_cast<float>(height);
+  this->CasterPass->BeginCascade(ostate, u, {});
+  this->CasterPass->DrawCasters(renderer, s->GetFrameBuffer(), drawn);
+  this->CasterPass->EndCascade();
+  return readWindowDepths(renderer, depths);
+}
