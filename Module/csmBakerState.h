@@ -12,6 +12,7 @@
 #include "vtkTextureObject.h"
 #include "vtkWeakPointer.h"
 
+#include <algorithm>
 #include <vector>
 
 /// The maps of one renderer and the GL objects (of its window's context) that hold them.
@@ -35,6 +36,15 @@ struct csmRendererMaps
   /// The camera of the last plan (MapSlack: did this frame's camera take a small step?).
   vtkSmartPointer<vtkCamera> LastCamera;
 };
+
+/// Were the maps rendered for the same light geometry?
+inline bool sameLightGeometry(const vtkCascadedShadowMapBakerPass::LightMaps& a,
+  const vtkCascadedShadowMapBakerPass::LightMaps& b)
+{
+  return a.Kind == b.Kind && a.ConeAngle == b.ConeAngle &&
+    std::equal(a.Position, a.Position + 3, b.Position) &&
+    std::equal(a.FocalPoint, a.FocalPoint + 3, b.FocalPoint);
+}
 
 /// What every light of a frame is planned with.
 struct csmFramePlan

@@ -522,7 +522,7 @@ void vtkCascadedShadowMapBakerPass::PlanLight(vtkRenderer* renderer, csmRenderer
   // frame: their error is not measured along the cascades' map axes.)
   const LightMaps* kept = !frame.Changed && this->Planner->GetDepthClamp() &&
       followKind == MapKind::FollowsView && slot < state.Maps.size() &&
-      state.Maps[slot].Light == light && state.Maps[slot].SameGeometry(maps) &&
+      state.Maps[slot].Light == light && sameLightGeometry(state.Maps[slot], maps) &&
       state.Maps[slot].GetNumberOfCascades() == count &&
       std::equal(state.Maps[slot].AtlasSize, state.Maps[slot].AtlasSize + 2, maps.AtlasSize)
     ? &state.Maps[slot]

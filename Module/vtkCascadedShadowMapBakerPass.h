@@ -3,18 +3,13 @@
  * @class   vtkCascadedShadowMapBakerPass
  * @brief   Renders the depth of the shadow casters into cascaded shadow maps.
  *
- * For every light VTK would shadow (LightCastsShadows()), the planner (GetPlanner()) plans the
- * cascades (z-partitioned, each warped with the generalized LiSPSM parameter of Barroso & Celes
- * 2007; a spot light gets one perspective map) and their atlas, one depth texture per light;
- * this pass renders into each cascade's tile the depth of the casters that reach it and can
- * shadow something in it. A map is rendered again only when it must be: every map when a
- * light, a prop, the window size or an option changed; when only the camera moved, a cascade
- * keeps its map while its aliasing error at the new view (Lloyd et al. 2006) is what a fresh
- * map would have (MapSlack), or within MapReuseTolerance while the user drags. Lines drawn as
- * tubes and points drawn as spheres cast shadows as wide as the view draws them. Maps are kept
- * per renderer: one pass chain may serve several renderers. When more lights cast shadows than
- * the GL context has texture units for, the first ones get maps (one warning). Used with
- * vtkCascadedShadowMapPass, which reads the maps:
+ * For every light VTK would shadow (LightCastsShadows()), GetPlanner() plans the cascades
+ * (z-partitions warped with the generalized LiSPSM parameter of Barroso & Celes 2007; one
+ * perspective map for a spot light) and their atlas, one depth texture per light; this pass
+ * renders into each cascade's tile the casters that reach it and can shadow something in it.
+ * When only the camera moved, a map is kept while its error at the new view (Lloyd et al.
+ * 2006) is what a fresh map would have (MapSlack; MapReuseTolerance while the user drags).
+ * Maps are kept per renderer. With vtkCascadedShadowMapPass, which reads the maps:
  * @code
  * camera pass -> sequence{ shadowPass->GetShadowMapBakerPass(), shadowPass }
  * @endcode
@@ -31,11 +26,10 @@
 #include "vtkSmartPointer.h"                   // for members
 #include "vtkWeakPointer.h"                    // for members
 
-#include <algorithm> // for std::equal
-#include <memory>    // for members
-#include <set>       // for members
-#include <string>    // for members
-#include <vector>    // for members
+#include <memory> // for members
+#include <set>    // for members
+#include <string> // for members
+#include <vector> // for members
 
 class csmCasterCollection;
 class csmMapDrawing;
@@ -70,7 +64,7 @@ public:
   /// Includes the planner's options.
   vtkMTimeType GetMTime() override;
 
-  /// Texels a side of the largest map that follows the view: a light's atlas holds four such
+  /// Texels a side of the largest map that follows the view; a light's atlas holds four such
   /// tiles (more cascades share them, a scene-fitted map alone gets all). 64..8192, 2048.
   vtkSetClampMacro(Resolution, int, 64, 8192);
   vtkGetMacro(Resolution, int);
@@ -80,7 +74,6 @@ public:
   /// Map sizes chosen from the planner's ErrorTarget are multiples of this.
   static constexpr int RESOLUTION_STEP = 64;
 
-  ///@{
   /// While the user drags (the window's desired update rate at least 1, VTK's interactor
   /// convention), maps get a border of InteractiveMapBorder of their width each side (0..0.5,
   /// 0.2) and are kept while their error is at most MapReuseTolerance times a fresh bordered
@@ -89,7 +82,6 @@ public:
   vtkGetMacro(InteractiveMapBorder, double);
   vtkSetFiniteClampMacro(MapReuseTolerance, double, 1.0, 100.0);
   vtkGetMacro(MapReuseTolerance, double);
-  ///@}
 
   /// Across still frames (a camera path rendered frame by frame) a map that follows the view is
   /// rendered with up to 1 + MapSlack times the texels a side it needs, half as a border and half
@@ -208,12 +200,6 @@ public:
       return !this->Cascades.empty() && this->Cascades[0].Kind == MapKind::FacePartition;
     }
 #endif
-    bool SameGeometry(const LightMaps& other) const
-    {
-      return this->Kind == other.Kind && this->ConeAngle == other.ConeAngle &&
-        std::equal(this->Position, this->Position + 3, other.Position) &&
-        std::equal(this->FocalPoint, this->FocalPoint + 3, other.FocalPoint);
-    }
   };
 
   /// The shadowed lights of a renderer as of its last Render() (null: the last renderer).
@@ -232,21 +218,14 @@ public:
   /// What the last Render() did, for tests and benchmarks (seconds only with MeasureTimes).
   struct FrameStatistics
   {
-    int CascadesRendered = 0;
-    int CascadesKept = 0;
-    int PropsDrawn = 0; ///< props (or block actors) drawn into the rendered maps
-    double TexelsRendered = 0.0;
-    double CellsDrawn = 0.0; ///< caster cells drawn into the rendered maps
-    int ClosedCasters = 0;   ///< drawn with their exit layer only
-    int CompactCasters = 0;  ///< drawn from compact blocks
-    int BlocksDrawn = 0;
-    int CastersWithoutReceivers = 0; ///< casters (or blocks) left out of a map
-    bool VisibleDepthsUsed = false;
-    bool VisibleDepthsMeasured = false; ///< by a depth-only pass in this frame
-    double PlanSeconds = 0.0;
-    double MapSeconds = 0.0;
-    double ClearSeconds = 0.0; ///< the first light's tiles
-    double CombineSeconds = 0.0;
+    int CascadesRendered = 0, CascadesKept = 0;
+    int PropsDrawn = 0;                            ///< props (or block actors) drawn into maps
+    double TexelsRendered = 0.0, CellsDrawn = 0.0; ///< of the rendered maps
+    int ClosedCasters = 0;                         ///< drawn with their exit layer only
+    int CompactCasters = 0, BlocksDrawn = 0;       ///< casters from compact blocks, blocks drawn
+    int CastersWithoutReceivers = 0;               ///< casters (or blocks) left out of a map
+    bool VisibleDepthsUsed = false, VisibleDepthsMeasured = false; ///< measured in this frame
+    double PlanSeconds = 0.0, MapSeconds = 0.0, ClearSeconds = 0.0, CombineSeconds = 0.0;
     double CascadeSeconds[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     double GetCascadeSeconds(int c) const
     {
@@ -264,7 +243,7 @@ protected:
   vtkCascadedShadowMapBakerPass();
   ~vtkCascadedShadowMapBakerPass() override;
 
-  // The steps of Render() (csmBakerState.h holds the per-renderer state and the frame's plan).
+  // The steps of Render() (csmBakerState.h: the per-renderer state, the frame's plan).
   void CollectProps(vtkRenderer* renderer, csmRendererMaps& state, csmFrameCasters& props);
   void MeasureVisibleDepths(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
     csmRendererMaps& state, const csmFrameCasters& props);
@@ -274,7 +253,6 @@ protected:
     const csmFramePlan& frame, vtkLight* light, int index, std::vector<LightMaps>& planned,
     std::vector<int>& render);
   MapKind PlannedMapKind(vtkLight* light) const;
-  /// Cascade c's map as planned, or the one kept (then true).
   bool PlanCascade(const csmFramePlan& frame, vtkCamera* camera, const csmRendererMaps& state,
     int c, bool smoothPath, const LightMaps* kept, CascadeMap& map);
   void RenderAtlases(vtkOpenGLRenderer* renderer, vtkOpenGLRenderWindow* window,
@@ -288,24 +266,17 @@ protected:
   bool InputsChanged(vtkRenderer* renderer, csmRendererMaps& state);
   bool Distributed() const;
   void CombineAcrossProcesses(vtkTextureObject* atlas);
-  /// Allocates the planned atlas; reallocated: nothing in it may be kept.
   bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, bool& reallocated);
   int ClosureOf(vtkProp* prop);
   void ReportOnce(bool error, const std::string& message);
-  /// Lights that can get maps: a texture unit and uniforms each, leaving the mapper's own.
   int MaximumShadowedLights(vtkOpenGLRenderWindow* window);
 
   int Resolution = 2048;
   int InteractiveResolution = 1024;
   double PolygonOffset[2] = { 1.1, 2.0 };
-  double MapReuseTolerance = 1.25;
-  double InteractiveMapBorder = 0.2;
-  double MapSlack = 0.44;
-  bool MeasureTimes = false;
-  bool CullClosedCasters = true;
-  bool CompactCasters = true;
-  bool CullCastersWithoutReceivers = true;
-  bool VisibleDepthFit = true;
+  double MapReuseTolerance = 1.25, InteractiveMapBorder = 0.2, MapSlack = 0.44;
+  bool MeasureTimes = false, CullClosedCasters = true, CompactCasters = true;
+  bool CullCastersWithoutReceivers = true, VisibleDepthFit = true;
 
   std::vector<std::unique_ptr<csmRendererMaps>> Renderers;
   vtkWeakPointer<vtkRenderer> LastRenderer;
