@@ -151,7 +151,7 @@ public:
   };
   enum class MapKind
   {
-    FollowsView, ///< planned for the view: rendered again when it no longer serves the view
+    FollowsView, ///< planned for the view: rendered again when it does not serve the view
     SceneFitted, ///< fixed in the world: kept while the scene and the light stay
 #if CSM_COMPARISON_TECHNIQUES
     FacePartition, ///< a face partition, selected by its planes (comparison technique)

@@ -55,9 +55,9 @@ public:
 
   ///@{
   /// PCF kernel width in texels of the cascade: 1, 3, 5 or 7 (even values round up). Default 3
-  /// (Barroso & Celes §4 use 3x3 to 5x5; 3x3 takes 4 bilinear taps where 5x5 takes 9, and
-  /// misclassified no more pixels on any bench scene: Documentation/Results.md, "Lookup cost
-  /// and PCF").
+  /// (Barroso & Celes 2007, §4 use 3x3 to 5x5; 3x3 takes 4 bilinear taps where 5x5 takes 9, and
+  /// misclassifies fewer pixels than 5x5 on the bench scenes; 1 hardens the edges:
+  /// Documentation/Results.md, "Lookup cost and PCF").
   virtual void SetPCFSize(int size);
   vtkGetMacro(PCFSize, int);
   ///@}
