@@ -290,6 +290,12 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   // Camera lights and headlights follow this frame's camera before they are planned for (the
   // renderer would move them only when the lights pass after this one runs).
   this->UpdateLightGeometry(renderer);
+  // The atlas the planner lays out: tiles of Resolution, within this context's texture limit
+  // (set before the inputs are compared: a change re-renders every map).
+  GLint maximumTextureSize = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maximumTextureSize);
+  this->Planner->SetAtlasResolution(this->Resolution);
+  this->Planner->SetMaximumTextureSize(static_cast<int>(maximumTextureSize));
   using Clock = std::chrono::steady_clock;
   const auto planStart = Clock::now();
   this->LastRenderer = renderer;

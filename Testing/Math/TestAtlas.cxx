@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -145,4 +146,56 @@ TEST(Steps, MapsTurnToTheirTilesWhereTheLongSideServesTheLargerError)
   {
     EXPECT_FALSE(c.mapTurned);
   }
+}
+
+// One plan a light: the texture of the most cascades, this count's tiles in it (placed without
+// overlap, inside the texture), the largest map of each kind within its tile, and the GL's
+// texture limit shrinking the tiles (the count is judged with the same plan).
+TEST(Steps, OneAtlasPlanGivesTheTextureTilesAndCeilings)
+{
+  for (int count = 0; count <= 8; ++count)
+  {
+    const csm::AtlasPlan plan = csm::planAtlas(count, 8, csm::AtlasLimits(2048, 2048, 0));
+    EXPECT_EQ(plan.texture, csm::MapSize(4096)) << count; // the same texture for every count
+    EXPECT_FALSE(plan.shrunk);
+    for (int i = 0; i < count; ++i)
+    {
+      const std::array<int, 4> a = plan.tile(i);
+      EXPECT_GE(a[0], 0);
+      EXPECT_GE(a[1], 0);
+      EXPECT_LE(a[0] + a[2], plan.texture.width) << count << " " << i;
+      EXPECT_LE(a[1] + a[3], plan.texture.height) << count << " " << i;
+      for (int j = 0; j < i; ++j)
+      {
+        const std::array<int, 4> b = plan.tile(j);
+        const bool apart =
+          a[0] + a[2] <= b[0] || b[0] + b[2] <= a[0] || a[1] + a[3] <= b[1] || b[1] + b[3] <= a[1];
+        EXPECT_TRUE(apart) << count << ": tiles " << j << " and " << i;
+      }
+      // The largest maps fit the tile; one that follows the view is at most the ceiling.
+      EXPECT_LE(plan.ceilings.sceneFitted.width, a[2]);
+      EXPECT_LE(plan.ceilings.sceneFitted.height, a[3]);
+      EXPECT_LE(plan.ceilings.following.width, 2048);
+    }
+  }
+  // One cascade: the whole texture; a scene-fitted map may have it all, one that follows the
+  // view Resolution a side.
+  const csm::AtlasPlan one = csm::planAtlas(1, 8, csm::AtlasLimits(2048, 2048, 0));
+  EXPECT_EQ(one.tile(0), (std::array<int, 4>{ 0, 0, 4096, 4096 }));
+  EXPECT_EQ(one.ceilings.sceneFitted, csm::MapSize(4096));
+  EXPECT_EQ(one.ceilings.following, csm::MapSize(2048));
+  // While the user drags: the same texture, maps that follow the view at most the ceiling.
+  const csm::AtlasPlan dragging = csm::planAtlas(3, 8, csm::AtlasLimits(2048, 1024, 0));
+  EXPECT_EQ(dragging.texture, csm::MapSize(4096));
+  EXPECT_EQ(dragging.tiles.tile, csm::MapSize(2048));
+  EXPECT_EQ(dragging.ceilings.following, csm::MapSize(1024));
+  // A GL limit of 2048 texels: tiles of 1024, and the ceilings within them.
+  const csm::AtlasPlan limited = csm::planAtlas(4, 8, csm::AtlasLimits(2048, 2048, 2048));
+  EXPECT_TRUE(limited.shrunk);
+  EXPECT_EQ(limited.texture, csm::MapSize(2048));
+  EXPECT_EQ(limited.tiles.tile, csm::MapSize(1024));
+  EXPECT_EQ(limited.ceilings.following, csm::MapSize(1024));
+  EXPECT_EQ(limited.ceilings.sceneFitted, csm::MapSize(1024));
+  // Limits below one texel: nothing.
+  EXPECT_EQ(csm::planAtlas(2, 8, csm::AtlasLimits(0)).texture, csm::MapSize(0));
 }

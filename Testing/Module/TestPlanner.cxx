@@ -244,3 +244,58 @@ TEST(Planner, AdaptiveCascadesTakeTheFewestThatMeetTheTarget)
       1.5);
   }
 }
+
+// The atlas is planned with the cascades: its texture, each cascade's tile and largest map, the
+// same ones the count was judged with; a GL texture limit shrinks the tiles the count is judged
+// on, not only the texture.
+TEST(Planner, PlansTheAtlasWithTheCascades)
+{
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0, 5, 40);
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetClippingRange(0.5, 500);
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetPosition(10, 100, 0);
+  light->SetFocalPoint(0, 0, 0);
+  const double bounds[6] = { -20, 20, -1, 15, -20, 20 };
+  vtkNew<vtkCascadedShadowMapPlanner> planner;
+  planner->SetNumberOfCascades(4);
+  planner->AdaptiveCascadesOff();
+  planner->SetAtlasResolution(2048);
+  ASSERT_EQ(planner->Plan(camera, 1.0, light, bounds, 480, 2048), 4);
+  int size[2], tile[4], ceiling[2], resolution[2];
+  planner->GetAtlasSize(size);
+  EXPECT_EQ(size[0], 4096);
+  EXPECT_EQ(size[1], 4096);
+  EXPECT_FALSE(planner->GetAtlasShrunk());
+  for (int i = 0; i < 4; ++i)
+  {
+    planner->GetCascadeTile(i, tile);
+    EXPECT_EQ(tile[0], (i % 2) * 2048) << i;
+    EXPECT_EQ(tile[1], (i / 2) * 2048) << i;
+    EXPECT_EQ(tile[2], 2048);
+    planner->GetCascadeResolutionCeiling(i, ceiling);
+    EXPECT_EQ(ceiling[0], 2048);
+    planner->GetCascadeResolution(i, 480, 64, resolution);
+    EXPECT_LE(resolution[0], ceiling[0]);
+    EXPECT_GT(resolution[0], 0);
+  }
+  planner->GetCascadeTile(4, tile); // beyond the plan: an empty tile
+  EXPECT_EQ(tile[2], 0);
+  // A texture limit of 2048 texels: tiles of 1024, and the maps within them.
+  planner->SetMaximumTextureSize(2048);
+  ASSERT_EQ(planner->Plan(camera, 1.0, light, bounds, 480, 2048), 4);
+  planner->GetAtlasSize(size);
+  EXPECT_EQ(size[0], 2048);
+  EXPECT_TRUE(planner->GetAtlasShrunk());
+  for (int i = 0; i < 4; ++i)
+  {
+    planner->GetCascadeTile(i, tile);
+    EXPECT_EQ(tile[2], 1024);
+    planner->GetCascadeResolution(i, 480, 64, resolution);
+    EXPECT_LE(resolution[0], 1024);
+    EXPECT_LE(resolution[1], 1024);
+  }
+}
