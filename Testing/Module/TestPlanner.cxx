@@ -28,6 +28,25 @@ void project(vtkMatrix4x4* m, const double p[3], double ndc[3])
   for (int i = 0; i < 3; ++i)
     ndc[i] = out[i] / out[3];
 }
+
+/// A camera 40 units from a scene of 40 x 16 x 40 under a directional light from above.
+struct LitScene
+{
+  vtkNew<vtkCamera> Camera;
+  vtkNew<vtkLight> Light;
+  const double Bounds[6] = { -20, 20, -1, 15, -20, 20 };
+  LitScene()
+  {
+    this->Camera->SetPosition(0, 5, 40);
+    this->Camera->SetFocalPoint(0, 0, 0);
+    this->Camera->SetViewUp(0, 1, 0);
+    this->Camera->SetClippingRange(0.5, 500);
+    this->Light->SetLightTypeToSceneLight();
+    this->Light->SetPositional(false);
+    this->Light->SetPosition(10, 100, 0);
+    this->Light->SetFocalPoint(0, 0, 0);
+  }
+};
 }
 
 TEST(Planner, DefaultsArePapersRecommendation)
@@ -51,19 +70,11 @@ TEST(Planner, DefaultsArePapersRecommendation)
 
 TEST(Planner, PlansForAVtkCameraAndLight)
 {
-  vtkNew<vtkCamera> camera;
-  camera->SetPosition(0, 5, 40);
-  camera->SetFocalPoint(0, 0, 0);
-  camera->SetViewUp(0, 1, 0);
-  camera->SetClippingRange(0.5, 500);
+  LitScene scene;
+  vtkCamera* camera = scene.Camera;
   camera->SetViewAngle(40);
-  vtkNew<vtkLight> light;
-  light->SetLightTypeToSceneLight();
-  light->SetPositional(false);
-  light->SetPosition(10, 100, 0);
-  light->SetFocalPoint(0, 0, 0);
-  const double bounds[6] = { -20, 20, -1, 15, -20, 20 };
-
+  vtkLight* light = scene.Light;
+  const double* bounds = scene.Bounds;
   vtkNew<vtkCascadedShadowMapPlanner> planner;
   planner->SetNumberOfCascades(3);
   ASSERT_EQ(planner->Plan(camera, 16.0 / 9.0, light, bounds), 3);
@@ -250,16 +261,10 @@ TEST(Planner, AdaptiveCascadesTakeTheFewestThatMeetTheTarget)
 // on, not only the texture.
 TEST(Planner, PlansTheAtlasWithTheCascades)
 {
-  vtkNew<vtkCamera> camera;
-  camera->SetPosition(0, 5, 40);
-  camera->SetFocalPoint(0, 0, 0);
-  camera->SetClippingRange(0.5, 500);
-  vtkNew<vtkLight> light;
-  light->SetLightTypeToSceneLight();
-  light->SetPositional(false);
-  light->SetPosition(10, 100, 0);
-  light->SetFocalPoint(0, 0, 0);
-  const double bounds[6] = { -20, 20, -1, 15, -20, 20 };
+  LitScene scene;
+  vtkCamera* camera = scene.Camera;
+  vtkLight* light = scene.Light;
+  const double* bounds = scene.Bounds;
   vtkNew<vtkCascadedShadowMapPlanner> planner;
   planner->SetNumberOfCascades(4);
   planner->AdaptiveCascadesOff();
