@@ -7,6 +7,7 @@
 #include "vtkCascadedShadowMapBakerPass.h"
 
 #include "vtkCamera.h"
+#include "vtkMatrix4x4.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
@@ -44,6 +45,36 @@ inline bool sameLightGeometry(const vtkCascadedShadowMapBakerPass::LightMaps& a,
   return a.Kind == b.Kind && a.ConeAngle == b.ConeAngle &&
     std::equal(a.Position, a.Position + 3, b.Position) &&
     std::equal(a.FocalPoint, a.FocalPoint + 3, b.FocalPoint);
+}
+
+/// Does a camera look from where and where another did (its clipping range aside)?
+inline bool sameViewpoint(vtkCamera* a, vtkCamera* b)
+{
+  const double* pa = a->GetPosition();
+  const double* pb = b->GetPosition();
+  const double* fa = a->GetFocalPoint();
+  const double* fb = b->GetFocalPoint();
+  const double* ua = a->GetViewUp();
+  const double* ub = b->GetViewUp();
+  return std::equal(pa, pa + 3, pb) && std::equal(fa, fa + 3, fb) && std::equal(ua, ua + 3, ub) &&
+    a->GetViewAngle() == b->GetViewAngle() && a->GetParallelScale() == b->GetParallelScale() &&
+    a->GetParallelProjection() == b->GetParallelProjection();
+}
+
+/// Does a camera see exactly as another did (view and projection at this aspect)?
+inline bool sameView(vtkCamera* a, vtkCamera* b, double aspect)
+{
+  vtkMatrix4x4* viewA = a->GetModelViewTransformMatrix();
+  vtkMatrix4x4* viewB = b->GetModelViewTransformMatrix();
+  if (!std::equal(viewA->GetData(), viewA->GetData() + 16, viewB->GetData()))
+  {
+    return false;
+  }
+  double projectionA[16];
+  std::copy(a->GetProjectionTransformMatrix(aspect, -1, 1)->GetData(),
+    a->GetProjectionTransformMatrix(aspect, -1, 1)->GetData() + 16, projectionA);
+  vtkMatrix4x4* projectionB = b->GetProjectionTransformMatrix(aspect, -1, 1);
+  return std::equal(projectionA, projectionA + 16, projectionB->GetData());
 }
 
 /// What every light of a frame is planned with.

@@ -58,36 +58,6 @@ constexpr int kUniformComponentsPerLight = kMaxCascades * (16 + 4 + 4 + 4) + 16;
 constexpr int kFacePlaneComponentsPerLight = kMaxCascades * 16;
 constexpr int kMapperUniformComponents = 1024;
 
-/// Does a camera look from where and where another did (its clipping range aside)?
-bool sameViewpoint(vtkCamera* a, vtkCamera* b)
-{
-  const double* pa = a->GetPosition();
-  const double* pb = b->GetPosition();
-  const double* fa = a->GetFocalPoint();
-  const double* fb = b->GetFocalPoint();
-  const double* ua = a->GetViewUp();
-  const double* ub = b->GetViewUp();
-  return std::equal(pa, pa + 3, pb) && std::equal(fa, fa + 3, fb) && std::equal(ua, ua + 3, ub) &&
-    a->GetViewAngle() == b->GetViewAngle() && a->GetParallelScale() == b->GetParallelScale() &&
-    a->GetParallelProjection() == b->GetParallelProjection();
-}
-
-/// Does a camera see exactly as another did (view and projection at this aspect)?
-bool sameView(vtkCamera* a, vtkCamera* b, double aspect)
-{
-  vtkMatrix4x4* viewA = a->GetModelViewTransformMatrix();
-  vtkMatrix4x4* viewB = b->GetModelViewTransformMatrix();
-  if (!std::equal(viewA->GetData(), viewA->GetData() + 16, viewB->GetData()))
-  {
-    return false;
-  }
-  double projectionA[16];
-  std::copy(a->GetProjectionTransformMatrix(aspect, -1, 1)->GetData(),
-    a->GetProjectionTransformMatrix(aspect, -1, 1)->GetData() + 16, projectionA);
-  vtkMatrix4x4* projectionB = b->GetProjectionTransformMatrix(aspect, -1, 1);
-  return std::equal(projectionA, projectionA + 16, projectionB->GetData());
-}
-
 }
 
 vtkCascadedShadowMapBakerPass::vtkCascadedShadowMapBakerPass()
@@ -523,25 +493,53 @@ void vtkCascadedShadowMapBakerPass::PlanLight(vtkRenderer* renderer, csmRenderer
   this->Planner->GetAtlasSize(maps.AtlasSize);
   maps.Cascades.resize(static_cast<size_t>(std::max(count, 0)));
   const MapKind followKind = this->PlannedMapKind(light);
-  // The map kept from the last frame (only the camera moved: the light, the scene, the options
-  // and the count are the same). (Face partitions and camera space maps are re-rendered every
+  // The maps kept from the last frame (only the camera moved: the light, the scene, the options
+  // and the atlas are the same). (Face partitions and camera space maps are re-rendered every
   // frame: their error is not measured along the cascades' map axes.)
   const LightMaps* kept = !frame.Changed && this->Planner->GetDepthClamp() &&
       followKind == MapKind::FollowsView && slot < state.Maps.size() &&
       state.Maps[slot].Light == light && sameLightGeometry(state.Maps[slot], maps) &&
-      state.Maps[slot].GetNumberOfCascades() == count &&
       std::equal(state.Maps[slot].AtlasSize, state.Maps[slot].AtlasSize + 2, maps.AtlasSize)
     ? &state.Maps[slot]
     : nullptr;
   // Slack pays only where the next frames can keep the map: a still frame of a camera on a
   // smooth path, the light and scene unchanged (a camera light moves with the camera).
   const bool smoothPath = !frame.Interacting && kept && count > 0;
+  std::vector<csm::TexelRect> tiles(static_cast<size_t>(std::max(count, 0)));
+  std::vector<std::array<int, 2>> needs(tiles.size());
+  std::vector<int> order; // the scene-fitted cascades first: they cost most to draw again
   for (int c = 0; c < count; ++c)
   {
     CascadeMap& map = maps.Cascades[c];
     map.Kind = this->Planner->GetCascadeSceneFitted(c) ? MapKind::SceneFitted : followKind;
-    const bool keep = this->PlanCascade(frame, camera, state, c, smoothPath, kept, map);
-    render.push_back(keep ? 0 : 1);
+    this->PlanCascade(frame, camera, state, c, smoothPath, map, needs[c].data());
+    std::copy(map.Tile, map.Tile + 4, tiles[c].begin());
+    order.insert(map.IsSceneFitted() ? order.begin() : order.end(), c);
+  }
+  // The kept maps where they serve, also across a change of the count (then in the tile they
+  // are in), except with several processes (each would choose its own tiles).
+  std::vector<csm::TexelRect> keptTiles;
+  for (const CascadeMap& old : kept ? kept->Cascades : std::vector<CascadeMap>())
+  {
+    keptTiles.push_back({ old.Tile[0], old.Tile[1], old.Tile[2], old.Tile[3] });
+  }
+  const csm::TileAssignment assigned = csm::assignTiles(
+    tiles, keptTiles,
+    [&](int c, int k)
+    { return this->KeptMapServes(frame, c, needs[c].data(), maps.Cascades[c], kept->Cascades[k]); },
+    order, !this->Distributed());
+  for (int c = 0; c < count; ++c)
+  {
+    CascadeMap& map = maps.Cascades[c];
+    std::copy(assigned.tile[c].begin(), assigned.tile[c].end(), map.Tile);
+    if (assigned.kept[c] >= 0)
+    {
+      const CascadeMap& old = kept->Cascades[assigned.kept[c]];
+      std::copy(old.WorldToMap, old.WorldToMap + 16, map.WorldToMap);
+      std::copy(old.CasterView, old.CasterView + 18, map.CasterView);
+      std::copy(old.Resolution, old.Resolution + 2, map.Resolution);
+    }
+    render.push_back(assigned.kept[c] >= 0 ? 0 : 1);
   }
   render.resize(kMaxCascades * (slot + 1), 0);
   if (count > 0)
@@ -571,15 +569,16 @@ vtkCascadedShadowMapBakerPass::MapKind vtkCascadedShadowMapBakerPass::PlannedMap
 #endif
 }
 
-bool vtkCascadedShadowMapBakerPass::PlanCascade(const csmFramePlan& frame, vtkCamera* camera,
-  const csmRendererMaps& state, int c, bool smoothPath, const LightMaps* kept, CascadeMap& map)
+void vtkCascadedShadowMapBakerPass::PlanCascade(const csmFramePlan& frame, vtkCamera* camera,
+  const csmRendererMaps& state, int c, bool smoothPath, CascadeMap& map, int need[2])
 {
   // The map this cascade needs (ErrorTarget) in its tile of the planned atlas.
   this->Planner->GetCascadeTile(c, map.Tile);
   this->Planner->GetCascadeResolution(c, frame.ImageHeight, RESOLUTION_STEP, map.Resolution);
   int ceiling[2];
   this->Planner->GetCascadeResolutionCeiling(c, ceiling);
-  const csm::MapSize need(map.Resolution[0], map.Resolution[1]);
+  need[0] = map.Resolution[0];
+  need[1] = map.Resolution[1];
   const csm::MapSize most(ceiling[0], ceiling[1]);
   // A still frame's map that follows the view gets slack (a border and more texels), so that
   // the next frames of a camera that moves a little keep it while it meets what a fresh map
@@ -591,7 +590,8 @@ bool vtkCascadedShadowMapBakerPass::PlanCascade(const csmFramePlan& frame, vtkCa
     vtkCascadedShadowMapPlanner::IsSmallCameraStep(
       state.LastCamera, camera, frame.Aspect, this->Planner->GetCascadeFar(c)))
   {
-    const csm::SlackedMap slacked = csm::slackedMap(need, most, this->MapSlack);
+    const csm::SlackedMap slacked =
+      csm::slackedMap(csm::MapSize(need[0], need[1]), most, this->MapSlack);
     border = slacked.border;
     map.Resolution[0] = slacked.size.width;
     map.Resolution[1] = slacked.size.height;
@@ -609,36 +609,30 @@ bool vtkCascadedShadowMapBakerPass::PlanCascade(const csmFramePlan& frame, vtkCa
   this->Planner->GetCascadePlanes(c, map.Planes);
   map.DepthW = this->Planner->GetCascadeDepthW(c);
 #endif
-  if (!kept)
-  {
-    return false;
-  }
+}
+
+bool vtkCascadedShadowMapBakerPass::KeptMapServes(
+  const csmFramePlan& frame, int c, const int need[2], const CascadeMap& map, const CascadeMap& old)
+{
   // A kept map serves if it has the texels this view needs (or all its tile holds, where the
   // GL's texture size limit made the tiles smaller than Resolution): while the user interacts,
   // within MapReuseTolerance of a fresh map with the same border; in a still frame, where its
   // error at this view meets what a fresh tight map meets. (Turned the same way: the error
   // ratio compares the maps at equal resolution.)
-  const CascadeMap& old = kept->Cascades[c];
+  // (Of the same kind; its tile is assignTiles' to choose.)
   if ((!frame.Interacting && frame.ScreenSized &&
         !std::equal(frame.ViewKey, frame.ViewKey + 18, old.CasterView)) ||
-    old.Turned != map.Turned || !std::equal(old.Tile, old.Tile + 4, map.Tile))
+    old.Turned != map.Turned || old.Kind != map.Kind)
   {
     return false;
   }
   const double ratio = this->Planner->CompareKeptMap(
     c, old.WorldToMap, kReuseMarginTexels, std::min(old.Resolution[0], old.Resolution[1]));
-  const bool keep = frame.Interacting
+  return frame.Interacting
     ? old.Resolution[0] >= std::min(map.Resolution[0], map.Tile[2]) &&
       old.Resolution[1] >= std::min(map.Resolution[1], map.Tile[3]) && ratio <= frame.Tolerance
     : csm::keptMapServes(ratio, csm::MapSize(old.Resolution[0], old.Resolution[1]),
-        csm::MapSize(std::min(need.width, map.Tile[2]), std::min(need.height, map.Tile[3])));
-  if (keep)
-  {
-    std::copy(old.WorldToMap, old.WorldToMap + 16, map.WorldToMap);
-    std::copy(old.CasterView, old.CasterView + 18, map.CasterView);
-    std::copy(old.Resolution, old.Resolution + 2, map.Resolution);
-  }
-  return keep;
+        csm::MapSize(std::min(need[0], map.Tile[2]), std::min(need[1], map.Tile[3])));
 }
 
 void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,

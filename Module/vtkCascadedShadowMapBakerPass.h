@@ -71,8 +71,7 @@ public:
   /// The same while the user drags (at most Resolution). 64..8192, 1024.
   vtkSetClampMacro(InteractiveResolution, int, 64, 8192);
   vtkGetMacro(InteractiveResolution, int);
-  /// Map sizes chosen from the planner's ErrorTarget are multiples of this.
-  static constexpr int RESOLUTION_STEP = 64;
+  static constexpr int RESOLUTION_STEP = 64; ///< map sizes from ErrorTarget are multiples of it
 
   /// While the user drags (the window's desired update rate at least 1, VTK's interactor
   /// convention), maps get a border of InteractiveMapBorder of their width each side (0..0.5,
@@ -253,8 +252,10 @@ protected:
     const csmFramePlan& frame, vtkLight* light, int index, std::vector<LightMaps>& planned,
     std::vector<int>& render);
   MapKind PlannedMapKind(vtkLight* light) const;
-  bool PlanCascade(const csmFramePlan& frame, vtkCamera* camera, const csmRendererMaps& state,
-    int c, bool smoothPath, const LightMaps* kept, CascadeMap& map);
+  void PlanCascade(const csmFramePlan& frame, vtkCamera* camera, const csmRendererMaps& state,
+    int c, bool smoothPath, CascadeMap& map, int need[2]);
+  bool KeptMapServes(const csmFramePlan& frame, int c, const int need[2], const CascadeMap& map,
+    const CascadeMap& old);
   void RenderAtlases(vtkOpenGLRenderer* renderer, vtkOpenGLRenderWindow* window,
     csmRendererMaps& state, const csmFrameCasters& props, std::vector<LightMaps>& planned,
     std::vector<int>& render);

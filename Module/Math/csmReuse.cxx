@@ -141,4 +141,68 @@ MapReuse compareKeptMap(const glm::dmat4& wsKeptToClip, const Cascade& fresh, co
   return reuse;
 }
 
+bool rectInside(const TexelRect& inner, const TexelRect& outer)
+{
+  return inner[0] >= outer[0] && inner[1] >= outer[1] &&
+    inner[0] + inner[2] <= outer[0] + outer[2] && inner[1] + inner[3] <= outer[1] + outer[3];
+}
+
+TileAssignment assignTiles(const std::vector<TexelRect>& planned,
+  const std::vector<TexelRect>& oldTiles, const std::function<bool(int, int)>& serves,
+  const std::vector<int>& order, bool acrossTiles)
+{
+  const int count = static_cast<int>(planned.size());
+  const int oldCount = static_cast<int>(oldTiles.size());
+  TileAssignment a;
+  a.kept.assign(planned.size(), -1);
+  a.tile = planned;
+  std::vector<bool> tileTaken(planned.size(), false), oldTaken(oldTiles.size(), false);
+  // The map of the same index in the same tile.
+  for (int c = 0; c < count && c < oldCount; ++c)
+  {
+    if (oldTiles[c] == planned[c] && serves(c, c))
+    {
+      a.kept[c] = c;
+      tileTaken[c] = oldTaken[c] = true;
+    }
+  }
+  // Any other map whose tile lies in a free tile of the plan.
+  for (int c : order)
+  {
+    if (!acrossTiles || c < 0 || c >= count || a.kept[c] >= 0)
+    {
+      continue;
+    }
+    for (int k = 0; k < oldCount && a.kept[c] < 0; ++k)
+    {
+      for (int t = 0; t < count && !oldTaken[k]; ++t)
+      {
+        if (!tileTaken[t] && rectInside(oldTiles[k], planned[t]) && serves(c, k))
+        {
+          a.kept[c] = k;
+          a.tile[c] = oldTiles[k];
+          tileTaken[t] = oldTaken[k] = true;
+          break;
+        }
+      }
+    }
+  }
+  // The maps drawn afresh: their own tile where it is free, else the first free one.
+  for (int c = 0; c < count; ++c)
+  {
+    if (a.kept[c] >= 0)
+    {
+      continue;
+    }
+    int t = tileTaken[c] ? -1 : c;
+    for (int u = 0; u < count && t < 0; ++u)
+    {
+      t = tileTaken[u] ? -1 : u;
+    }
+    a.tile[c] = planned[t]; // (as many tiles as cascades: one is free)
+    tileTaken[t] = true;
+  }
+  return a;
+}
+
 } // namespace csm

@@ -5,6 +5,10 @@
 
 #include "csmTypes.h"
 
+#include <array>
+#include <functional>
+#include <vector>
+
 namespace csm
 {
 
@@ -58,5 +62,29 @@ bool keptMapServes(double errorRatio, const MapSize& keptSize, const MapSize& ne
 /// reaches (PCF radius plus one texel, in NDC units: 2 (r + 1) / resolution).
 MapReuse compareKeptMap(const glm::dmat4& wsKeptToClip, const Cascade& fresh, const Camera& camera,
   const glm::dvec3& wsLightDirection, bool directional, double marginNdc);
+
+/// A rectangle of texels in an atlas: x, y (from the lower left), width, height.
+using TexelRect = std::array<int, 4>;
+/// Does inner lie inside outer (edges may touch)?
+bool rectInside(const TexelRect& inner, const TexelRect& outer);
+
+/// Where this frame's cascades take their maps: kept[c], the earlier frame's map cascade c keeps
+/// (-1: drawn afresh), and tile[c], its map's tile (a kept map's own, inside one of the plan's).
+struct TileAssignment
+{
+  std::vector<int> kept;
+  std::vector<TexelRect> tile;
+};
+
+/// Assigns the plan's tiles (planned[c], one a cascade, apart) to this frame's cascades with
+/// the maps kept from the earlier frame (in oldTiles[k]) where serves(c, k) says one stands in
+/// for cascade c. First each cascade with the earlier map of its own index in its own tile (the
+/// count did not change); then, with acrossTiles, in the given order, any map not taken yet whose
+/// tile lies inside a tile no cascade takes (the count changed: a scene-fitted map, say, is in
+/// another tile now). The cascades drawn afresh take their own tile where it is free, else the
+/// first free one. serves is asked only for maps whose tile could take them.
+TileAssignment assignTiles(const std::vector<TexelRect>& planned,
+  const std::vector<TexelRect>& oldTiles, const std::function<bool(int, int)>& serves,
+  const std::vector<int>& order, bool acrossTiles);
 
 } // namespace csm

@@ -194,3 +194,57 @@ TEST(Reuse, ABorderedMapCoversTheBodyOfACameraThatTurnedALittle)
     EXPECT_GT(reuse.errorRatio, 0.6) << "frame " << frame;
   }
 }
+
+// The kept maps across a change of the count of cascades: a map that still serves stays in the
+// tile it is in, the cascades drawn afresh take the other tiles, and no two maps overlap.
+TEST(Reuse, KeptMapsStayInTheirTilesAcrossACountChange)
+{
+  using Rect = csm::TexelRect;
+  const std::vector<Rect> three = { Rect{ 0, 0, 2048, 2048 }, Rect{ 2048, 0, 2048, 2048 },
+    Rect{ 0, 2048, 2048, 2048 } };
+  const std::vector<Rect> four = { three[0], three[1], three[2], Rect{ 2048, 2048, 2048, 2048 } };
+  auto apart = [](const Rect& a, const Rect& b)
+  {
+    return a[0] + a[2] <= b[0] || b[0] + b[2] <= a[0] || a[1] + a[3] <= b[1] || b[1] + b[3] <= a[1];
+  };
+  // The same count: each cascade keeps its own map where it serves.
+  int asked = 0;
+  csm::TileAssignment same = csm::assignTiles(
+    three, three, [&](int c, int k) { return ++asked, c == k && c != 1; }, { 2, 0, 1 }, true);
+  EXPECT_EQ(same.kept, (std::vector<int>{ 0, -1, 2 }));
+  EXPECT_EQ(same.tile, three);
+  // Three to four cascades: the scene-fitted map (old 2, now cascade 3) stays where it is;
+  // cascade 2, drawn afresh, takes the tile left.
+  csm::TileAssignment grown = csm::assignTiles(
+    four, three, [](int c, int k) { return c == 3 && k == 2; }, { 3, 0, 1, 2 }, true);
+  EXPECT_EQ(grown.kept, (std::vector<int>{ -1, -1, -1, 2 }));
+  EXPECT_EQ(grown.tile[3], three[2]);
+  EXPECT_EQ(grown.tile[2], four[3]);
+  for (int a = 0; a < 4; ++a)
+  {
+    for (int b = 0; b < a; ++b)
+    {
+      EXPECT_TRUE(apart(grown.tile[a], grown.tile[b])) << a << " " << b;
+    }
+  }
+  // Without acrossTiles (several processes) only a map of the same index in the same tile.
+  csm::TileAssignment local = csm::assignTiles(
+    four, three, [](int c, int k) { return c == 3 && k == 2; }, { 3, 0, 1, 2 }, false);
+  EXPECT_EQ(local.kept, (std::vector<int>{ -1, -1, -1, -1 }));
+  EXPECT_EQ(local.tile, four);
+  // Three cascades to one (its tile the whole atlas): the scene-fitted map in its own tile.
+  const std::vector<Rect> one = { Rect{ 0, 0, 4096, 4096 } };
+  csm::TileAssignment shrunk = csm::assignTiles(
+    one, three, [](int, int k) { return k == 2; }, { 0 }, true);
+  EXPECT_EQ(shrunk.kept, (std::vector<int>{ 2 }));
+  EXPECT_EQ(shrunk.tile[0], three[2]);
+  // One to three: the one map fits in no tile of three; serves is not asked for it.
+  asked = 0;
+  csm::TileAssignment split = csm::assignTiles(
+    three, one, [&](int, int) { return ++asked, true; }, { 2, 0, 1 }, true);
+  EXPECT_EQ(split.kept, (std::vector<int>{ -1, -1, -1 }));
+  EXPECT_EQ(split.tile, three);
+  EXPECT_EQ(asked, 0);
+  EXPECT_TRUE(csm::rectInside(three[2], one[0]));
+  EXPECT_FALSE(csm::rectInside(one[0], three[2]));
+}
