@@ -13,8 +13,7 @@
  * @code
  * camera pass -> sequence{ shadowPass->GetShadowMapBakerPass(), shadowPass }
  * @endcode
- * or in one call with vtkCascadedShadowMapPass::UseShadowsOn(renderer). Documentation/Passes.md
- * gives each option's measured reason.
+ * or vtkCascadedShadowMapPass::UseShadowsOn(renderer); Passes.md gives the measured reasons.
  */
 #ifndef vtkCascadedShadowMapBakerPass_h
 #define vtkCascadedShadowMapBakerPass_h
@@ -84,8 +83,9 @@ public:
 
   /// Across still frames (a camera path rendered frame by frame) a map that follows the view is
   /// rendered with up to 1 + MapSlack times the texels a side it needs, half as a border and half
-  /// as finer texels (csm::slackedMap), and kept while its error at the current view meets a
-  /// fresh map's (csm::keptMapServes). 0: kept only for the view it was planned for. 0..3, 0.44.
+  /// as finer texels (csm::slackedMap), and kept, in its tile also when the count changes, while
+  /// its error at the view meets a fresh map's (csm::keptMapServes). 0: kept only for the view
+  /// it was planned for. 0..3, 0.44.
   vtkSetFiniteClampMacro(MapSlack, double, 0.0, 3.0);
   vtkGetMacro(MapSlack, double);
 
