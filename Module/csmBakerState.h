@@ -14,6 +14,7 @@
 #include "vtkWeakPointer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 /// The maps of one renderer and the GL objects (of its window's context) that hold them.
@@ -47,34 +48,45 @@ inline bool sameLightGeometry(const vtkCascadedShadowMapBakerPass::LightMaps& a,
     std::equal(a.FocalPoint, a.FocalPoint + 3, b.FocalPoint);
 }
 
+/// Values equal up to this share of the larger (a grabbed image renders with a camera whose view
+/// angle went through the tiling's trigonometry: 30 degrees become 30.0000008).
+constexpr double kSameViewTolerance = 1e-6;
+inline bool nearlyEqual(const double* a, const double* b, int n)
+{
+  for (int i = 0; i < n; ++i)
+  {
+    const double scale = std::max({ 1.0, std::abs(a[i]), std::abs(b[i]) });
+    if (!(std::abs(a[i] - b[i]) <= kSameViewTolerance * scale))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 /// Does a camera look from where and where another did (its clipping range aside)?
 inline bool sameViewpoint(vtkCamera* a, vtkCamera* b)
 {
-  const double* pa = a->GetPosition();
-  const double* pb = b->GetPosition();
-  const double* fa = a->GetFocalPoint();
-  const double* fb = b->GetFocalPoint();
-  const double* ua = a->GetViewUp();
-  const double* ub = b->GetViewUp();
-  return std::equal(pa, pa + 3, pb) && std::equal(fa, fa + 3, fb) && std::equal(ua, ua + 3, ub) &&
-    a->GetViewAngle() == b->GetViewAngle() && a->GetParallelScale() == b->GetParallelScale() &&
+  const double angles[2] = { a->GetViewAngle(), a->GetParallelScale() };
+  const double others[2] = { b->GetViewAngle(), b->GetParallelScale() };
+  return nearlyEqual(a->GetPosition(), b->GetPosition(), 3) &&
+    nearlyEqual(a->GetFocalPoint(), b->GetFocalPoint(), 3) &&
+    nearlyEqual(a->GetViewUp(), b->GetViewUp(), 3) && nearlyEqual(angles, others, 2) &&
     a->GetParallelProjection() == b->GetParallelProjection();
 }
 
-/// Does a camera see exactly as another did (view and projection at this aspect)?
+/// Does a camera see as another did (view and projection at this aspect)?
 inline bool sameView(vtkCamera* a, vtkCamera* b, double aspect)
 {
-  vtkMatrix4x4* viewA = a->GetModelViewTransformMatrix();
-  vtkMatrix4x4* viewB = b->GetModelViewTransformMatrix();
-  if (!std::equal(viewA->GetData(), viewA->GetData() + 16, viewB->GetData()))
+  if (!nearlyEqual(a->GetModelViewTransformMatrix()->GetData(),
+        b->GetModelViewTransformMatrix()->GetData(), 16))
   {
     return false;
   }
   double projectionA[16];
   std::copy(a->GetProjectionTransformMatrix(aspect, -1, 1)->GetData(),
     a->GetProjectionTransformMatrix(aspect, -1, 1)->GetData() + 16, projectionA);
-  vtkMatrix4x4* projectionB = b->GetProjectionTransformMatrix(aspect, -1, 1);
-  return std::equal(projectionA, projectionA + 16, projectionB->GetData());
+  return nearlyEqual(projectionA, b->GetProjectionTransformMatrix(aspect, -1, 1)->GetData(), 16);
 }
 
 /// What every light of a frame is planned with.

@@ -155,3 +155,30 @@ TEST(Passes, SomethingNearerComingIntoViewIsShadowedInThatFrame)
   EXPECT_GT(DarkenedPixels(image, plain, &nearer, &shelfPixels), 150);
   EXPECT_GT(shelfPixels, 2000);
 }
+
+// Grabbing an image renders the frame again with a camera whose view angle went through the
+// tiling's trigonometry (a few 1e-8 off): that frame is the same view, so it measures no depths
+// again, draws no map and starts no preparation of a big mesh (the view did not move).
+TEST(Passes, AGrabbedImageIsTheSameView)
+{
+  BoxOverPlane scene;
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  scene.Renderer->GetActiveCamera()->SetViewAngle(30.0);
+  scene.Window->Render();
+  EXPECT_TRUE(baker->GetLastFrameStatistics().VisibleDepthsMeasured);
+  EXPECT_GT(baker->GetLastFrameStatistics().CascadesRendered, 0);
+  // What the grab does to the camera, by hand: the same angle up to its rounding.
+  scene.Renderer->GetActiveCamera()->SetViewAngle(30.000000834826057);
+  scene.Window->Render();
+  EXPECT_FALSE(baker->GetLastFrameStatistics().VisibleDepthsMeasured);
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, 0);
+  // And a grab itself.
+  scene.Render();
+  EXPECT_FALSE(baker->GetLastFrameStatistics().VisibleDepthsMeasured);
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, 0);
+  // A real step is a step.
+  scene.Renderer->GetActiveCamera()->Azimuth(1.0);
+  scene.Window->Render();
+  EXPECT_TRUE(baker->GetLastFrameStatistics().VisibleDepthsMeasured);
+}
