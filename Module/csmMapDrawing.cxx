@@ -62,7 +62,7 @@ void toColumnMajor(const double m[16], float out[16])
 vtkCascadedShadowCasterPass::CasterUniforms casterUniformsFor(
   const csmMapDrawing::LightMaps& maps, int c, int x, int y, int w, int h)
 {
-  const double* key = maps.Cascades[c].CasterView; // RenderCascade set it for this view
+  const double* key = maps.Cascades[c].CasterView; // DrawCascade set it for this view
   vtkNew<vtkMatrix4x4> worldToView, viewToWorld, worldToMap, mapToWorld;
   worldToView->DeepCopy(key);
   vtkMatrix4x4::Invert(worldToView, viewToWorld);
