@@ -28,13 +28,10 @@ struct csmRendererMaps
   vtkMTimeType LastInputTime = 0;
   int LastSize[2] = { 0, 0 };
   /// The visible depths last measured (VisibleDepthFit): the camera that measured them (null:
-  /// none), its aspect and window depths; whether this frame measured them, and whether the
-  /// last plan used them.
+  /// none), its aspect and window depths.
   vtkSmartPointer<vtkCamera> VisibleCamera;
   double VisibleAspect = 1.0;
   double VisibleWindow[2] = { 1.0, 0.0 };
-  bool VisibleDepthsMeasured = false;
-  bool VisibleDepthsUsed = false;
   /// The camera of the last plan (MapSlack: did this frame's camera take a small step?).
   vtkSmartPointer<vtkCamera> LastCamera;
 };

@@ -287,7 +287,6 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   std::vector<LightMaps> planned;
   std::vector<int> render; // per light slot and cascade: 1 render, 0 keep
   this->PlanLights(renderer, window, state, props, planned, render);
-  this->Statistics.VisibleDepthsUsed = state.VisibleDepthsUsed;
   if (this->MeasureTimes)
   {
     this->Statistics.PlanSeconds = std::chrono::duration<double>(Clock::now() - planStart).count();
@@ -318,7 +317,6 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
 {
   vtkCamera* camera = renderer->GetActiveCamera();
   const double aspect = renderer->GetTiledAspectRatio();
-  state.VisibleDepthsMeasured = false;
   // (Only directional lights' cascades are fitted to the view's depths.)
   bool directional = false;
   vtkCollectionSimpleIterator lit;
@@ -355,7 +353,6 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
     state.VisibleAspect = aspect;
     state.VisibleWindow[0] = samples[0];
     state.VisibleWindow[1] = samples[1];
-    state.VisibleDepthsMeasured = true;
   }
 }
 
@@ -420,7 +417,6 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer, vtkOpenGLR
   {
     this->Planner->ClearVisibleDepths();
   }
-  state.VisibleDepthsUsed = false;
   const int maximumLights = this->MaximumShadowedLights(window);
   int shadowingLights = 0;
   int lightIndex = 0;
@@ -483,7 +479,8 @@ void vtkCascadedShadowMapBakerPass::PlanLight(vtkRenderer* renderer, csmRenderer
   const int count = std::min(kMaxCascades,
     this->Planner->Plan(camera, frame.Aspect, light, props.SceneBounds, frame.ImageHeight,
       frame.Ceiling, frame.MostCascades));
-  state.VisibleDepthsUsed = state.VisibleDepthsUsed || this->Planner->GetVisibleDepthsUsed();
+  this->Statistics.VisibleDepthsUsed =
+    this->Statistics.VisibleDepthsUsed || this->Planner->GetVisibleDepthsUsed();
   if (this->Planner->GetAtlasShrunk())
   {
     this->ReportOnce(false,
@@ -519,9 +516,10 @@ void vtkCascadedShadowMapBakerPass::PlanLight(vtkRenderer* renderer, csmRenderer
   // The kept maps where they serve, also across a change of the count (then in the tile they
   // are in), except with several processes (each would choose its own tiles).
   std::vector<csm::TexelRect> keptTiles;
-  for (const CascadeMap& old : kept ? kept->Cascades : std::vector<CascadeMap>())
+  for (int k = 0; kept && k < kept->GetNumberOfCascades(); ++k)
   {
-    keptTiles.push_back({ old.Tile[0], old.Tile[1], old.Tile[2], old.Tile[3] });
+    const int* tile = kept->Cascades[k].Tile;
+    keptTiles.push_back({ tile[0], tile[1], tile[2], tile[3] });
   }
   const csm::TileAssignment assigned = csm::assignTiles(
     tiles, keptTiles,
@@ -574,9 +572,10 @@ void vtkCascadedShadowMapBakerPass::PlanCascade(const csmFramePlan& frame, vtkCa
 {
   // The map this cascade needs (ErrorTarget) in its tile of the planned atlas.
   this->Planner->GetCascadeTile(c, map.Tile);
-  this->Planner->GetCascadeResolution(c, frame.ImageHeight, RESOLUTION_STEP, map.Resolution);
   int ceiling[2];
   this->Planner->GetCascadeResolutionCeiling(c, ceiling);
+  this->Planner->GetCascadeResolution(
+    c, frame.ImageHeight, RESOLUTION_STEP, ceiling, map.Resolution);
   need[0] = map.Resolution[0];
   need[1] = map.Resolution[1];
   const csm::MapSize most(ceiling[0], ceiling[1]);
