@@ -25,6 +25,8 @@ struct csmRendererMaps
   std::vector<vtkCascadedShadowMapBakerPass::LightMaps> Maps;
   std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPool; ///< one per light slot, reused
   vtkSmartPointer<vtkOpenGLFramebufferObject> FrameBuffer;
+  /// Rows of a map in transit while it moves with the view (csmMapDrawing::MoveMap).
+  vtkSmartPointer<vtkTextureObject> MoveBuffer;
   vtkMTimeType LastInputTime = 0;
   int LastSize[2] = { 0, 0 };
   /// The visible depths last measured (VisibleDepthFit): the camera that measured them (null:
@@ -92,6 +94,7 @@ struct csmFramePlan
   bool Interacting = false;
   bool Changed = true;      ///< every map must be rendered
   bool ScreenSized = false; ///< some caster is drawn as wide as the main view draws it
+  bool MoveMaps = false;    ///< kept maps may move with the view (one process, GL copies images)
   double Border = 0.0;      ///< of the maps while interacting (InteractiveMapBorder)
   double Tolerance = 1.0;   ///< of a kept map's error while interacting
   int Ceiling = 0;          ///< texels a side of the largest map that follows the view

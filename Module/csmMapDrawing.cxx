@@ -20,6 +20,9 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat4x4.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -27,6 +30,9 @@
 
 namespace
 {
+// Rows of a moved map copied at a time (csmMapDrawing::MoveMap's buffer: the atlas's width).
+constexpr int kMoveBandRows = 256;
+
 // The depth pre-pass's offset behind the surfaces (glPolygonOffset factor and units): enough
 // for the same triangle drawn by another shader to pass GL_LEQUAL.
 constexpr float kPrePassOffsetFactor = 1.0f;
@@ -182,10 +188,13 @@ void csmMapDrawing::ClearTiles(
 {
   // Far depth where nothing casts, all before the first draw: a clear between two cascades'
   // draws would wait for the one drawn before it (a software rasterizer maps the texture).
+  // (A map that moves with the view keeps most of its texels: MoveMap clears its strips.)
+  auto moves = [&](int c)
+  { return maps.Cascades[c].Moved[0] != 0 || maps.Cascades[c].Moved[1] != 0; };
   bool all = true;
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
-    all = all && renderCascade[c];
+    all = all && renderCascade[c] && !moves(c);
   }
   if (all)
   {
@@ -194,46 +203,124 @@ void csmMapDrawing::ClearTiles(
     ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
     return;
   }
-  // Some maps kept: only the others' tiles. Clearing the texture's rectangles directly (GL 4.4,
-  // ARB_clear_texture) is several times cheaper on software Mesa than a scissored framebuffer
-  // clear, which it draws as a quad.
-  const bool clearTexture = GLEW_VERSION_4_4 || GLEW_ARB_clear_texture;
-  ostate->vtkglEnable(GL_SCISSOR_TEST);
+  // Some maps kept: only the others' tiles.
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
-    if (!renderCascade[c])
+    if (renderCascade[c] && !moves(c))
     {
-      continue;
-    }
-    // (The map fills the lower left of its tile.)
-    const int tile[4] = { maps.Cascades[c].Tile[0], maps.Cascades[c].Tile[1],
-      maps.Cascades[c].Resolution[0], maps.Cascades[c].Resolution[1] };
-    if (clearTexture)
-    {
-      const GLfloat farDepth = 1.0f;
-      glClearTexSubImage(maps.Atlas->GetHandle(), 0, tile[0], tile[1], 0, tile[2], tile[3], 1,
-        GL_DEPTH_COMPONENT, GL_FLOAT, &farDepth);
-    }
-    else
-    {
-      ostate->vtkglScissor(tile[0], tile[1], tile[2], tile[3]);
-      ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+      csmMapDrawing::ClearMap(ostate, maps, c, nullptr);
     }
   }
 }
 
+void csmMapDrawing::ClearMap(vtkOpenGLState* ostate, const LightMaps& maps, int c, const int* rect)
+{
+  // (The map fills the lower left of its tile.)
+  const vtkCascadedShadowMapBakerPass::CascadeMap& map = maps.Cascades[c];
+  const int area[4] = { map.Tile[0] + (rect ? rect[0] : 0), map.Tile[1] + (rect ? rect[1] : 0),
+    rect ? rect[2] : map.Resolution[0], rect ? rect[3] : map.Resolution[1] };
+  if (area[2] <= 0 || area[3] <= 0)
+  {
+    return;
+  }
+  // Clearing the texture's rectangles directly (GL 4.4, ARB_clear_texture) is several times
+  // cheaper on software Mesa than a scissored framebuffer clear, which it draws as a quad.
+  if (GLEW_VERSION_4_4 || GLEW_ARB_clear_texture)
+  {
+    const GLfloat farDepth = 1.0f;
+    glClearTexSubImage(maps.Atlas->GetHandle(), 0, area[0], area[1], 0, area[2], area[3], 1,
+      GL_DEPTH_COMPONENT, GL_FLOAT, &farDepth);
+  }
+  else
+  {
+    ostate->vtkglEnable(GL_SCISSOR_TEST);
+    ostate->vtkglScissor(area[0], area[1], area[2], area[3]);
+    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+  }
+}
+
+std::vector<csm::TexelRect> csmMapDrawing::MovedStrips(
+  const vtkCascadedShadowMapBakerPass::CascadeMap& map)
+{
+  csm::MapPan pan;
+  pan.s = map.Moved[0];
+  pan.t = map.Moved[1];
+  pan.valid = pan.s != 0 || pan.t != 0;
+  return csm::panStrips(pan, csm::MapSize(map.Resolution[0], map.Resolution[1]));
+}
+
+bool csmMapDrawing::MoveMap(
+  vtkOpenGLRenderWindow* window, vtkTextureObject* buffer, const LightMaps& maps, int c)
+{
+  const vtkCascadedShadowMapBakerPass::CascadeMap& map = maps.Cascades[c];
+  const int s = map.Moved[0], t = map.Moved[1];
+  const int width = map.Resolution[0] - std::abs(s), height = map.Resolution[1] - std::abs(t);
+  if (width <= 0 || height <= 0 || !(GLEW_VERSION_4_3 || GLEW_ARB_copy_image) ||
+    !maps.Atlas->GetHandle())
+  {
+    return false;
+  }
+  // A band of rows of the atlas's width (the same depth format: images copy between them).
+  if (!buffer->GetHandle() || buffer->GetContext() != window ||
+    static_cast<int>(buffer->GetWidth()) < width || buffer->GetHeight() < kMoveBandRows)
+  {
+    buffer->ReleaseGraphicsResources(window);
+    buffer->SetContext(window);
+    if (!buffer->AllocateDepth(std::max(static_cast<unsigned int>(width), maps.Atlas->GetWidth()),
+          static_cast<unsigned int>(kMoveBandRows), vtkTextureObject::Float32))
+    {
+      return false;
+    }
+  }
+  vtkOpenGLClearErrorMacro();
+  // Kept texel (x + s, y + t) goes to (x, y). Rows move down when t > 0: bands from the bottom,
+  // each written only over rows read before it; up when t < 0: from the top.
+  const int fromX = map.Tile[0] + std::max(s, 0), toX = map.Tile[0] + std::max(-s, 0);
+  const int fromY = map.Tile[1] + std::max(t, 0), toY = map.Tile[1] + std::max(-t, 0);
+  const int bands = (height + kMoveBandRows - 1) / kMoveBandRows;
+  for (int b = 0; b < bands; ++b)
+  {
+    const int band = t >= 0 ? b : bands - 1 - b;
+    const int row = band * kMoveBandRows;
+    const int rows = std::min(kMoveBandRows, height - row);
+    glCopyImageSubData(maps.Atlas->GetHandle(), GL_TEXTURE_2D, 0, fromX, fromY + row, 0,
+      buffer->GetHandle(), GL_TEXTURE_2D, 0, 0, 0, 0, width, rows, 1);
+    glCopyImageSubData(buffer->GetHandle(), GL_TEXTURE_2D, 0, 0, 0, 0, maps.Atlas->GetHandle(),
+      GL_TEXTURE_2D, 0, toX, toY + row, 0, width, rows, 1);
+  }
+  if (glGetError() != GL_NO_ERROR)
+  {
+    return false;
+  }
+  for (const csm::TexelRect& strip : csmMapDrawing::MovedStrips(map))
+  {
+    csmMapDrawing::ClearMap(window->GetState(), maps, c, strip.data());
+  }
+  return true;
+}
+
 int csmMapDrawing::DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebufferObject* frameBuffer,
   LightMaps& maps, int c, const csmFrameCasters& props, bool depthClamp, bool distributed,
-  FrameStatistics& statistics)
+  FrameStatistics& statistics, const int* strip)
 {
   vtkOpenGLState* ostate =
     static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow())->GetState();
   // The map fills the lower left of its tile.
   const vtkCascadedShadowMapBakerPass::CascadeMap& map = maps.Cascades[c];
   const int x = map.Tile[0], y = map.Tile[1], w = map.Resolution[0], h = map.Resolution[1];
+  const csm::TexelRect area =
+    strip ? csm::TexelRect{ strip[0], strip[1], strip[2], strip[3] } : csm::TexelRect{ 0, 0, w, h };
   ostate->vtkglViewport(x, y, w, h);
-  ostate->vtkglScissor(x, y, w, h); // ClearTiles gave it far depth
+  ostate->vtkglScissor(x + area[0], y + area[1], area[2], area[3]); // given far depth before
   csmMapDrawing::MainView(renderer, renderer->GetActiveCamera(), maps.Cascades[c].CasterView);
+  // The casters are culled with the light volume of the area drawn.
+  double cullToClip[16];
+  {
+    const glm::dmat4 m =
+      csm::cropToTexels(glm::transpose(glm::make_mat4(map.WorldToMap)), area, csm::MapSize(w, h));
+    const glm::dmat4 rows = glm::transpose(m);
+    std::copy(glm::value_ptr(rows), glm::value_ptr(rows) + 16, cullToClip);
+  }
 
   // Only the casters whose bounds reach this cascade's light volume; for the closed ones, the
   // face to cull (the one turned toward the light). VTK's projections turn a counter-clockwise
@@ -245,7 +332,7 @@ int csmMapDrawing::DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebuffer
   for (const csmFrameCasters::Caster& caster : props.Casters)
   {
     if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
-          maps.Cascades[c].WorldToMap, caster.Bounds.data(), depthClamp))
+          cullToClip, caster.Bounds.data(), depthClamp))
     {
       continue;
     }
@@ -259,7 +346,7 @@ int csmMapDrawing::DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebuffer
       {
         block.Bounds = compact.Bounds[k];
         if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
-              maps.Cascades[c].WorldToMap, block.Bounds.data(), depthClamp))
+              cullToClip, block.Bounds.data(), depthClamp))
         {
           continue;
         }
@@ -295,8 +382,8 @@ int csmMapDrawing::DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebuffer
       cullFaces[caster.Prop] = outward > 0 ? GL_FRONT : GL_BACK;
     }
   }
-  ++statistics.CascadesRendered;
-  statistics.TexelsRendered += double(w) * double(h);
+  statistics.CascadesRendered += strip ? 0 : 1; // (a moved map counts as kept)
+  statistics.TexelsRendered += double(area[2]) * double(area[3]);
   statistics.PropsDrawn += static_cast<int>(drawn.size());
   if (drawn.empty())
   {

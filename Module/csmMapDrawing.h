@@ -6,17 +6,22 @@
 #ifndef csmMapDrawing_h
 #define csmMapDrawing_h
 
+#include "csmReuse.h" // for csm::TexelRect
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkSmartPointer.h"
+
+#include <vector>
 
 class vtkCamera;
 class vtkCascadedShadowCasterPass;
 class vtkMatrix4x4;
 class vtkOpenGLFramebufferObject;
+class vtkOpenGLRenderWindow;
 class vtkOpenGLRenderer;
 class vtkOpenGLState;
 class vtkRenderState;
 class vtkRenderer;
+class vtkTextureObject;
 struct csmFrameCasters;
 
 class csmMapDrawing
@@ -39,12 +44,29 @@ public:
   /// first draw (the framebuffer holds the light's atlas).
   static void ClearTiles(vtkOpenGLState* ostate, const LightMaps& maps, const int* renderCascade);
 
+  /// Gives cascade c's map far depth: all of it, or a rect of it (x, y, width, height in texels
+  /// from the map's lower left).
+  static void ClearMap(vtkOpenGLState* ostate, const LightMaps& maps, int c, const int* rect);
+
+  /// Moves cascade c's map with the view (its Moved texels, csm::panKeptMap): shifts the texels
+  /// it keeps by -Moved through `buffer` (a band of rows at a time, in the order that reads
+  /// each row before it is written over) and gives the strips that came in far depth. False
+  /// where the GL cannot (the map must then be drawn whole).
+  static bool MoveMap(
+    vtkOpenGLRenderWindow* window, vtkTextureObject* buffer, const LightMaps& maps, int c);
+
+  /// The strips a moved map draws (csm::panStrips), in texels of the map.
+  static std::vector<csm::TexelRect> MovedStrips(
+    const vtkCascadedShadowMapBakerPass::CascadeMap& map);
+
   /// Draws the depth of the casters that reach cascade c (and may shadow something in it) into
   /// its map; sets its CasterView to this view. distributed: several processes share the maps
-  /// (every caster may shadow another process's receivers). Returns the props drawn.
+  /// (every caster may shadow another process's receivers). strip: only that rect of the map
+  /// (texels from its lower left; a moved map's, MovedStrips), its casters culled to it; null:
+  /// the whole map. Returns the props drawn.
   int DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebufferObject* frameBuffer,
     LightMaps& maps, int c, const csmFrameCasters& props, bool depthClamp, bool distributed,
-    FrameStatistics& statistics);
+    FrameStatistics& statistics, const int* strip = nullptr);
 
   /// Draws the depth of the casters the view can see into the frame's own depth buffer (kept
   /// for the frame's geometry pass, a little behind the surfaces) and reads its nearest and

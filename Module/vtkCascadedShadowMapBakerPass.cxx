@@ -34,8 +34,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 
 vtkStandardNewMacro(vtkCascadedShadowMapBakerPass);
 vtkCxxSetObjectMacro(vtkCascadedShadowMapBakerPass, Controller, vtkMultiProcessController);
@@ -397,6 +399,10 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer, vtkOpenGLR
   // Tubes, spheres, wide lines and big points are drawn into the maps as wide as the main view
   // draws them: a still frame keeps such a map only for the view it was sized for.
   frame.ScreenSized = props.ScreenSized;
+  // Kept maps move with the view where the GL copies between images (GL 4.3) and one process
+  // draws the maps (each would move its own).
+  frame.MoveMaps =
+    this->MoveKeptMaps && (GLEW_VERSION_4_3 || GLEW_ARB_copy_image) && !this->Distributed();
   // Resolution from need (ErrorTarget), up to the ceiling of this kind of frame; more cascades
   // than fill the atlas with full maps only in a still frame (each is a caster pass; they
   // refine the error where four full maps cannot reach ErrorTarget).
@@ -521,23 +527,38 @@ void vtkCascadedShadowMapBakerPass::PlanLight(vtkRenderer* renderer, csmRenderer
     const int* tile = kept->Cascades[k].Tile;
     keptTiles.push_back({ tile[0], tile[1], tile[2], tile[3] });
   }
+  // (What serves for cascade c: kept map k as it was, or moved with the view.)
+  std::map<std::pair<int, int>, CascadeMap> serving;
   const csm::TileAssignment assigned = csm::assignTiles(
     tiles, keptTiles,
     [&](int c, int k)
-    { return this->KeptMapServes(frame, c, needs[c].data(), maps.Cascades[c], kept->Cascades[k]); },
+    {
+      CascadeMap candidate;
+      if (!this->KeptMapServes(
+            frame, c, needs[c].data(), maps.Cascades[c], kept->Cascades[k], candidate))
+      {
+        return false;
+      }
+      serving[{ c, k }] = candidate;
+      return true;
+    },
     order, !this->Distributed());
   for (int c = 0; c < count; ++c)
   {
     CascadeMap& map = maps.Cascades[c];
     std::copy(assigned.tile[c].begin(), assigned.tile[c].end(), map.Tile);
+    bool moved = false;
     if (assigned.kept[c] >= 0)
     {
-      const CascadeMap& old = kept->Cascades[assigned.kept[c]];
+      const CascadeMap& old = serving.at({ c, assigned.kept[c] });
       std::copy(old.WorldToMap, old.WorldToMap + 16, map.WorldToMap);
       std::copy(old.CasterView, old.CasterView + 18, map.CasterView);
       std::copy(old.Resolution, old.Resolution + 2, map.Resolution);
+      std::copy(old.Moved, old.Moved + 2, map.Moved);
+      moved = map.Moved[0] != 0 || map.Moved[1] != 0;
     }
-    render.push_back(assigned.kept[c] >= 0 ? 0 : 1);
+    // (A moved map is drawn too: its strips.)
+    render.push_back(assigned.kept[c] < 0 || moved ? 1 : 0);
   }
   render.resize(kMaxCascades * (slot + 1), 0);
   if (count > 0)
@@ -610,8 +631,8 @@ void vtkCascadedShadowMapBakerPass::PlanCascade(const csmFramePlan& frame, vtkCa
 #endif
 }
 
-bool vtkCascadedShadowMapBakerPass::KeptMapServes(
-  const csmFramePlan& frame, int c, const int need[2], const CascadeMap& map, const CascadeMap& old)
+bool vtkCascadedShadowMapBakerPass::KeptMapServes(const csmFramePlan& frame, int c,
+  const int need[2], const CascadeMap& map, const CascadeMap& old, CascadeMap& moved)
 {
   // A kept map serves if it has the texels this view needs (or all its tile holds, where the
   // GL's texture size limit made the tiles smaller than Resolution): while the user interacts,
@@ -625,13 +646,28 @@ bool vtkCascadedShadowMapBakerPass::KeptMapServes(
   {
     return false;
   }
-  const double ratio = this->Planner->CompareKeptMap(
-    c, old.WorldToMap, kReuseMarginTexels, std::min(old.Resolution[0], old.Resolution[1]));
-  return frame.Interacting
-    ? old.Resolution[0] >= std::min(map.Resolution[0], map.Tile[2]) &&
-      old.Resolution[1] >= std::min(map.Resolution[1], map.Tile[3]) && ratio <= frame.Tolerance
-    : csm::keptMapServes(ratio, csm::MapSize(old.Resolution[0], old.Resolution[1]),
-        csm::MapSize(std::min(need[0], map.Tile[2]), std::min(need[1], map.Tile[3])));
+  auto serves = [&](const double* worldToMap)
+  {
+    const double ratio = this->Planner->CompareKeptMap(
+      c, worldToMap, kReuseMarginTexels, std::min(old.Resolution[0], old.Resolution[1]));
+    return frame.Interacting
+      ? old.Resolution[0] >= std::min(map.Resolution[0], map.Tile[2]) &&
+        old.Resolution[1] >= std::min(map.Resolution[1], map.Tile[3]) && ratio <= frame.Tolerance
+      : csm::keptMapServes(ratio, csm::MapSize(old.Resolution[0], old.Resolution[1]),
+          csm::MapSize(std::min(need[0], map.Tile[2]), std::min(need[1], map.Tile[3])));
+  };
+  moved = old;
+  moved.Moved[0] = moved.Moved[1] = 0;
+  if (serves(old.WorldToMap))
+  {
+    return true;
+  }
+  // Where it no longer serves as it is, the map moved with the view by whole texels (its
+  // content shifted, the strips that came in drawn): judged at this view like any kept map.
+  // (Not a map of screen-sized casters, sized for one view only.)
+  return frame.MoveMaps && !frame.ScreenSized && old.Kind == MapKind::FollowsView &&
+    this->Planner->PanKeptMap(c, old.WorldToMap, old.Resolution, moved.WorldToMap, moved.Moved) &&
+    serves(moved.WorldToMap);
 }
 
 void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
@@ -686,6 +722,10 @@ void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
   bool any = false;
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
+    if (reallocated) // (nothing kept to move: drawn whole)
+    {
+      maps.Cascades[c].Moved[0] = maps.Cascades[c].Moved[1] = 0;
+    }
     renderCascade[c] = renderCascade[c] || reallocated;
     any = any || renderCascade[c];
   }
@@ -734,6 +774,24 @@ void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
     since = now;
   };
   csmMapDrawing::ClearTiles(ostate, maps, renderCascade);
+  // The maps that move with the view: their kept texels shifted, the strips that came in
+  // cleared (drawn whole where the move fails).
+  for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
+  {
+    CascadeMap& map = maps.Cascades[c];
+    if (renderCascade[c] && (map.Moved[0] != 0 || map.Moved[1] != 0))
+    {
+      if (!state.MoveBuffer)
+      {
+        state.MoveBuffer = vtkSmartPointer<vtkTextureObject>::New();
+      }
+      if (!csmMapDrawing::MoveMap(window, state.MoveBuffer, maps, c))
+      {
+        map.Moved[0] = map.Moved[1] = 0;
+        csmMapDrawing::ClearMap(ostate, maps, c, nullptr);
+      }
+    }
+  }
   if (measure)
   {
     lap(this->Statistics.ClearSeconds);
@@ -742,7 +800,22 @@ void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
   glEnable(GL_PROGRAM_POINT_SIZE); // points sized as the main view draws them
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
-    if (renderCascade[c])
+    const CascadeMap& map = maps.Cascades[c];
+    if (renderCascade[c] && (map.Moved[0] != 0 || map.Moved[1] != 0))
+    {
+      ++this->Statistics.CascadesMoved; // (kept in part: its strips drawn)
+      for (const csm::TexelRect& strip : csmMapDrawing::MovedStrips(map))
+      {
+        this->NumberOfRenderedProps += this->Drawing->DrawCascade(renderer, state.FrameBuffer, maps,
+          c, props, depthClamp, this->Distributed(), this->Statistics, strip.data());
+      }
+      glFlush();
+      if (measure)
+      {
+        lap(this->Statistics.CascadeSeconds[c]);
+      }
+    }
+    else if (renderCascade[c])
     {
       --this->Statistics.CascadesKept;
       this->NumberOfRenderedProps += this->Drawing->DrawCascade(renderer, state.FrameBuffer, maps,
@@ -799,6 +872,10 @@ void vtkCascadedShadowMapBakerPass::ReleaseGraphicsResources(vtkWindow* w)
     if (state.FrameBuffer)
     {
       state.FrameBuffer->ReleaseGraphicsResources(w ? w : state.Window);
+    }
+    if (state.MoveBuffer)
+    {
+      state.MoveBuffer->ReleaseGraphicsResources(w ? w : state.Window);
     }
     state.Renderer = nullptr; // forgotten at the next Render()
   }
@@ -865,6 +942,7 @@ void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MapReuseTolerance: " << this->MapReuseTolerance << "\n";
   os << indent << "InteractiveMapBorder: " << this->InteractiveMapBorder << "\n";
   os << indent << "MapSlack: " << this->MapSlack << "\n";
+  os << indent << "MoveKeptMaps: " << (this->MoveKeptMaps ? "on" : "off") << "\n";
   os << indent << "MeasureTimes: " << (this->MeasureTimes ? "on" : "off") << "\n";
   os << indent << "CullClosedCasters: " << (this->CullClosedCasters ? "on" : "off") << "\n";
   os << indent << "VisibleDepthFit: " << (this->VisibleDepthFit ? "on" : "off") << "\n";

@@ -89,6 +89,14 @@ public:
   vtkSetFiniteClampMacro(MapSlack, double, 0.0, 3.0);
   vtkGetMacro(MapSlack, double);
 
+  /// A kept map that no longer serves where it is moves with the view by whole texels where
+  /// the moved map serves (the same test, at this view): its texels are shifted and only the
+  /// strips that came in are drawn (csm::panKeptMap). Not with several processes, nor for
+  /// screen-sized casters; needs GL 4.3's image copies. On.
+  vtkSetMacro(MoveKeptMaps, bool);
+  vtkGetMacro(MoveKeptMaps, bool);
+  vtkBooleanMacro(MoveKeptMaps, bool);
+
   /// Closed casters (csm::classifySurface) drawn with only their faces turned away from the
   /// light, at their own depth: the exit layer shadows what the solid does (Wang & Molnar 1994)
   /// with half the fragments. Open, clipped, wireframe or user-culled props keep both sides. On.
@@ -168,6 +176,10 @@ public:
     int Resolution[2] = {};     ///< texels of its map, in the lower left of its tile
     bool Turned = false;        ///< turned a quarter to its tile (csm::orientToTile)
     double CasterView[18] = {}; ///< the view its screen-sized casters were sized for
+    /// Texels its window moved along s and t in this frame's render, the rest of the earlier
+    /// map kept (a map that follows the view, moved with it: csm::panKeptMap); 0, 0: drawn whole
+    /// or kept as it was.
+    int Moved[2] = {};
 #if CSM_COMPARISON_TECHNIQUES
     double Planes[16] = {}; ///< a face partition's 4 world half-spaces
     double DepthW = 0.0;    ///< a camera space map's smallest w (0: none)
@@ -218,7 +230,8 @@ public:
   struct FrameStatistics
   {
     int CascadesRendered = 0, CascadesKept = 0;
-    int PropsDrawn = 0;                            ///< props (or block actors) drawn into maps
+    int CascadesMoved = 0; ///< kept maps moved with the view (counted as kept; their strips drawn)
+    int PropsDrawn = 0;    ///< props (or block actors) drawn into maps
     double TexelsRendered = 0.0, CellsDrawn = 0.0; ///< of the rendered maps
     int ClosedCasters = 0;                         ///< drawn with their exit layer only
     int CompactCasters = 0, BlocksDrawn = 0;       ///< casters from compact blocks, blocks drawn
@@ -255,7 +268,7 @@ protected:
   void PlanCascade(const csmFramePlan& frame, vtkCamera* camera, const csmRendererMaps& state,
     int c, bool smoothPath, CascadeMap& map, int need[2]);
   bool KeptMapServes(const csmFramePlan& frame, int c, const int need[2], const CascadeMap& map,
-    const CascadeMap& old);
+    const CascadeMap& old, CascadeMap& moved);
   void RenderAtlases(vtkOpenGLRenderer* renderer, vtkOpenGLRenderWindow* window,
     csmRendererMaps& state, const csmFrameCasters& props, std::vector<LightMaps>& planned,
     std::vector<int>& render);
@@ -277,7 +290,7 @@ protected:
   double PolygonOffset[2] = { 1.1, 2.0 };
   double MapReuseTolerance = 1.25, InteractiveMapBorder = 0.2, MapSlack = 0.44;
   bool MeasureTimes = false, CullClosedCasters = true, CompactCasters = true;
-  bool CullCastersWithoutReceivers = true, VisibleDepthFit = true;
+  bool CullCastersWithoutReceivers = true, VisibleDepthFit = true, MoveKeptMaps = true;
 
   std::vector<std::unique_ptr<csmRendererMaps>> Renderers;
   vtkWeakPointer<vtkRenderer> LastRenderer;

@@ -533,6 +533,33 @@ double vtkCascadedShadowMapPlanner::CompareKeptMap(
   return reuse.covers ? reuse.errorRatio : std::numeric_limits<double>::infinity();
 }
 
+bool vtkCascadedShadowMapPlanner::PanKeptMap(int i, const double keptWorldToClip[16],
+  const int resolution[2], double movedWorldToClip[16], int texels[2]) const
+{
+  const auto& cascades = this->Internal->Setup.cascades;
+  if (!keptWorldToClip || !resolution || !movedWorldToClip || !texels || i < 0 ||
+    i >= static_cast<int>(cascades.size()))
+  {
+    return false;
+  }
+  const csm::MapPan pan = csm::panKeptMap(
+    fromRowMajor(keptWorldToClip), cascades[i].wsBody, csm::MapSize(resolution[0], resolution[1]));
+  if (!pan.valid)
+  {
+    return false;
+  }
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int column = 0; column < 4; ++column)
+    {
+      movedWorldToClip[4 * row + column] = pan.wsToClip[column][row]; // glm is column-major
+    }
+  }
+  texels[0] = pan.s;
+  texels[1] = pan.t;
+  return true;
+}
+
 bool vtkCascadedShadowMapPlanner::IsSmallCameraStep(
   vtkCamera* before, vtkCamera* now, double aspect, double depth)
 {

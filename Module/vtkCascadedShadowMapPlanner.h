@@ -382,6 +382,15 @@ public:
   double CompareKeptMap(
     int i, const double keptWorldToClip[16], double marginTexels, int resolution) const;
 
+  /**
+   * The move of a map rendered earlier with keptWorldToClip (row-major), of resolution[2]
+   * texels, that centres cascade i's receiver body in it, in whole texels (csm::panKeptMap):
+   * texels[2] and the moved matrix (row-major), which CompareKeptMap judges as any kept map.
+   * False where no move keeps part of the map (or none is needed).
+   */
+  bool PanKeptMap(int i, const double keptWorldToClip[16], const int resolution[2],
+    double movedWorldToClip[16], int texels[2]) const;
+
   /// Did the camera take a small step from `before` (a smooth path: csm::smallCameraStep),
   /// measured against a view depth (the far end of a cascade)?
   static bool IsSmallCameraStep(vtkCamera* before, vtkCamera* now, double aspect, double depth);

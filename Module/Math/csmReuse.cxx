@@ -141,6 +141,92 @@ MapReuse compareKeptMap(const glm::dmat4& wsKeptToClip, const Cascade& fresh, co
   return reuse;
 }
 
+glm::dmat4 panMatrix(const glm::dmat4& wsToClip, int s, int t, const MapSize& size)
+{
+  if (size.width <= 0 || size.height <= 0)
+  {
+    return wsToClip;
+  }
+  // ndc' = ndc - 2 s / width: in clip coordinates x' = x - (2 s / width) w.
+  glm::dmat4 move(1.0);
+  move[3][0] = -2.0 * s / size.width;
+  move[3][1] = -2.0 * t / size.height;
+  return move * wsToClip;
+}
+
+MapPan panKeptMap(
+  const glm::dmat4& wsKeptToClip, const std::vector<glm::dvec3>& wsBody, const MapSize& size)
+{
+  MapPan pan;
+  if (wsBody.empty() || size.width <= 0 || size.height <= 0)
+  {
+    return pan;
+  }
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  glm::dvec2 ndcMin(kInf), ndcMax(-kInf);
+  for (const glm::dvec3& wsPoint : wsBody)
+  {
+    const glm::dvec4 h = wsKeptToClip * glm::dvec4(wsPoint, 1.0);
+    if (!(h.w > 0.0) || !std::isfinite(h.x) || !std::isfinite(h.y))
+    {
+      return pan;
+    }
+    const glm::dvec2 ndc = glm::dvec2(h) / h.w;
+    ndcMin = glm::min(ndcMin, ndc);
+    ndcMax = glm::max(ndcMax, ndc);
+  }
+  // The body's centre in texels from the map's centre.
+  const glm::dvec2 centre = 0.5 * (ndcMin + ndcMax);
+  const double s = std::round(0.5 * centre.x * size.width);
+  const double t = std::round(0.5 * centre.y * size.height);
+  if (!(std::abs(s) < size.width && std::abs(t) < size.height) || (s == 0.0 && t == 0.0))
+  {
+    return pan;
+  }
+  pan.s = static_cast<int>(s);
+  pan.t = static_cast<int>(t);
+  pan.wsToClip = panMatrix(wsKeptToClip, pan.s, pan.t, size);
+  pan.valid = true;
+  return pan;
+}
+
+std::vector<TexelRect> panStrips(const MapPan& pan, const MapSize& size)
+{
+  std::vector<TexelRect> strips;
+  const int s = std::abs(pan.s), t = std::abs(pan.t);
+  if (!pan.valid || s >= size.width || t >= size.height)
+  {
+    return strips;
+  }
+  if (s > 0)
+  {
+    strips.push_back({ pan.s > 0 ? size.width - s : 0, 0, s, size.height });
+  }
+  if (t > 0)
+  {
+    strips.push_back({ pan.s < 0 ? s : 0, pan.t > 0 ? size.height - t : 0, size.width - s, t });
+  }
+  return strips;
+}
+
+glm::dmat4 cropToTexels(const glm::dmat4& wsToClip, const TexelRect& rect, const MapSize& size)
+{
+  if (size.width <= 0 || size.height <= 0 || rect[2] <= 0 || rect[3] <= 0)
+  {
+    return wsToClip;
+  }
+  // The rect's ndc range [lo, hi] to [-1, 1]: ndc' = (ndc - centre) * 2 / (hi - lo).
+  glm::dmat4 crop(1.0);
+  const double scaleX = double(size.width) / rect[2], scaleY = double(size.height) / rect[3];
+  const double centreX = (2.0 * rect[0] + rect[2]) / size.width - 1.0;
+  const double centreY = (2.0 * rect[1] + rect[3]) / size.height - 1.0;
+  crop[0][0] = scaleX;
+  crop[1][1] = scaleY;
+  crop[3][0] = -centreX * scaleX;
+  crop[3][1] = -centreY * scaleY;
+  return crop * wsToClip;
+}
+
 bool rectInside(const TexelRect& inner, const TexelRect& outer)
 {
   return inner[0] >= outer[0] && inner[1] >= outer[1] &&

@@ -65,6 +65,38 @@ MapReuse compareKeptMap(const glm::dmat4& wsKeptToClip, const Cascade& fresh, co
 
 /// A rectangle of texels in an atlas: x, y (from the lower left), width, height.
 using TexelRect = std::array<int, 4>;
+
+/// A kept map moved across its own texel grid with the view: its window moved by whole texels
+/// (s, t), so that what it holds stays valid shifted by (-s, -t) texels and only the strips that
+/// came into it are drawn afresh (the clipmap's update of a moved window, Tanner et al. 1998).
+/// It serves where compareKeptMap and keptMapServes accept its matrix, as any kept map.
+struct MapPan
+{
+  int s = 0, t = 0;         ///< texels the window moved along the map's s and t
+  glm::dmat4 wsToClip{ 1 }; ///< the kept map's matrix, moved
+  bool valid = false;       ///< a move that keeps part of the map (not 0, 0; less than the map)
+};
+
+/// The kept matrix moved by (s, t) texels of a map of `size`: a point at texel (i, j) of the
+/// kept map lies at texel (i - s, j - t) of the moved one (a translation in clip x and y, times
+/// w: exact for a warped map as for an orthographic one).
+glm::dmat4 panMatrix(const glm::dmat4& wsToClip, int s, int t, const MapSize& size);
+
+/// The move of a kept map (wsKeptToClip, `size` texels) that centres the fresh body (world
+/// points) in it, in whole texels. Not valid where a body point lies behind the map's
+/// projection centre, the body is centred already, or nothing of the map would stay.
+MapPan panKeptMap(
+  const glm::dmat4& wsKeptToClip, const std::vector<glm::dvec3>& wsBody, const MapSize& size);
+
+/// The strips a moved map draws afresh, in texels of the map (from its lower left): the columns
+/// its s move brought in, over the whole height, then the rows its t move brought in, over the
+/// rest of the width. Empty for a move that is not valid.
+std::vector<TexelRect> panStrips(const MapPan& pan, const MapSize& size);
+
+/// The matrix that draws only the texels of `rect` of a map of `size` (viewport: the rect):
+/// wsToClip with the rect's share of clip x and y stretched to [-1, 1].
+glm::dmat4 cropToTexels(const glm::dmat4& wsToClip, const TexelRect& rect, const MapSize& size);
+
 /// Does inner lie inside outer (edges may touch)?
 bool rectInside(const TexelRect& inner, const TexelRect& outer);
 

@@ -11,8 +11,10 @@
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
+#include "vtkTextureObject.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkWindowToImageFilter.h"
+#include "vtk_glew.h"
 
 #include <cstdlib>
 
@@ -205,6 +207,33 @@ void BoxOverPlane::AddBlockBehindTheCamera()
   mapper->SetInputConnection(both->GetOutputPort());
   this->Box->SetMapper(mapper);
   this->Renderer->ResetCameraClippingRange();
+}
+
+std::vector<float> CascadeDepths(
+  vtkRenderWindow* window, const vtkCascadedShadowMapBakerPass::LightMaps& maps, int c)
+{
+  window->MakeCurrent();
+  vtkTextureObject* atlas = maps.Atlas;
+  const int width = static_cast<int>(atlas->GetWidth());
+  const int height = static_cast<int>(atlas->GetHeight());
+  std::vector<float> all(static_cast<size_t>(width) * height);
+  atlas->Bind();
+  glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, all.data());
+  atlas->Deactivate();
+  // The map fills the lower left of its tile.
+  const int x = maps.Cascades[c].Tile[0], y = maps.Cascades[c].Tile[1];
+  const int w = maps.Cascades[c].Resolution[0], h = maps.Cascades[c].Resolution[1];
+  if (x + w > width || y + h > height)
+  {
+    return {};
+  }
+  std::vector<float> tile;
+  for (int row = y; row < y + h; ++row)
+  {
+    tile.insert(tile.end(), all.begin() + static_cast<size_t>(row) * width + x,
+      all.begin() + static_cast<size_t>(row) * width + x + w);
+  }
+  return tile;
 }
 
 } // namespace csmTest

@@ -5,6 +5,7 @@
 
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
+#include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCommand.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -77,6 +78,10 @@ struct BoxOverPlaneSettings
   double CameraPosition[3] = { 0, 14, 16 };
   double CameraFocalPoint[3] = { 0, 0, 0 }; ///< view up +y
 };
+
+/// One cascade's depth texels (rows from the bottom), read back from its light's atlas.
+std::vector<float> CascadeDepths(
+  vtkRenderWindow* window, const vtkCascadedShadowMapBakerPass::LightMaps& maps, int c);
 
 /// A box over a ground plane, lit by one directional scene light from above (no automatic
 /// lights): the box's shadow falls on the plane. Offscreen, no multisampling.

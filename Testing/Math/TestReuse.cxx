@@ -11,6 +11,7 @@
 #include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -247,4 +248,203 @@ TEST(Reuse, KeptMapsStayInTheirTilesAcrossACountChange)
   EXPECT_EQ(asked, 0);
   EXPECT_TRUE(csm::rectInside(three[2], one[0]));
   EXPECT_FALSE(csm::rectInside(one[0], three[2]));
+}
+
+namespace
+{
+/// Texel coordinates (from the map's lower left) of a world point in a map of `size`.
+glm::dvec2 texelOf(const glm::dmat4& wsToClip, const glm::dvec3& wsPoint, const csm::MapSize& size)
+{
+  const glm::dvec4 h = wsToClip * glm::dvec4(wsPoint, 1.0);
+  return { 0.5 * (h.x / h.w + 1.0) * size.width, 0.5 * (h.y / h.w + 1.0) * size.height };
+}
+}
+
+// A moved map holds the kept map's texels shifted by whole texels, warped or not: a world point
+// at texel (i, j) of the kept map lies at (i - s, j - t) of the moved one, at the same depth.
+TEST(Reuse, AMovedMapIsTheKeptMapShiftedByWholeTexels)
+{
+  csm::Bounds scene;
+  scene.wsMin = { -10, 0, -10 };
+  scene.wsMax = { 10, 2, 10 };
+  csm::Camera cam = csmMathTest::camera(2.0, 60.0, 40.0, 4.0 / 3.0);
+  cam.wsPosition = { 0, 6, 24 };
+  cam.wsDirection = { 0, -0.3, -1 };
+  const auto s = csmMathTest::settings(csm::WarpMode::Generalized, csm::SplitScheme::Adaptive, 1);
+  const auto setup = csm::computeShadowSetup(cam, glm::dvec3(-0.3, -1.0, -0.4), &scene, s);
+  ASSERT_EQ(setup.status, csm::Status::Ok);
+  const glm::dmat4 kept = setup.cascades[0].wsToClip;
+  ASSERT_NE(kept[3][3], 1.0); // warped: a perspective map
+  const csm::MapSize size(1536, 1024);
+  const glm::dmat4 moved = csm::panMatrix(kept, 37, -12, size);
+  for (const glm::dvec3& p : setup.cascades[0].wsBody)
+  {
+    const glm::dvec2 before = texelOf(kept, p, size), after = texelOf(moved, p, size);
+    EXPECT_NEAR(after.x, before.x - 37.0, 1e-6);
+    EXPECT_NEAR(after.y, before.y + 12.0, 1e-6);
+    const glm::dvec4 a = kept * glm::dvec4(p, 1.0), b = moved * glm::dvec4(p, 1.0);
+    EXPECT_NEAR(a.z / a.w, b.z / b.w, 1e-12);
+  }
+  // A crop to a strip of the moved map sends the strip's corners to the corners of clip space.
+  const csm::TexelRect strip = { 1499, 0, 37, 1024 };
+  const glm::dmat4 cropped = csm::cropToTexels(moved, strip, size);
+  const glm::dvec3 p = setup.cascades[0].wsBody[0];
+  const glm::dvec2 inMap = texelOf(moved, p, size);
+  const glm::dvec2 inStrip = texelOf(cropped, p, csm::MapSize(strip[2], strip[3]));
+  EXPECT_NEAR(inStrip.x, inMap.x - strip[0], 1e-6);
+  EXPECT_NEAR(inStrip.y, inMap.y - strip[1], 1e-6);
+}
+
+// The move that centres a fresh body in a kept map, and the strips it draws: together with the
+// kept part they cover the map once.
+TEST(Reuse, AMoveCentresTheBodyAndDrawsOnlyTheStripsThatCameIn)
+{
+  const glm::dmat4 ortho = glm::dmat4(1.0); // world x, y = clip x, y
+  const csm::MapSize size(1000, 800);
+  // A body whose centre lies at ndc (0.1, -0.05): 50 texels right, 20 down.
+  const std::vector<glm::dvec3> body = { { -0.2, -0.3, 0.0 }, { 0.4, 0.2, 0.5 } };
+  const csm::MapPan pan = csm::panKeptMap(ortho, body, size);
+  ASSERT_TRUE(pan.valid);
+  EXPECT_EQ(pan.s, 50);
+  EXPECT_EQ(pan.t, -20);
+  for (const glm::dvec3& p : body)
+  {
+    const glm::dvec4 h = pan.wsToClip * glm::dvec4(p, 1.0);
+    EXPECT_NEAR(h.x, p.x - 0.1, 1e-12);
+    EXPECT_NEAR(h.y, p.y + 0.05, 1e-12);
+  }
+  const std::vector<csm::TexelRect> strips = csm::panStrips(pan, size);
+  ASSERT_EQ(strips.size(), 2u);
+  EXPECT_EQ(strips[0], (csm::TexelRect{ 950, 0, 50, 800 })); // the columns that came in
+  EXPECT_EQ(strips[1], (csm::TexelRect{ 0, 0, 950, 20 }));   // the rows, beside them
+  // Each texel once: drawn in a strip or kept (shifted from inside the kept map).
+  std::vector<int> hits(size_t(size.width) * size.height, 0);
+  for (const csm::TexelRect& r : strips)
+  {
+    for (int y = r[1]; y < r[1] + r[3]; ++y)
+      for (int x = r[0]; x < r[0] + r[2]; ++x)
+        ++hits[size_t(y) * size.width + x];
+  }
+  for (int y = 0; y < size.height; ++y)
+  {
+    for (int x = 0; x < size.width; ++x)
+    {
+      const int keptX = x + pan.s, keptY = y + pan.t;
+      hits[size_t(y) * size.width + x] +=
+        keptX >= 0 && keptX < size.width && keptY >= 0 && keptY < size.height;
+    }
+  }
+  EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), long(hits.size()));
+  // No move: centred already, behind a perspective map's centre, farther than the map, empty.
+  EXPECT_FALSE(csm::panKeptMap(ortho, { { -0.5, -0.5, 0 }, { 0.5, 0.5, 0 } }, size).valid);
+  glm::dmat4 perspective(1.0);
+  perspective[2][3] = -1.0; // w = -z
+  perspective[3][3] = 0.0;
+  EXPECT_FALSE(csm::panKeptMap(perspective, { { 0.1, 0.1, 1.0 } }, size).valid);
+  EXPECT_FALSE(csm::panKeptMap(ortho, { { 2.5, 0.0, 0.0 } }, size).valid);
+  EXPECT_FALSE(csm::panKeptMap(ortho, {}, size).valid);
+  EXPECT_FALSE(csm::panKeptMap(ortho, body, csm::MapSize(0)).valid);
+  EXPECT_TRUE(csm::panStrips(csm::MapPan(), size).empty());
+}
+
+// A camera that moves sideways (a strafe past a structure): a slacked map that stays where it
+// was stops covering the body within a few frames; moved with the view by whole texels it
+// serves on (its error at each view read by the error model, as any kept map's), and only the
+// strips that came in are drawn.
+namespace
+{
+struct SidewaysWalk
+{
+  int StillServed = 0, MovingServed = 0, Moves = 0;
+  double StripShare = 0.0; ///< texels drawn in strips over a whole map's, a move
+};
+
+SidewaysWalk WalkSideways(csm::WarpMode warp, int frames)
+{
+  SidewaysWalk result;
+  csm::Bounds scene;
+  scene.wsMin = { -40, 0, -40 };
+  scene.wsMax = { 40, 3, 40 };
+  csm::Camera cam = csmMathTest::camera(2.0, 60.0, 12.0, 4.0 / 3.0);
+  cam.wsPosition = { 0, 4, 18 };
+  cam.wsDirection = { 0, -0.35, -1 };
+  const glm::dvec3 light(0.0, -1.0, -0.4); // (across the move: the depths stay)
+  const auto s = csmMathTest::settings(warp, csm::SplitScheme::Adaptive, 1);
+  const double imageHeight = 480.0, target = 2.0;
+  const csm::MapSize most(8192); // (room for the slack: the need is below the ceiling)
+  const auto first = csm::computeShadowSetup(cam, light, &scene, s);
+  EXPECT_EQ(first.status, csm::Status::Ok);
+  const csm::MapSize need =
+    csm::resolutionForError(first.cascades[0], imageHeight, target, 64, most);
+  const csm::SlackedMap slacked = csm::slackedMap(need, most, 0.44);
+  EXPECT_LT(need.width, most.width);
+  const glm::dmat4 still = csm::withBorder(first.cascades[0].wsToClip, slacked.border);
+  glm::dmat4 moving = still;
+  int& stillServed = result.StillServed;
+  int& movingServed = result.MovingServed;
+  double stripTexels = 0.0;
+  for (int frame = 1; frame <= frames; ++frame)
+  {
+    csm::Camera now = cam;
+    now.wsPosition.x += 0.25 * frame;
+    const auto fresh = csm::computeShadowSetup(now, light, &scene, s);
+    EXPECT_EQ(fresh.status, csm::Status::Ok);
+    const csm::MapSize freshNeed =
+      csm::resolutionForError(fresh.cascades[0], imageHeight, target, 64, most);
+    const double margin = 2.0 * 2.0 / slacked.size.width;
+    auto serves = [&](const glm::dmat4& m)
+    {
+      const auto reuse =
+        csm::compareKeptMap(m, fresh.cascades[0], now, glm::normalize(light), true, margin);
+      return reuse.covers && csm::keptMapServes(reuse.errorRatio, slacked.size, freshNeed);
+    };
+    stillServed += serves(still) && stillServed == frame - 1;
+    if (movingServed != frame - 1)
+    {
+      continue;
+    }
+    if (serves(moving))
+    {
+      ++movingServed;
+      continue;
+    }
+    const csm::MapPan pan = csm::panKeptMap(moving, fresh.cascades[0].wsBody, slacked.size);
+    if (pan.valid && serves(pan.wsToClip))
+    {
+      moving = pan.wsToClip;
+      ++movingServed;
+      ++result.Moves;
+      for (const csm::TexelRect& r : csm::panStrips(pan, slacked.size))
+      {
+        stripTexels += double(r[2]) * r[3];
+      }
+    }
+  }
+  result.StripShare = result.Moves > 0
+    ? stripTexels / (result.Moves * double(slacked.size.width) * slacked.size.height)
+    : 0.0;
+  return result;
+}
+} // namespace
+
+TEST(Reuse, AMovedOrthographicMapServesACameraMovingSideways)
+{
+  // Orthographic: the move is exact, the map serves every frame.
+  const SidewaysWalk walk = WalkSideways(csm::WarpMode::None, 30);
+  EXPECT_GE(walk.StillServed, 1);
+  EXPECT_LT(walk.StillServed, 10);
+  EXPECT_EQ(walk.MovingServed, 30);
+  EXPECT_GT(walk.Moves, 2);
+  EXPECT_LT(walk.StripShare, 0.3); // a small part of drawing the map at every move
+  EXPECT_GT(walk.StripShare, 0.0);
+}
+
+TEST(Reuse, AMovedWarpedMapServesACameraMovingSidewaysLongerThanAKeptOne)
+{
+  // Warped: a move shears the body in the map (its x scale falls with the distance from the
+  // warp's centre), and the error model ends the moves a few frames later.
+  const SidewaysWalk walk = WalkSideways(csm::WarpMode::Generalized, 30);
+  EXPECT_GE(walk.StillServed, 1);
+  EXPECT_GT(walk.MovingServed, walk.StillServed);
+  EXPECT_GT(walk.Moves, 0);
 }

@@ -303,31 +303,6 @@ BoxOverPlaneSettings longGroundSeenLow(double lightX, double lightY, double ligh
   return settings;
 }
 
-/// One cascade's depth texels, read back from its light's atlas (the window's context current).
-std::vector<float> cascadeDepths(
-  vtkRenderWindow* window, const vtkCascadedShadowMapBakerPass::LightMaps& maps, int c)
-{
-  window->MakeCurrent();
-  vtkTextureObject* atlas = maps.Atlas;
-  const int width = static_cast<int>(atlas->GetWidth());
-  const int height = static_cast<int>(atlas->GetHeight());
-  std::vector<float> all(static_cast<size_t>(width) * height);
-  atlas->Bind();
-  glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, all.data());
-  atlas->Deactivate();
-  // The map fills the lower left of its tile.
-  const int x = maps.Cascades[c].Tile[0], y = maps.Cascades[c].Tile[1];
-  const int w = maps.Cascades[c].Resolution[0], h = maps.Cascades[c].Resolution[1];
-  EXPECT_LE(x + w, width);
-  EXPECT_LE(y + h, height);
-  std::vector<float> tile;
-  for (int row = y; row < y + h; ++row)
-  {
-    tile.insert(tile.end(), all.begin() + static_cast<size_t>(row) * width + x,
-      all.begin() + static_cast<size_t>(row) * width + x + w);
-  }
-  return tile;
-}
 } // namespace
 
 // A cascade re-rendered while others are kept begins from far depth: its tile holds exactly what
@@ -391,8 +366,8 @@ TEST(Passes, AMapReRenderedBesideKeptOnesHoldsOnlyItsOwnCasters)
       {
         continue;
       }
-      const std::vector<float> kept = cascadeDepths(keep.Window, mk, c);
-      const std::vector<float> reference = cascadeDepths(fresh.Window, mf, c);
+      const std::vector<float> kept = csmTest::CascadeDepths(keep.Window, mk, c);
+      const std::vector<float> reference = csmTest::CascadeDepths(fresh.Window, mf, c);
       ASSERT_EQ(kept.size(), reference.size());
       long differing = 0, covered = 0;
       for (size_t k = 0; k < kept.size(); ++k)
