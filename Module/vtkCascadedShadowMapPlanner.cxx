@@ -387,10 +387,12 @@ void vtkCascadedShadowMapPlanner::GetCascadeMatrix(
     matrix->Identity();
     return;
   }
-  // (A scene-fitted map holds the whole scene: no border, so that its matrix stays.)
+  // (A scene-fitted map holds the whole scene: no border, so that its matrix stays; and no
+  // snap, which would move its edge inside the scene by up to half a texel, so that no view
+  // would find its body covered: it is fixed in the world, its texels do not crawl.)
   const csm::Cascade& cascade = this->Internal->Setup.cascades[i];
   glm::dmat4 m = csm::withBorder(cascade.wsToClip, cascade.sceneFitted ? 0.0 : border);
-  if (this->WarpMode == WARP_NONE && resolution)
+  if (this->WarpMode == WARP_NONE && resolution && !cascade.sceneFitted)
   {
     m = csm::snapToTexels(m, csm::MapSize(resolution[0], resolution[1]));
   }

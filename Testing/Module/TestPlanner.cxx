@@ -304,3 +304,45 @@ TEST(Planner, PlansTheAtlasWithTheCascades)
     EXPECT_LE(resolution[1], 1024);
   }
 }
+
+// A map serves the very view it was planned for, orthographic or warped, scene-fitted or not
+// (an orthographic map that follows the view is snapped to its texel grid within its room; a
+// scene-fitted one is not snapped, or its edge would cut into the scene).
+TEST(Planner, EveryMapServesTheViewItWasPlannedFor)
+{
+  LitScene scene;
+  for (int warp :
+    { vtkCascadedShadowMapPlanner::WARP_NONE, vtkCascadedShadowMapPlanner::WARP_GENERALIZED })
+  {
+    vtkNew<vtkCascadedShadowMapPlanner> planner;
+    planner->SetWarpMode(warp);
+    planner->SetAtlasResolution(2048);
+    // A ground and a block on it: casters whose shadows a scene-fitted map can hold.
+    const double ground[6] = { -20, 20, -1, 0, -20, 20 }, block[6] = { -2, 2, 0, 15, -2, 2 };
+    planner->AddReceiverBounds(ground);
+    planner->AddReceiverBounds(block);
+    planner->AddCasterLoad(ground, 2.0, 0);
+    planner->AddCasterLoad(block, 12.0, 1);
+    bool sceneFitted = false;
+    for (double distance : { 40.0, 400.0, 4000.0 })
+    {
+      scene.Camera->SetPosition(0, 5, distance);
+      scene.Camera->SetClippingRange(0.5, 2.0 * distance);
+      const int count =
+        planner->Plan(scene.Camera, 4.0 / 3.0, scene.Light, scene.Bounds, 480, 2048);
+      ASSERT_GT(count, 0);
+      for (int c = 0; c < count; ++c)
+      {
+        int ceiling[2], resolution[2];
+        planner->GetCascadeResolutionCeiling(c, ceiling);
+        planner->GetCascadeResolution(c, 480, 64, ceiling, resolution);
+        vtkNew<vtkMatrix4x4> m;
+        planner->GetCascadeMatrix(c, m, 0.0, resolution);
+        EXPECT_NEAR(planner->CompareKeptMap(c, m->GetData(), 0.0, resolution[0]), 1.0, 1e-6)
+          << "warp " << warp << ", distance " << distance << ", cascade " << c;
+        sceneFitted = sceneFitted || planner->GetCascadeSceneFitted(c);
+      }
+    }
+    EXPECT_TRUE(sceneFitted) << "warp " << warp;
+  }
+}
