@@ -152,6 +152,8 @@ void usage()
     "  --visible-fit on|off  cascades begin at the nearest sample the view shows [%s]\n"
     "  --scene-fitted on|off  the farthest cascade may be a map fixed in the world of what\n"
     "                     can be in shadow, kept while the scene and light stay [%s]\n"
+    "  --move-maps on|off  kept maps move with the view, only the strips that came in\n"
+    "                     drawn [%s]\n"
     "  --alpha A          adaptive ratio > 1 [%g]\n"
     "  --resolution R     texels per cascade side at most, 64..8192 [%d]\n"
     "  --error-target M   each cascade's resolution for aliasing error <= M (texel/pixel);\n"
@@ -182,10 +184,10 @@ void usage()
     vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda,
     d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
     d.CompactCasters ? "on" : "off", d.CullCastersWithoutReceivers ? "on" : "off",
-    d.VisibleDepthFit ? "on" : "off", d.SceneFittedCascades ? "on" : "off", d.Alpha, d.Resolution,
-    d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias, d.SlopeBias,
-    d.ClosedSurfaceBiasFactor, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug],
-    o.Light[0], o.Light[1], o.Light[2], o.Width, o.Height,
+    d.VisibleDepthFit ? "on" : "off", d.SceneFittedCascades ? "on" : "off",
+    d.MoveKeptMaps ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel],
+    d.ConstantBias, d.SlopeBias, d.ClosedSurfaceBiasFactor, d.Blend, d.DepthClamp ? "on" : "off",
+    d.Darkness, kDebug[d.Debug], o.Light[0], o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
                              : "needs an X display: xvfb-run -a",
     o.Orbit);
@@ -316,6 +318,12 @@ Options parse(int argc, char** argv)
     {
       const char* const names[] = { "off", "on" };
       o.Shadow.VisibleDepthFit = choice(f, v, names, 2) == 1;
+      next();
+    }
+    else if (f == "--move-maps")
+    {
+      const char* const names[] = { "off", "on" };
+      o.Shadow.MoveKeptMaps = choice(f, v, names, 2) == 1;
       next();
     }
     else if (f == "--scene-fitted")

@@ -46,7 +46,7 @@ struct WalkOptions
   int Size[2] = { 640, 480 };
   bool CameraLight = false;
   bool PerFrame = false;
-  bool Variants = false;      ///< also ours with the cascades fitted to the boxes
+  bool Variants = false;      ///< also ours with the cascades fitted to the boxes, maps not moved
   std::vector<double> Slacks; ///< also ours with these MapSlack values
   bool Interactive = false;   ///< frames as while the user drags (the interactor's update rate)
   std::string Out = "walk.csv";
@@ -169,7 +169,7 @@ struct Technique
   double Slack = -1.0; ///< MapSlack (-1: the default)
   std::vector<double> Ms;
   double Texels = 0.0, Cells = 0.0;
-  long long MapsRendered = 0, MapsKept = 0, Frames = 0;
+  long long MapsRendered = 0, MapsKept = 0, MapsMoved = 0, Frames = 0;
 };
 
 double median(std::vector<double> v)
@@ -289,7 +289,7 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
   if (!csv)
     walkFail("cannot write '" + o.Out + "'");
   csv << "scene,path,light,label,median_ms,frames,maps_rendered_per_frame,maps_kept_per_frame,"
-         "texels_per_frame,caster_cells_per_frame\n";
+         "texels_per_frame,caster_cells_per_frame,maps_moved_per_frame\n";
   std::printf("walk: %dx%d, 60 degree view, %d frames a path, %d rounds; %s light\n", o.Size[0],
     o.Size[1], o.Frames, o.Rounds, o.CameraLight ? "camera" : "scene");
   for (const std::string& name : o.Scenes)
@@ -358,6 +358,9 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
         techniques.emplace_back();
         techniques.back().Label = "boxes fit";
         techniques.back().Shadow.VisibleDepthFit = false;
+        techniques.emplace_back();
+        techniques.back().Label = "not moved";
+        techniques.back().Shadow.MoveKeptMaps = false;
       }
       for (int round = 0; round < o.Rounds; ++round)
       {
@@ -395,14 +398,16 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
             {
               t.MapsRendered += baker->GetLastFrameStatistics().CascadesRendered;
               t.MapsKept += baker->GetLastFrameStatistics().CascadesKept;
+              t.MapsMoved += baker->GetLastFrameStatistics().CascadesMoved;
               t.Texels += baker->GetLastFrameStatistics().TexelsRendered;
               t.Cells += baker->GetLastFrameStatistics().CellsDrawn;
               if (o.PerFrame)
-                std::printf("    %s %s frame %d: %.1f ms, maps %d rendered %d kept, %.2f M texels, "
-                            "%.0f k cells, near %.3g\n",
+                std::printf("    %s %s frame %d: %.1f ms, maps %d rendered %d kept (%d moved), "
+                            "%.2f M texels, %.0f k cells, near %.3g\n",
                   name.c_str(), pathName.c_str(), i, ms,
                   baker->GetLastFrameStatistics().CascadesRendered,
                   baker->GetLastFrameStatistics().CascadesKept,
+                  baker->GetLastFrameStatistics().CascadesMoved,
                   1e-6 * baker->GetLastFrameStatistics().TexelsRendered,
                   1e-3 * baker->GetLastFrameStatistics().CellsDrawn,
                   baker->GetLightMaps().empty() ? 0.0 : baker->GetLightMaps()[0].SplitNear);
@@ -410,10 +415,11 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
               {
                 const auto& maps = baker->GetLightMaps()[0];
                 for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
-                  std::printf("      map %d: %dx%d of %dx%d, to depth %.3g%s\n", c,
+                  std::printf("      map %d: %dx%d of %dx%d, to depth %.3g%s, moved %d, %d\n", c,
                     maps.Cascades[c].Resolution[0], maps.Cascades[c].Resolution[1],
                     maps.Cascades[0].Tile[2], maps.Cascades[0].Tile[3], maps.Cascades[c].SplitFar,
-                    maps.Cascades[c].IsSceneFitted() ? " (scene-fitted)" : "");
+                    maps.Cascades[c].IsSceneFitted() ? " (scene-fitted)" : "",
+                    maps.Cascades[c].Moved[0], maps.Cascades[c].Moved[1]);
               }
             }
           }
@@ -433,14 +439,15 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
           name.c_str(), pathName.c_str(), t.Label.c_str(), median(t.Ms), median(t.Ms) / vtk,
           median(t.Ms) / none);
         if (t.Shadow.Technique == "csm")
-          std::printf("  maps %.2f rendered %.2f kept, %.2f M texels, %.0f k cells a frame",
-            t.MapsRendered / frames, t.MapsKept / frames, 1e-6 * t.Texels / frames,
-            1e-3 * t.Cells / frames);
+          std::printf("  maps %.2f rendered %.2f kept (%.2f moved), %.2f M texels, %.0f k cells a "
+                      "frame",
+            t.MapsRendered / frames, t.MapsKept / frames, t.MapsMoved / frames,
+            1e-6 * t.Texels / frames, 1e-3 * t.Cells / frames);
         std::printf("\n");
         csv << name << "," << pathName << "," << (o.CameraLight ? "camera" : "scene") << ","
             << t.Label << "," << median(t.Ms) << "," << t.Frames << "," << t.MapsRendered / frames
             << "," << t.MapsKept / frames << "," << t.Texels / frames << "," << t.Cells / frames
-            << "\n";
+            << "," << t.MapsMoved / frames << "\n";
       }
       std::fflush(stdout);
     }

@@ -43,6 +43,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->CullCastersWithoutReceivers = baker->GetCullCastersWithoutReceivers();
   this->VisibleDepthFit = baker->GetVisibleDepthFit();
   this->SceneFittedCascades = baker->GetPlanner()->GetSceneFittedCascades();
+  this->MoveKeptMaps = baker->GetMoveKeptMaps();
 #if CSM_COMPARISON_TECHNIQUES
   this->FacePartitions = baker->GetPlanner()->GetFacePartitions();
   this->CameraSpace = baker->GetPlanner()->GetCameraSpace();
@@ -75,6 +76,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetCullCastersWithoutReceivers(o.CullCastersWithoutReceivers);
   baker->SetVisibleDepthFit(o.VisibleDepthFit);
   baker->GetPlanner()->SetSceneFittedCascades(o.SceneFittedCascades);
+  baker->SetMoveKeptMaps(o.MoveKeptMaps);
 #if CSM_COMPARISON_TECHNIQUES
   baker->GetPlanner()->SetFacePartitions(o.FacePartitions);
   baker->GetPlanner()->SetCameraSpace(o.CameraSpace);

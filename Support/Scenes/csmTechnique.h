@@ -45,6 +45,7 @@ struct ShadowOptions
   bool CullCastersWithoutReceivers; ///< casters that shadow nothing left out of the maps
   bool VisibleDepthFit;             ///< cascades fitted to the depths the view has samples at
   bool SceneFittedCascades;         ///< the farthest cascade may be a map fixed in the world
+  bool MoveKeptMaps;                ///< kept maps move with the view (their strips drawn)
 #if CSM_COMPARISON_TECHNIQUES
   int FacePartitions;      ///< 0 cascades; 1 FP+W, 2 FP+ZP+W (z-partitions per face)
   bool CameraSpace;        ///< camera space shadow maps (general case)
