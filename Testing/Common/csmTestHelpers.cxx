@@ -209,20 +209,23 @@ void BoxOverPlane::AddBlockBehindTheCamera()
   this->Renderer->ResetCameraClippingRange();
 }
 
-std::vector<float> CascadeDepths(
-  vtkRenderWindow* window, const vtkCascadedShadowMapBakerPass::LightMaps& maps, int c)
+namespace
+{
+std::vector<float> ReadAtlas(vtkRenderWindow* window, vtkTextureObject* atlas)
 {
   window->MakeCurrent();
-  vtkTextureObject* atlas = maps.Atlas;
-  const int width = static_cast<int>(atlas->GetWidth());
-  const int height = static_cast<int>(atlas->GetHeight());
-  std::vector<float> all(static_cast<size_t>(width) * height);
+  std::vector<float> all(static_cast<size_t>(atlas->GetWidth()) * atlas->GetHeight());
   atlas->Bind();
   glGetTexImage(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT, GL_FLOAT, all.data());
   atlas->Deactivate();
+  return all;
+}
+
+std::vector<float> TileOf(const std::vector<float>& all, int width, int height,
+  const vtkCascadedShadowMapBakerPass::CascadeMap& map)
+{
   // The map fills the lower left of its tile.
-  const int x = maps.Cascades[c].Tile[0], y = maps.Cascades[c].Tile[1];
-  const int w = maps.Cascades[c].Resolution[0], h = maps.Cascades[c].Resolution[1];
+  const int x = map.Tile[0], y = map.Tile[1], w = map.Resolution[0], h = map.Resolution[1];
   if (x + w > width || y + h > height)
   {
     return {};
@@ -234,6 +237,29 @@ std::vector<float> CascadeDepths(
       all.begin() + static_cast<size_t>(row) * width + x + w);
   }
   return tile;
+}
+} // namespace
+
+std::vector<float> CascadeDepths(
+  vtkRenderWindow* window, const vtkCascadedShadowMapBakerPass::LightMaps& maps, int c)
+{
+  vtkTextureObject* atlas = maps.Atlas;
+  return TileOf(ReadAtlas(window, atlas), static_cast<int>(atlas->GetWidth()),
+    static_cast<int>(atlas->GetHeight()), maps.Cascades[c]);
+}
+
+std::vector<std::vector<float>> AllCascadeDepths(
+  vtkRenderWindow* window, const vtkCascadedShadowMapBakerPass::LightMaps& maps)
+{
+  vtkTextureObject* atlas = maps.Atlas;
+  const std::vector<float> all = ReadAtlas(window, atlas);
+  std::vector<std::vector<float>> tiles;
+  for (const auto& map : maps.Cascades)
+  {
+    tiles.push_back(
+      TileOf(all, static_cast<int>(atlas->GetWidth()), static_cast<int>(atlas->GetHeight()), map));
+  }
+  return tiles;
 }
 
 } // namespace csmTest

@@ -83,6 +83,10 @@ struct BoxOverPlaneSettings
 std::vector<float> CascadeDepths(
   vtkRenderWindow* window, const vtkCascadedShadowMapBakerPass::LightMaps& maps, int c);
 
+/// Every cascade's depth texels, the atlas read back once.
+std::vector<std::vector<float>> AllCascadeDepths(
+  vtkRenderWindow* window, const vtkCascadedShadowMapBakerPass::LightMaps& maps);
+
 /// A box over a ground plane, lit by one directional scene light from above (no automatic
 /// lights): the box's shadow falls on the plane. Offscreen, no multisampling.
 struct BoxOverPlane

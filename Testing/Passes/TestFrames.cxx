@@ -340,11 +340,8 @@ TEST(Frames, AMapMovedWithTheViewKeepsItsTexelsShiftedAndDrawsOnlyTheStrips)
   for (int frame = 0; frame < 16; ++frame)
   {
     const auto before = passes[0]->GetLightMaps(moving.Renderer).at(0);
-    std::vector<std::vector<float>> beforeDepths;
-    for (int c = 0; c < before.GetNumberOfCascades(); ++c)
-    {
-      beforeDepths.push_back(csmTest::CascadeDepths(moving.Window, before, c));
-    }
+    const std::vector<std::vector<float>> beforeDepths =
+      csmTest::AllCascadeDepths(moving.Window, before);
     for (BoxOverPlane* scene : { &moving, &fresh })
     {
       vtkCamera* camera = scene->Renderer->GetActiveCamera();
@@ -366,6 +363,7 @@ TEST(Frames, AMapMovedWithTheViewKeepsItsTexelsShiftedAndDrawsOnlyTheStrips)
     pixels += long(settings.Size[0]) * settings.Size[1];
     EXPECT_EQ(passes[1]->GetLastFrameStatistics().CascadesMoved, 0);
     const auto& after = passes[0]->GetLightMaps(moving.Renderer).at(0);
+    std::vector<std::vector<float>> afterDepths;
     for (int c = 0; c < after.GetNumberOfCascades(); ++c)
     {
       const auto& map = after.Cascades[c];
@@ -383,7 +381,11 @@ TEST(Frames, AMapMovedWithTheViewKeepsItsTexelsShiftedAndDrawsOnlyTheStrips)
       ASSERT_GE(old, 0);
       ASSERT_EQ(before.Cascades[old].Resolution[0], map.Resolution[0]);
       ASSERT_EQ(before.Cascades[old].Resolution[1], map.Resolution[1]);
-      const std::vector<float> depths = csmTest::CascadeDepths(moving.Window, after, c);
+      if (afterDepths.empty())
+      {
+        afterDepths = csmTest::AllCascadeDepths(moving.Window, after);
+      }
+      const std::vector<float>& depths = afterDepths[c];
       const int w = map.Resolution[0], h = map.Resolution[1];
       const int s = map.Moved[0], t = map.Moved[1];
       long shifted = 0, wrong = 0, held = 0;
