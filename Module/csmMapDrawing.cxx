@@ -189,12 +189,10 @@ void csmMapDrawing::ClearTiles(
   // Far depth where nothing casts, all before the first draw: a clear between two cascades'
   // draws would wait for the one drawn before it (a software rasterizer maps the texture).
   // (A map that moves with the view keeps most of its texels: MoveMap clears its strips.)
-  auto moves = [&](int c)
-  { return maps.Cascades[c].Moved[0] != 0 || maps.Cascades[c].Moved[1] != 0; };
   bool all = true;
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
-    all = all && renderCascade[c] && !moves(c);
+    all = all && renderCascade[c] && !maps.Cascades[c].IsMoved();
   }
   if (all)
   {
@@ -206,7 +204,7 @@ void csmMapDrawing::ClearTiles(
   // Some maps kept: only the others' tiles.
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
-    if (renderCascade[c] && !moves(c))
+    if (renderCascade[c] && !maps.Cascades[c].IsMoved())
     {
       csmMapDrawing::ClearMap(ostate, maps, c, nullptr);
     }
@@ -245,7 +243,7 @@ std::vector<csm::TexelRect> csmMapDrawing::MovedStrips(
   csm::MapPan pan;
   pan.s = map.Moved[0];
   pan.t = map.Moved[1];
-  pan.valid = pan.s != 0 || pan.t != 0;
+  pan.valid = map.IsMoved();
   return csm::panStrips(pan, csm::MapSize(map.Resolution[0], map.Resolution[1]));
 }
 

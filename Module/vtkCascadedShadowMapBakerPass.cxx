@@ -555,7 +555,7 @@ void vtkCascadedShadowMapBakerPass::PlanLight(vtkRenderer* renderer, csmRenderer
       std::copy(old.CasterView, old.CasterView + 18, map.CasterView);
       std::copy(old.Resolution, old.Resolution + 2, map.Resolution);
       std::copy(old.Moved, old.Moved + 2, map.Moved);
-      moved = map.Moved[0] != 0 || map.Moved[1] != 0;
+      moved = map.IsMoved();
     }
     // (A moved map is drawn too: its strips.)
     render.push_back(assigned.kept[c] < 0 || moved ? 1 : 0);
@@ -779,7 +779,7 @@ void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
     CascadeMap& map = maps.Cascades[c];
-    if (renderCascade[c] && (map.Moved[0] != 0 || map.Moved[1] != 0))
+    if (renderCascade[c] && map.IsMoved())
     {
       if (!state.MoveBuffer)
       {
@@ -801,7 +801,7 @@ void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
     const CascadeMap& map = maps.Cascades[c];
-    if (renderCascade[c] && (map.Moved[0] != 0 || map.Moved[1] != 0))
+    if (renderCascade[c] && map.IsMoved())
     {
       ++this->Statistics.CascadesMoved; // (kept in part: its strips drawn)
       for (const csm::TexelRect& strip : csmMapDrawing::MovedStrips(map))

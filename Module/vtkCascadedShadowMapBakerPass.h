@@ -188,6 +188,10 @@ public:
     {
       return this->Kind == MapKind::SceneFitted;
     }
+    bool IsMoved() const
+    {
+      return this->Moved[0] != 0 || this->Moved[1] != 0;
+    }
   };
 
   /// The maps of one shadowed light, as the shadow pass reads them.

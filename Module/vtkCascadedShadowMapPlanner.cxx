@@ -49,8 +49,7 @@ vtkCascadedShadowMapPlanner::~vtkCascadedShadowMapPlanner() = default;
 
 namespace
 {
-/// VTK's row-major double[16] as GLM's column-major matrix (the one conversion; the other way is
-/// vtkMatrix4x4::SetElement(row, column, m[column][row])).
+/// VTK's row-major double[16] as GLM's column-major matrix, and back.
 glm::dmat4 fromRowMajor(const double m[16])
 {
   glm::dmat4 matrix;
@@ -62,6 +61,17 @@ glm::dmat4 fromRowMajor(const double m[16])
     }
   }
   return matrix;
+}
+
+void toRowMajor(const glm::dmat4& m, double out[16])
+{
+  for (int row = 0; row < 4; ++row)
+  {
+    for (int column = 0; column < 4; ++column)
+    {
+      out[4 * row + column] = m[column][row]; // glm is column-major
+    }
+  }
 }
 
 bool toCamera(vtkCamera* camera, double aspect, csm::Camera& cam)
@@ -396,13 +406,8 @@ void vtkCascadedShadowMapPlanner::GetCascadeMatrix(
   {
     m = csm::snapToTexels(m, csm::MapSize(resolution[0], resolution[1]));
   }
-  for (int row = 0; row < 4; ++row)
-  {
-    for (int column = 0; column < 4; ++column)
-    {
-      matrix->SetElement(row, column, m[column][row]); // glm is column-major
-    }
-  }
+  toRowMajor(m, matrix->GetData());
+  matrix->Modified();
 }
 
 double vtkCascadedShadowMapPlanner::GetCascadeNear(int i) const
@@ -550,13 +555,7 @@ bool vtkCascadedShadowMapPlanner::PanKeptMap(int i, const double keptWorldToClip
   {
     return false;
   }
-  for (int row = 0; row < 4; ++row)
-  {
-    for (int column = 0; column < 4; ++column)
-    {
-      movedWorldToClip[4 * row + column] = pan.wsToClip[column][row]; // glm is column-major
-    }
-  }
+  toRowMajor(pan.wsToClip, movedWorldToClip);
   texels[0] = pan.s;
   texels[1] = pan.t;
   return true;
