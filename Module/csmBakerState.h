@@ -104,4 +104,12 @@ struct csmFramePlan
   double ViewKey[18] = {}; ///< the main view (csmMapDrawing::MainView)
 };
 
+/// What a cascade's fresh map needs this frame: the texels that meet ErrorTarget, within the
+/// largest map it may have, and whether even that map misses the target.
+struct csmCascadeNeed
+{
+  int Texels[2] = { 0, 0 };
+  bool TargetOutOfReach = false;
+};
+
 #endif

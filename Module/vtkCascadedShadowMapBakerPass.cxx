@@ -509,13 +509,13 @@ void vtkCascadedShadowMapBakerPass::PlanLight(vtkRenderer* renderer, csmRenderer
   // smooth path, the light and scene unchanged (a camera light moves with the camera).
   const bool smoothPath = !frame.Interacting && kept && count > 0;
   std::vector<csm::TexelRect> tiles(static_cast<size_t>(std::max(count, 0)));
-  std::vector<std::array<int, 2>> needs(tiles.size());
+  std::vector<csmCascadeNeed> needs(tiles.size());
   std::vector<int> order; // the scene-fitted cascades first: they cost most to draw again
   for (int c = 0; c < count; ++c)
   {
     CascadeMap& map = maps.Cascades[c];
     map.Kind = this->Planner->GetCascadeSceneFitted(c) ? MapKind::SceneFitted : followKind;
-    this->PlanCascade(frame, camera, state, c, smoothPath, map, needs[c].data());
+    this->PlanCascade(frame, camera, state, c, smoothPath, map, needs[c]);
     std::copy(map.Tile, map.Tile + 4, tiles[c].begin());
     order.insert(map.IsSceneFitted() ? order.begin() : order.end(), c);
   }
@@ -534,8 +534,7 @@ void vtkCascadedShadowMapBakerPass::PlanLight(vtkRenderer* renderer, csmRenderer
     [&](int c, int k)
     {
       CascadeMap candidate;
-      if (!this->KeptMapServes(
-            frame, c, needs[c].data(), maps.Cascades[c], kept->Cascades[k], candidate))
+      if (!this->KeptMapServes(frame, c, needs[c], maps.Cascades[c], kept->Cascades[k], candidate))
       {
         return false;
       }
@@ -589,7 +588,7 @@ vtkCascadedShadowMapBakerPass::MapKind vtkCascadedShadowMapBakerPass::PlannedMap
 }
 
 void vtkCascadedShadowMapBakerPass::PlanCascade(const csmFramePlan& frame, vtkCamera* camera,
-  const csmRendererMaps& state, int c, bool smoothPath, CascadeMap& map, int need[2])
+  const csmRendererMaps& state, int c, bool smoothPath, CascadeMap& map, csmCascadeNeed& need)
 {
   // The map this cascade needs (ErrorTarget) in its tile of the planned atlas.
   this->Planner->GetCascadeTile(c, map.Tile);
@@ -597,8 +596,10 @@ void vtkCascadedShadowMapBakerPass::PlanCascade(const csmFramePlan& frame, vtkCa
   this->Planner->GetCascadeResolutionCeiling(c, ceiling);
   this->Planner->GetCascadeResolution(
     c, frame.ImageHeight, RESOLUTION_STEP, ceiling, map.Resolution);
-  need[0] = map.Resolution[0];
-  need[1] = map.Resolution[1];
+  need.Texels[0] = map.Resolution[0];
+  need.Texels[1] = map.Resolution[1];
+  need.TargetOutOfReach =
+    this->Planner->GetCascadeErrorTargetOutOfReach(c, frame.ImageHeight, ceiling);
   const csm::MapSize most(ceiling[0], ceiling[1]);
   // A still frame's map that follows the view gets slack (a border and more texels), so that
   // the next frames of a camera that moves a little keep it while it meets what a fresh map
@@ -611,7 +612,7 @@ void vtkCascadedShadowMapBakerPass::PlanCascade(const csmFramePlan& frame, vtkCa
       state.LastCamera, camera, frame.Aspect, this->Planner->GetCascadeFar(c)))
   {
     const csm::SlackedMap slacked =
-      csm::slackedMap(csm::MapSize(need[0], need[1]), most, this->MapSlack);
+      csm::slackedMap(csm::MapSize(need.Texels[0], need.Texels[1]), most, this->MapSlack);
     border = slacked.border;
     map.Resolution[0] = slacked.size.width;
     map.Resolution[1] = slacked.size.height;
@@ -632,13 +633,14 @@ void vtkCascadedShadowMapBakerPass::PlanCascade(const csmFramePlan& frame, vtkCa
 }
 
 bool vtkCascadedShadowMapBakerPass::KeptMapServes(const csmFramePlan& frame, int c,
-  const int need[2], const CascadeMap& map, const CascadeMap& old, CascadeMap& moved)
+  const csmCascadeNeed& need, const CascadeMap& map, const CascadeMap& old, CascadeMap& moved)
 {
   // A kept map serves if it has the texels this view needs (or all its tile holds, where the
   // GL's texture size limit made the tiles smaller than Resolution): while the user interacts,
   // within MapReuseTolerance of a fresh map with the same border; in a still frame, where its
-  // error at this view meets what a fresh tight map meets. (Turned the same way: the error
-  // ratio compares the maps at equal resolution.)
+  // error at this view meets what a fresh tight map meets, or comes within the cascade count's
+  // hysteresis of it where no map meets ErrorTarget (csm::keptMapServes). (Turned the same way:
+  // the error ratio compares the maps at equal resolution.)
   // (Of the same kind; its tile is assignTiles' to choose.)
   if ((!frame.Interacting && frame.ScreenSized &&
         !std::equal(frame.ViewKey, frame.ViewKey + 18, old.CasterView)) ||
@@ -654,7 +656,9 @@ bool vtkCascadedShadowMapBakerPass::KeptMapServes(const csmFramePlan& frame, int
       ? old.Resolution[0] >= std::min(map.Resolution[0], map.Tile[2]) &&
         old.Resolution[1] >= std::min(map.Resolution[1], map.Tile[3]) && ratio <= frame.Tolerance
       : csm::keptMapServes(ratio, csm::MapSize(old.Resolution[0], old.Resolution[1]),
-          csm::MapSize(std::min(need[0], map.Tile[2]), std::min(need[1], map.Tile[3])));
+          csm::MapSize(
+            std::min(need.Texels[0], map.Tile[2]), std::min(need.Texels[1], map.Tile[3])),
+          need.TargetOutOfReach);
   };
   moved = old;
   moved.Moved[0] = moved.Moved[1] = 0;

@@ -32,6 +32,7 @@
 
 class csmCasterCollection;
 class csmMapDrawing;
+struct csmCascadeNeed;
 struct csmFramePlan;
 struct csmFrameCasters;
 struct csmRendererMaps;
@@ -270,9 +271,9 @@ protected:
     std::vector<int>& render);
   MapKind PlannedMapKind(vtkLight* light) const;
   void PlanCascade(const csmFramePlan& frame, vtkCamera* camera, const csmRendererMaps& state,
-    int c, bool smoothPath, CascadeMap& map, int need[2]);
-  bool KeptMapServes(const csmFramePlan& frame, int c, const int need[2], const CascadeMap& map,
-    const CascadeMap& old, CascadeMap& moved);
+    int c, bool smoothPath, CascadeMap& map, csmCascadeNeed& need);
+  bool KeptMapServes(const csmFramePlan& frame, int c, const csmCascadeNeed& need,
+    const CascadeMap& map, const CascadeMap& old, CascadeMap& moved);
   void RenderAtlases(vtkOpenGLRenderer* renderer, vtkOpenGLRenderWindow* window,
     csmRendererMaps& state, const csmFrameCasters& props, std::vector<LightMaps>& planned,
     std::vector<int>& render);

@@ -10,8 +10,10 @@
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPlanner.h"
 #include "vtkLight.h"
+#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLCamera.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
@@ -94,10 +96,24 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
 {
   vtkRenderer* renderer = s->GetRenderer();
   vtkCascadedShadowMapBakerPass* baker = this->ShadowMapBakerPass;
-  // View space -> map coordinates in [0,1]^3, composed in double, uploaded as float.
-  vtkMatrix4x4* worldToView = renderer->GetActiveCamera()->GetModelViewTransformMatrix();
+  // View space -> map coordinates in [0,1]^3, composed in double, uploaded as float. View space
+  // as the mappers' shaders see it (their vertexVC): VTK's key matrices of this camera, which it
+  // refreshes on the camera's modification time (a camera copied back onto the active one keeps
+  // the last frame's until it is modified), not the camera's own transform.
   vtkNew<vtkMatrix4x4> viewToWorld;
-  vtkMatrix4x4::Invert(worldToView, viewToWorld);
+  vtkOpenGLCamera* glCamera = vtkOpenGLCamera::SafeDownCast(renderer->GetActiveCamera());
+  if (glCamera)
+  {
+    vtkMatrix4x4 *worldToViewGL = nullptr, *viewToDisplay = nullptr, *worldToDisplay = nullptr;
+    vtkMatrix3x3* normals = nullptr;
+    glCamera->GetKeyMatrices(renderer, worldToViewGL, normals, viewToDisplay, worldToDisplay);
+    vtkMatrix4x4::Transpose(worldToViewGL, viewToWorld); // (stored transposed, for the GL)
+    viewToWorld->Invert();
+  }
+  else
+  {
+    vtkMatrix4x4::Invert(renderer->GetActiveCamera()->GetModelViewTransformMatrix(), viewToWorld);
+  }
   const double toUnit[16] = { 0.5, 0, 0, 0.5, 0, 0.5, 0, 0.5, 0, 0, 0.5, 0.5, 0, 0, 0, 1 };
   std::string signature;
   ShaderUniforms& u = this->Uniforms;

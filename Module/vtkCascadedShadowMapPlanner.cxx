@@ -454,6 +454,15 @@ void vtkCascadedShadowMapPlanner::GetCascadeResolution(
   this->GetCascadeResolution(i, imageHeight, step, ceiling, resolution);
 }
 
+bool vtkCascadedShadowMapPlanner::GetCascadeErrorTargetOutOfReach(
+  int i, int imageHeight, const int ceiling[2]) const
+{
+  const auto& c = this->Internal->Setup.cascades;
+  return i >= 0 && i < static_cast<int>(c.size()) &&
+    csm::errorTargetOutOfReach(
+      c[i], imageHeight, this->ErrorTarget, csm::MapSize(ceiling[0], ceiling[1]));
+}
+
 void vtkCascadedShadowMapPlanner::GetCascadeResolutionCeiling(int i, int ceiling[2]) const
 {
   const auto& c = this->Internal->Setup.cascades;

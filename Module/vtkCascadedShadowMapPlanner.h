@@ -330,6 +330,10 @@ public:
   /// The same within the largest map cascade i has in the last plan's atlas
   /// (GetCascadeResolutionCeiling()).
   void GetCascadeResolution(int i, int imageHeight, int step, int resolution[2]) const;
+  /// Does even a map of ceiling texels miss ErrorTarget for cascade i in an image imageHeight
+  /// pixels high (csm::errorTargetOutOfReach)? False where ErrorTarget is 0, for spot lights,
+  /// scene-fitted cascades and bad indices.
+  bool GetCascadeErrorTargetOutOfReach(int i, int imageHeight, const int ceiling[2]) const;
 
   ///@{
   /**

@@ -88,4 +88,18 @@ MapSize resolutionForError(
     resolutionForError(m, imageHeight, targetError, step, ceiling.height));
 }
 
+bool errorTargetOutOfReach(
+  const Cascade& cascade, double imageHeight, double targetError, const MapSize& ceiling)
+{
+  const double m = std::max(cascade.Mx, cascade.Mz);
+  const int texels = std::min(ceiling.width, ceiling.height);
+  if (cascade.sceneFitted || !(m > 0.0) || !std::isfinite(m) || !(imageHeight > 0.0) ||
+    !std::isfinite(imageHeight) || !(targetError > 0.0) || !std::isfinite(targetError) ||
+    texels <= 0)
+  {
+    return false;
+  }
+  return m * imageHeight / texels > targetError;
+}
+
 } // namespace csm

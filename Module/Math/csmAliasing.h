@@ -55,4 +55,12 @@ int resolutionForError(
 MapSize resolutionForError(
   const Cascade& cascade, double imageHeight, double targetError, int step, const MapSize& ceiling);
 
+/// Does even the largest map a cascade may have (ceiling texels along s and t) miss the error
+/// target in an image imageHeight pixels high (max(Mx, Mz) imageHeight / texels > targetError
+/// along an axis)? Then no map of this frame meets it, a fresh one neither. False for a
+/// scene-fitted cascade (drawn once at its tile), a target of 0 ("always the ceiling") and
+/// inputs that are not finite positive numbers (spot lights have no M).
+bool errorTargetOutOfReach(
+  const Cascade& cascade, double imageHeight, double targetError, const MapSize& ceiling);
+
 } // namespace csm

@@ -2,6 +2,7 @@
 #include "csmReuse.h"
 
 #include "csmAliasing.h"
+#include "csmCascadeCount.h"
 
 #include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
@@ -63,7 +64,8 @@ bool smallCameraStep(const Camera& before, const Camera& now, double vsDepth)
   return cosTurn >= std::cos(kSmallStepTurnDeg * kPi / 180.0) && moved <= kSmallStepShare * vsDepth;
 }
 
-bool keptMapServes(double errorRatio, const MapSize& keptSize, const MapSize& need)
+bool keptMapServes(
+  double errorRatio, const MapSize& keptSize, const MapSize& need, bool targetOutOfReach)
 {
   if (!std::isfinite(errorRatio) || errorRatio < 0.0 || keptSize.width <= 0 ||
     keptSize.height <= 0 || need.width <= 0 || need.height <= 0)
@@ -73,7 +75,8 @@ bool keptMapServes(double errorRatio, const MapSize& keptSize, const MapSize& ne
   // (Rounding: a map kept for the very view it was planned for has a ratio of 1.)
   constexpr double kRounding = 1e-9;
   const double room =
-    std::min(double(keptSize.width) / need.width, double(keptSize.height) / need.height);
+    std::min(double(keptSize.width) / need.width, double(keptSize.height) / need.height) /
+    (targetOutOfReach ? kCountHysteresis : 1.0);
   return errorRatio <= room * (1.0 + kRounding);
 }
 

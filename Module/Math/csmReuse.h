@@ -54,8 +54,14 @@ bool smallCameraStep(const Camera& before, const Camera& now, double vsDepth);
 /// the error target? Its error over the fresh map's at equal resolution is errorRatio
 /// (compareKeptMap; +infinity where it does not cover); at its own resolution its error is that
 /// ratio times need / keptSize (aliasing falls with the texel size, Lloyd et al. 2006, Eq. 1),
-/// which must be at most the fresh map's.
-bool keptMapServes(double errorRatio, const MapSize& keptSize, const MapSize& need);
+/// which must be at most the fresh map's. Where no map of this frame meets the target
+/// (targetOutOfReach: errorTargetOutOfReach at the largest map the cascade may have, so that
+/// need is that map), every map is as good as maps can be and a fresh one misses the target too:
+/// there a kept map serves while its error is at most 1 / kCountHysteresis of the fresh one's,
+/// the hysteresis the cascade count keeps in the same case (Lloyd et al. 2006, §5.2), so that a
+/// walk does not redraw every map for a few percent of error that no map can bring to the target.
+bool keptMapServes(
+  double errorRatio, const MapSize& keptSize, const MapSize& need, bool targetOutOfReach = false);
 
 /// Compare a kept world -> light clip matrix with the freshly planned cascade of the same light
 /// for the current camera. marginNdc: the band along the map's border that the lookup's filter

@@ -3,6 +3,7 @@
 // still meets the error target at the current view.
 #include "csmAliasing.h"
 #include "csmAtlas.h"
+#include "csmCascadeCount.h"
 #include "csmMathTestHelpers.h"
 #include "csmReuse.h"
 #include "csmSetup.h"
@@ -52,6 +53,39 @@ TEST(Reuse, AKeptMapServesWhileItsErrorMeetsAFreshMapsAtItsResolution)
     std::numeric_limits<double>::infinity(), csm::MapSize(2048), csm::MapSize(64)));
   EXPECT_FALSE(csm::keptMapServes(std::nan(""), csm::MapSize(2048), csm::MapSize(64)));
   EXPECT_FALSE(csm::keptMapServes(0.5, csm::MapSize(0), csm::MapSize(64)));
+}
+
+// Where even the largest map misses the error target, a kept map may be up to 1 / kCountHysteresis
+// worse than a fresh one (the count's own hysteresis there); its room for a map smaller than
+// that largest one shrinks as before.
+TEST(Reuse, WhereNoMapMeetsTheTargetAKeptMapServesWithinTheCountsHysteresis)
+{
+  csm::Cascade cascade;
+  cascade.Mx = 2.0;
+  cascade.Mz = 3.0; // 3 x 600 / 0.7 = 2571 texels a side meet the target 0.7 at 600 pixels
+  EXPECT_TRUE(csm::errorTargetOutOfReach(cascade, 600.0, 0.7, csm::MapSize(2048)));
+  EXPECT_TRUE(csm::errorTargetOutOfReach(cascade, 600.0, 0.7, csm::MapSize(4096, 2048)));
+  EXPECT_FALSE(csm::errorTargetOutOfReach(cascade, 600.0, 0.7, csm::MapSize(2572)));
+  EXPECT_FALSE(csm::errorTargetOutOfReach(cascade, 600.0, 0.0, csm::MapSize(2048))); // no target
+  EXPECT_FALSE(csm::errorTargetOutOfReach(cascade, std::nan(""), 0.7, csm::MapSize(2048)));
+  EXPECT_FALSE(csm::errorTargetOutOfReach(cascade, 600.0, 0.7, csm::MapSize(0)));
+  csm::Cascade fitted = cascade;
+  fitted.sceneFitted = true; // drawn once at its tile: no target to miss
+  EXPECT_FALSE(csm::errorTargetOutOfReach(fitted, 600.0, 0.7, csm::MapSize(2048)));
+  csm::Cascade spot; // no M
+  EXPECT_FALSE(csm::errorTargetOutOfReach(spot, 600.0, 0.7, csm::MapSize(2048)));
+
+  const double most = 1.0 / csm::kCountHysteresis; // 1.25
+  const csm::MapSize full(2048);
+  EXPECT_FALSE(csm::keptMapServes(1.01, full, full));
+  EXPECT_TRUE(csm::keptMapServes(1.01, full, full, true));
+  EXPECT_TRUE(csm::keptMapServes(most, full, full, true));
+  EXPECT_FALSE(csm::keptMapServes(most * 1.001, full, full, true));
+  // A kept map of 1600 texels where the largest map is 2048: 1.25 x 1600 / 2048 = 0.977.
+  EXPECT_TRUE(csm::keptMapServes(0.97, csm::MapSize(1600), full, true));
+  EXPECT_FALSE(csm::keptMapServes(0.98, csm::MapSize(1600), full, true));
+  EXPECT_FALSE(csm::keptMapServes(std::nan(""), full, full, true));
+  EXPECT_FALSE(csm::keptMapServes(std::numeric_limits<double>::infinity(), full, full, true));
 }
 
 // A still camera's slacked map serves a camera that turns a little for several frames, and
