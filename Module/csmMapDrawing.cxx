@@ -38,6 +38,18 @@ constexpr int kMoveBandRows = 256;
 constexpr float kPrePassOffsetFactor = 1.0f;
 constexpr float kPrePassOffsetUnits = 4.0f;
 
+/// Of a closed caster (its closure, ±1 by its winding; 0: not closed) drawn through a world ->
+/// clip matrix of the given determinant: +1 where its outward faces toward the viewer are the GL's
+/// front faces, -1 where they are its back faces, 0 where it is not closed or the matrix is not
+/// finite. VTK's projections turn a counter-clockwise face toward the eye into a front face when
+/// their determinant is negative (as glFrustum's and glOrtho's are); a positive one swaps the
+/// sides.
+int closedFaceTowardViewer(int closure, double worldToClipDeterminant)
+{
+  return std::isfinite(worldToClipDeterminant) ? closure * (worldToClipDeterminant < 0.0 ? 1 : -1)
+                                               : 0;
+}
+
 /// Does the caster shadow anything in this light's maps (CullCastersWithoutReceivers)?
 /// Directional lights only; with several processes the receivers are everyone's boxes.
 bool casterHasReceivers(const csmFrameCasters& props, const csmFrameCasters::Caster& caster,
@@ -321,9 +333,7 @@ int csmMapDrawing::DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebuffer
   }
 
   // Only the casters whose bounds reach this cascade's light volume; for the closed ones, the
-  // face to cull (the one turned toward the light). VTK's projections turn a counter-clockwise
-  // face toward the eye into a front face when their determinant is negative (as glFrustum's and
-  // glOrtho's are); a positive one swaps the sides.
+  // face to cull: the one turned toward the light (closedFaceTowardViewer).
   std::map<vtkProp*, unsigned int> cullFaces;
   const double mapDeterminant = vtkMatrix4x4::Determinant(maps.Cascades[c].WorldToMap);
   std::vector<vtkProp*> drawn;
@@ -373,11 +383,10 @@ int csmMapDrawing::DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebuffer
       statistics.CellsDrawn += caster.Cells;
     }
     drawn.push_back(caster.Prop);
-    const int outward =
-      std::isfinite(mapDeterminant) ? caster.Closure * (mapDeterminant < 0.0 ? 1 : -1) : 0;
+    const int outward = closedFaceTowardViewer(caster.Closure, mapDeterminant);
     if (outward != 0)
     {
-      cullFaces[caster.Prop] = outward > 0 ? GL_FRONT : GL_BACK;
+      cullFaces[caster.Prop] = outward > 0 ? GL_FRONT : GL_BACK; // the face toward the light
     }
   }
   statistics.CascadesRendered += strip ? 0 : 1; // (a moved map counts as kept)
@@ -438,6 +447,11 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   int width = 0, height = 0, x = 0, y = 0;
   renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
   vtkMatrix4x4* worldToClip = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+  // A closed caster seen from outside only (the near plane reaches no point of its box) shows
+  // only the faces turned toward the eye: the faces turned away are culled (the depth is the
+  // same, and a software rasterizer pays for every face it draws).
+  const double viewDeterminant = worldToClip->Determinant();
+  std::map<vtkProp*, unsigned int> cullFaces;
   std::vector<vtkProp*> drawn;
   for (const csmFrameCasters::Caster& caster : props.Casters)
   {
@@ -445,6 +459,12 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
           worldToClip->GetData(), caster.Bounds.data(), false))
     {
       continue;
+    }
+    const int towardEye = closedFaceTowardViewer(caster.Closure, viewDeterminant);
+    if (towardEye != 0 &&
+      vtkCascadedShadowMapPlanner::ViewSeesOnlyOutsideOf(camera, aspect, caster.Bounds.data()))
+    {
+      cullFaces[caster.Prop] = towardEye > 0 ? GL_BACK : GL_FRONT;
     }
     if (caster.Compact >= 0)
     {
@@ -469,6 +489,9 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   vtkOpenGLState::ScopedglEnableDisable savedOffsetFill(ostate, GL_POLYGON_OFFSET_FILL);
   vtkOpenGLState::ScopedglEnableDisable savedOffsetLine(ostate, GL_POLYGON_OFFSET_LINE);
   vtkOpenGLState::ScopedglEnableDisable savedOffsetPoint(ostate, GL_POLYGON_OFFSET_POINT);
+  vtkOpenGLState::ScopedglEnableDisable savedCulling(ostate, GL_CULL_FACE);
+  GLint savedCullFace = GL_BACK;
+  glGetIntegerv(GL_CULL_FACE_MODE, &savedCullFace);
   ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglEnable(GL_DEPTH_TEST);
@@ -497,8 +520,9 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   u.Viewport[1] = static_cast<float>(y);
   u.Viewport[2] = static_cast<float>(width);
   u.Viewport[3] = static_cast<float>(height);
-  this->CasterPass->BeginCascade(ostate, u, {});
+  this->CasterPass->BeginCascade(ostate, u, std::move(cullFaces), true);
   this->CasterPass->DrawCasters(renderer, s->GetFrameBuffer(), drawn);
   this->CasterPass->EndCascade();
+  ostate->vtkglCullFace(static_cast<unsigned int>(savedCullFace));
   return readWindowDepths(renderer, depths);
 }

@@ -23,10 +23,11 @@
 
 vtkStandardNewMacro(vtkCascadedShadowCasterPass);
 
-void vtkCascadedShadowCasterPass::BeginCascade(
-  vtkOpenGLState* state, const CasterUniforms& uniforms, std::map<vtkProp*, unsigned int> cullFaces)
+void vtkCascadedShadowCasterPass::BeginCascade(vtkOpenGLState* state,
+  const CasterUniforms& uniforms, std::map<vtkProp*, unsigned int> cullFaces, bool culledKeepOffset)
 {
   this->CullState = state;
+  this->CulledKeepOffset = culledKeepOffset;
   this->Uniforms = uniforms;
   this->CullFaces = std::move(cullFaces);
 }
@@ -166,7 +167,10 @@ bool vtkCascadedShadowCasterPass::SetShaderParameters(
   {
     this->CullState->vtkglCullFace(cull->second);
     this->CullState->vtkglEnable(GL_CULL_FACE);
-    this->CullState->vtkglDisable(GL_POLYGON_OFFSET_FILL);
+    if (!this->CulledKeepOffset)
+    {
+      this->CullState->vtkglDisable(GL_POLYGON_OFFSET_FILL);
+    }
   }
   else if (this->CullState && !this->CullFaces.empty())
   {

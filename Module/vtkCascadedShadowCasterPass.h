@@ -49,9 +49,11 @@ public:
 
   /// For the cascade about to render: its uniforms, the face (GL_FRONT / GL_BACK) to cull per
   /// closed caster, and the state to cull it with (SetShaderParameters runs after the property
-  /// set its own culling).
+  /// set its own culling). A culled caster is drawn without the polygon offset (a map holds its
+  /// exit layer at its own depth) unless culledKeepOffset (the view's depth pass, whose depth the
+  /// frame's own geometry must pass).
   void BeginCascade(vtkOpenGLState* state, const CasterUniforms& uniforms,
-    std::map<vtkProp*, unsigned int> cullFaces);
+    std::map<vtkProp*, unsigned int> cullFaces, bool culledKeepOffset = false);
   /// Draws the props' opaque geometry with this pass's hooks into the framebuffer (null: the
   /// one bound); returns how many rendered something.
   int DrawCasters(
@@ -76,6 +78,7 @@ protected:
   CasterUniforms Uniforms;
   std::map<vtkProp*, unsigned int> CullFaces;
   vtkOpenGLState* CullState = nullptr;
+  bool CulledKeepOffset = false;
   std::set<std::string> Reported;
 
 private:

@@ -589,6 +589,14 @@ bool vtkCascadedShadowMapPlanner::CascadeReachesBox(
   return !csm::boxOutsideClipVolume(fromRowMajor(worldToClip), box, depthClamp);
 }
 
+bool vtkCascadedShadowMapPlanner::ViewSeesOnlyOutsideOf(
+  vtkCamera* camera, double aspect, const double bounds[6])
+{
+  csm::Camera cam;
+  return bounds && toCamera(camera, aspect, cam) &&
+    csm::eyeSeesOnlyOutsideOf(cam, toBounds(bounds));
+}
+
 bool vtkCascadedShadowMapPlanner::CasterBoxReachesBox(const double lightDirection[3],
   const double casterBounds[6], const double receiverBounds[6], double minimumDistance)
 {

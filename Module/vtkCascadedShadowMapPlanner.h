@@ -410,6 +410,10 @@ public:
   /// input (the safe answer).
   static bool CasterBoxReachesBox(const double lightDirection[3], const double casterBounds[6],
     const double receiverBounds[6], double minimumDistance);
+  /// Does the camera (of a viewport of the given aspect) see only the outside of every closed
+  /// surface inside a world box (csm::eyeSeesOnlyOutsideOf: its near plane reaches no point of
+  /// the box)? False for parallel cameras and bad input.
+  static bool ViewSeesOnlyOutsideOf(vtkCamera* camera, double aspect, const double bounds[6]);
   /// The cascade a view depth falls in, as the shadow lookup selects it (before it falls back to
   /// the next map covering a point a kept map misses), or -1 outside [splitNear,
   /// splitFar[count-1]].

@@ -4,6 +4,7 @@
 
 #include "csmGeometry.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -33,6 +34,23 @@ bool boxOutsideClipVolume(const glm::dmat4& wsToClip, const Bounds& box, bool de
     outside[6] += h.w <= 0.0;
   }
   return std::any_of(std::begin(outside), std::end(outside), [](int c) { return c == 8; });
+}
+
+bool eyeSeesOnlyOutsideOf(const Camera& camera, const Bounds& box)
+{
+  constexpr double kPi = 3.14159265358979323846;
+  const double tanHalfY = std::tan(0.5 * camera.fovyDeg * kPi / 180.0);
+  const double tanHalfDiagonal = tanHalfY * std::sqrt(1.0 + camera.aspect * camera.aspect);
+  const double reach = camera.vsNear * std::sqrt(1.0 + tanHalfDiagonal * tanHalfDiagonal);
+  if (camera.parallel || box.isEmpty() || !box.isFinite() || !std::isfinite(reach) ||
+    !(camera.vsNear > 0.0) || !(camera.fovyDeg > 0.0 && camera.fovyDeg < 180.0) ||
+    !std::isfinite(camera.wsPosition.x) || !std::isfinite(camera.wsPosition.y) ||
+    !std::isfinite(camera.wsPosition.z))
+  {
+    return false;
+  }
+  const glm::dvec3 nearest = glm::clamp(camera.wsPosition, box.wsMin, box.wsMax);
+  return glm::length(camera.wsPosition - nearest) > reach;
 }
 
 bool sweptBoxReachesBox(const Bounds& casterBox, const glm::dvec3& wsLightDirection,

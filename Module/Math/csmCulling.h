@@ -26,4 +26,12 @@ bool boxOutsideClipVolume(const glm::dmat4& wsToClip, const Bounds& box, bool de
 bool sweptBoxReachesBox(const Bounds& casterBox, const glm::dvec3& wsLightDirection,
   const Bounds& receiverBox, double minimumDistance);
 
+/// Does a perspective camera see only the outside of every closed surface inside a box? True
+/// where no point of its near plane's rectangle reaches the box: the eye is farther from the box
+/// than the rectangle's farthest corner (vsNear over the cosine of the half diagonal field of
+/// view). Of a closed surface in the box, the faces turned away from such an eye are hidden
+/// behind those turned toward it. False for a parallel camera (its near plane may cut any box),
+/// an empty box and input that is not finite.
+bool eyeSeesOnlyOutsideOf(const Camera& camera, const Bounds& box);
+
 } // namespace csm

@@ -76,3 +76,41 @@ TEST(Body, SweptBoxReachesWhatLiesBehindItAlongTheLight)
   EXPECT_TRUE(
     csm::sweptBoxReachesBox(ground, down, csm::Bounds{ { nan, 0, 0 }, { 1, 1, 1 } }, eps));
 }
+
+// A perspective eye sees only the outside of a closed surface in a box when its near plane's
+// rectangle reaches no point of the box: outside the box by more than near / cos(half diagonal).
+TEST(Body, AnEyeSeesOnlyTheOutsideOfABoxItsNearPlaneDoesNotReach)
+{
+  csm::Camera camera;
+  camera.wsPosition = { 0.0, 0.0, 10.0 };
+  camera.wsDirection = { 0.0, 0.0, -1.0 };
+  camera.vsNear = 1.0;
+  camera.fovyDeg = 90.0;
+  camera.aspect = 1.0;
+  // tan(45°) sqrt(2): the corners of the near plane lie sqrt(3) from the eye.
+  const double reach = std::sqrt(3.0);
+  csm::Bounds box;
+  box.wsMin = { -1.0, -1.0, -1.0 };
+  box.wsMax = { 1.0, 1.0, 1.0 };
+  EXPECT_TRUE(csm::eyeSeesOnlyOutsideOf(camera, box));
+  camera.wsPosition = { 0.0, 0.0, 1.0 + 1.01 * reach };
+  EXPECT_TRUE(csm::eyeSeesOnlyOutsideOf(camera, box));
+  camera.wsPosition = { 0.0, 0.0, 1.0 + 0.99 * reach }; // the near plane's corners reach it
+  EXPECT_FALSE(csm::eyeSeesOnlyOutsideOf(camera, box));
+  camera.wsPosition = { 0.0, 0.0, 0.0 }; // inside
+  EXPECT_FALSE(csm::eyeSeesOnlyOutsideOf(camera, box));
+  // Beside the box, looking away from it: its near plane still decides (the direction does not).
+  camera.wsPosition = { 1.0 + 0.99 * reach, 0.0, 0.0 };
+  EXPECT_FALSE(csm::eyeSeesOnlyOutsideOf(camera, box));
+  camera.wsPosition = { 0.0, 0.0, 10.0 };
+  csm::Camera parallel = camera;
+  parallel.parallel = true;
+  EXPECT_FALSE(csm::eyeSeesOnlyOutsideOf(parallel, box));
+  csm::Camera nan = camera;
+  nan.wsPosition.x = std::nan("");
+  EXPECT_FALSE(csm::eyeSeesOnlyOutsideOf(nan, box));
+  csm::Camera wide = camera;
+  wide.fovyDeg = 180.0;
+  EXPECT_FALSE(csm::eyeSeesOnlyOutsideOf(wide, box));
+  EXPECT_FALSE(csm::eyeSeesOnlyOutsideOf(camera, csm::Bounds())); // empty
+}

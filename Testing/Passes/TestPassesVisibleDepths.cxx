@@ -119,6 +119,46 @@ TEST(Passes, VisibleDepthFitStartsTheCascadesAtTheNearestSample)
   EXPECT_FALSE(baker->GetLastFrameStatistics().VisibleDepthsMeasured);
 }
 
+// The depth pass leaves out the faces of a closed caster turned away from the eye only where the
+// eye sees it from outside: from inside a closed room, the walls it sees are those faces, and
+// the cascades begin at the nearest of them.
+TEST(Passes, FromInsideAClosedRoomTheCascadesBeginAtItsNearestWall)
+{
+  BoxOverPlane scene;
+  scene.Renderer->RemoveActor(scene.Ground);
+  scene.Renderer->RemoveActor(scene.Box);
+  vtkNew<vtkCubeSource> room; // a closed box around the eye
+  room->SetBounds(-5.0, 5.0, 0.0, 6.0, -5.0, 5.0);
+  vtkNew<vtkPolyDataMapper> roomMapper;
+  roomMapper->SetInputConnection(room->GetOutputPort());
+  vtkNew<vtkActor> roomActor;
+  roomActor->SetMapper(roomMapper);
+  scene.Renderer->AddActor(roomActor);
+  vtkNew<vtkCubeSource> block; // outside the room, seen from outside: its back faces culled
+  block->SetBounds(-1.0, 1.0, 1.0, 3.0, -12.0, -10.0);
+  vtkNew<vtkPolyDataMapper> blockMapper;
+  blockMapper->SetInputConnection(block->GetOutputPort());
+  vtkNew<vtkActor> blockActor;
+  blockActor->SetMapper(blockMapper);
+  scene.Renderer->AddActor(blockActor);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->SetPosition(0.0, 3.0, 3.0);
+  camera->SetFocalPoint(0.0, 3.0, -5.0); // the far wall, 8 away, fills the view
+  camera->SetViewUp(0.0, 1.0, 0.0);
+  camera->SetViewAngle(30.0);
+  scene.Renderer->ResetCameraClippingRange();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->GetPlanner()->SceneFittedCascadesOff();
+  EXPECT_TRUE(baker->DrawsFromBehind(roomActor)); // (the room is a closed caster)
+  scene.Frame();
+  EXPECT_TRUE(baker->GetLastFrameStatistics().VisibleDepthsUsed);
+  const double nearest = NearestSampleDepth(scene.Window, camera);
+  EXPECT_NEAR(nearest, 8.0, 0.05);
+  EXPECT_NEAR(baker->GetLightMaps().at(0).SplitNear, nearest, 0.01 * nearest);
+  EXPECT_LE(baker->GetLightMaps().at(0).SplitNear, nearest);
+}
+
 // Something nearer put in front of a still camera (a shelf with a cube on it) is measured in the
 // frame that first shows it: the same image as a fresh pass's, the cube's shadow on the shelf
 // included.
