@@ -207,8 +207,8 @@ bool vtkCascadedShadowMapPass::PreReplaceShaderValues(
   return true;
 }
 
-bool vtkCascadedShadowMapPass::PostReplaceShaderValues(std::string& vertexShader,
-  std::string& geometryShader, std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
+bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
+  std::string&, std::string&, std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
 {
   if (this->Uniforms.Lights() == 0)
   {

@@ -52,7 +52,9 @@ void UseCameraLight(BoxOverPlane& scene)
 
 void CopyCamera(BoxOverPlane& from, BoxOverPlane& to)
 {
+  // (A copy does not modify the camera: VTK would draw the next frame from its last matrices.)
   to.Renderer->GetActiveCamera()->DeepCopy(from.Renderer->GetActiveCamera());
+  to.Renderer->GetActiveCamera()->Modified();
 }
 
 /// The resident set size of this process, in MB (0 where /proc cannot be read), after the

@@ -438,6 +438,7 @@ TEST(Passes, LeavingAKeptMapReRendersItInThatFrame)
   scene.Renderer->GetActiveCamera()->Elevation(-20);
   scene.Renderer->GetActiveCamera()->OrthogonalizeViewUp();
   reference.Renderer->GetActiveCamera()->DeepCopy(scene.Renderer->GetActiveCamera());
+  reference.Renderer->GetActiveCamera()->Modified(); // (a copy does not modify it)
   auto moved = scene.Frame();
   EXPECT_GE(pass->GetShadowMapBakerPass()->GetLastFrameStatistics().CascadesRendered, 1);
   EXPECT_EQ(DifferingValues(moved, reference.Frame()), 0);
