@@ -105,10 +105,13 @@ struct csmFramePlan
 };
 
 /// What a cascade's fresh map needs this frame: the texels that meet ErrorTarget, within the
-/// largest map it may have, and whether even that map misses the target.
+/// largest map it may have (Texels: in steps of RESOLUTION_STEP, what a fresh map gets;
+/// TargetTexels: the fewest, what a kept map is judged against), and whether even that map
+/// misses the target.
 struct csmCascadeNeed
 {
   int Texels[2] = { 0, 0 };
+  int TargetTexels[2] = { 0, 0 };
   bool TargetOutOfReach = false;
 };
 

@@ -598,6 +598,7 @@ void vtkCascadedShadowMapBakerPass::PlanCascade(const csmFramePlan& frame, vtkCa
     c, frame.ImageHeight, RESOLUTION_STEP, ceiling, map.Resolution);
   need.Texels[0] = map.Resolution[0];
   need.Texels[1] = map.Resolution[1];
+  this->Planner->GetCascadeResolution(c, frame.ImageHeight, 1, ceiling, need.TargetTexels);
   need.TargetOutOfReach =
     this->Planner->GetCascadeErrorTargetOutOfReach(c, frame.ImageHeight, ceiling);
   const csm::MapSize most(ceiling[0], ceiling[1]);
@@ -638,9 +639,10 @@ bool vtkCascadedShadowMapBakerPass::KeptMapServes(const csmFramePlan& frame, int
   // A kept map serves if it has the texels this view needs (or all its tile holds, where the
   // GL's texture size limit made the tiles smaller than Resolution): while the user interacts,
   // within MapReuseTolerance of a fresh map with the same border; in a still frame, where its
-  // error at this view meets what a fresh tight map meets, or comes within the cascade count's
-  // hysteresis of it where no map meets ErrorTarget (csm::keptMapServes). (Turned the same way:
-  // the error ratio compares the maps at equal resolution.)
+  // error at this view meets ErrorTarget (what a fresh map of the fewest texels that meet it
+  // meets; fresh maps get whole RESOLUTION_STEPs more), or comes within the cascade count's
+  // hysteresis of a fresh map where no map meets ErrorTarget (csm::keptMapServes). (Turned the
+  // same way: the error ratio compares the maps at equal resolution.)
   // (Of the same kind; its tile is assignTiles' to choose.)
   if ((!frame.Interacting && frame.ScreenSized &&
         !std::equal(frame.ViewKey, frame.ViewKey + 18, old.CasterView)) ||
@@ -652,13 +654,21 @@ bool vtkCascadedShadowMapBakerPass::KeptMapServes(const csmFramePlan& frame, int
   {
     const double ratio = this->Planner->CompareKeptMap(
       c, worldToMap, kReuseMarginTexels, std::min(old.Resolution[0], old.Resolution[1]));
-    return frame.Interacting
-      ? old.Resolution[0] >= std::min(map.Resolution[0], map.Tile[2]) &&
-        old.Resolution[1] >= std::min(map.Resolution[1], map.Tile[3]) && ratio <= frame.Tolerance
-      : csm::keptMapServes(ratio, csm::MapSize(old.Resolution[0], old.Resolution[1]),
-          csm::MapSize(
-            std::min(need.Texels[0], map.Tile[2]), std::min(need.Texels[1], map.Tile[3])),
-          need.TargetOutOfReach);
+    if (frame.Interacting)
+    {
+      return old.Resolution[0] >= std::min(map.Resolution[0], map.Tile[2]) &&
+        old.Resolution[1] >= std::min(map.Resolution[1], map.Tile[3]) && ratio <= frame.Tolerance;
+    }
+    const csm::MapSize keptSize(old.Resolution[0], old.Resolution[1]);
+    const csm::MapSize tight(
+      std::min(need.TargetTexels[0], map.Tile[2]), std::min(need.TargetTexels[1], map.Tile[3]));
+    if (c >= 0 && c < kMaxCascades)
+    {
+      double& least = this->Statistics.KeptError[c];
+      const double error = csm::keptMapError(ratio, keptSize, tight);
+      least = least == 0.0 ? error : std::min(least, error);
+    }
+    return csm::keptMapServes(ratio, keptSize, tight, need.TargetOutOfReach);
   };
   moved = old;
   moved.Moved[0] = moved.Moved[1] = 0;

@@ -244,6 +244,11 @@ public:
     bool VisibleDepthsUsed = false, VisibleDepthsMeasured = false; ///< measured in this frame
     double PlanSeconds = 0.0, MapSeconds = 0.0, ClearSeconds = 0.0, CombineSeconds = 0.0;
     double CascadeSeconds[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
+    /// Per cascade, in a frame that is not interactive: the least error of a map kept from the
+    /// last frame (as it was or moved) over the fresh map's that meets ErrorTarget
+    /// (csm::keptMapError; at most 1 serves, or 1 / csm::kCountHysteresis where no map meets the
+    /// target); 0 where no kept map was judged, +infinity where none covers the cascade.
+    double KeptError[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     double GetCascadeSeconds(int c) const
     {
       return c >= 0 && c < vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES

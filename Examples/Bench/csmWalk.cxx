@@ -372,6 +372,8 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
             passes.Cascaded ? passes.Cascaded->GetShadowMapBakerPass() : nullptr;
           if (baker && t.Slack >= 0.0)
             baker->SetMapSlack(t.Slack);
+          if (baker && o.PerFrame)
+            baker->MeasureTimesOn(); // (glFinish between the steps: per-frame times only)
           for (int i = -1; i < static_cast<int>(poses.size()); ++i)
           {
             const Pose& p = poses[std::max(i, 0)]; // (-1: the first view, not timed)
@@ -401,25 +403,39 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
               t.MapsMoved += baker->GetLastFrameStatistics().CascadesMoved;
               t.Texels += baker->GetLastFrameStatistics().TexelsRendered;
               t.Cells += baker->GetLastFrameStatistics().CellsDrawn;
+              const auto& stats = baker->GetLastFrameStatistics();
+              // (The planning time holds the visible-depth pass; the rest of the frame is the
+              // main view with the lookup.)
+              const double planMs = 1e3 * stats.PlanSeconds, clearMs = 1e3 * stats.ClearSeconds,
+                           mapsMs = 1e3 * stats.MapSeconds;
               if (o.PerFrame)
-                std::printf("    %s %s frame %d: %.1f ms, maps %d rendered %d kept (%d moved), "
-                            "%.2f M texels, %.0f k cells, near %.3g\n",
+                std::printf(
+                  "    %s %s frame %d: %.1f ms, maps %d rendered %d kept (%d moved), "
+                  "%.2f M texels, %.0f k cells (%d blocks), near %.3g; depth pass and "
+                  "plan %.1f ms, maps %.1f ms (clears and moves %.1f), view and lookup %.1f ms\n",
                   name.c_str(), pathName.c_str(), i, ms,
                   baker->GetLastFrameStatistics().CascadesRendered,
                   baker->GetLastFrameStatistics().CascadesKept,
                   baker->GetLastFrameStatistics().CascadesMoved,
                   1e-6 * baker->GetLastFrameStatistics().TexelsRendered,
-                  1e-3 * baker->GetLastFrameStatistics().CellsDrawn,
-                  baker->GetLightMaps().empty() ? 0.0 : baker->GetLightMaps()[0].SplitNear);
+                  1e-3 * baker->GetLastFrameStatistics().CellsDrawn, stats.BlocksDrawn,
+                  baker->GetLightMaps().empty() ? 0.0 : baker->GetLightMaps()[0].SplitNear, planMs,
+                  mapsMs, clearMs, std::max(0.0, ms - planMs - mapsMs));
               if (o.PerFrame && !baker->GetLightMaps().empty())
               {
                 const auto& maps = baker->GetLightMaps()[0];
                 for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
-                  std::printf("      map %d: %dx%d of %dx%d, to depth %.3g%s, moved %d, %d\n", c,
-                    maps.Cascades[c].Resolution[0], maps.Cascades[c].Resolution[1],
+                  std::printf(
+                    "      map %d: %dx%d of %dx%d, to depth %.3g%s, moved %d, %d, %.1f ms, "
+                    "kept map's error %.3g of a fresh one's\n",
+                    c, maps.Cascades[c].Resolution[0], maps.Cascades[c].Resolution[1],
                     maps.Cascades[0].Tile[2], maps.Cascades[0].Tile[3], maps.Cascades[c].SplitFar,
                     maps.Cascades[c].IsSceneFitted() ? " (scene-fitted)" : "",
-                    maps.Cascades[c].Moved[0], maps.Cascades[c].Moved[1]);
+                    maps.Cascades[c].Moved[0], maps.Cascades[c].Moved[1],
+                    1e3 * baker->GetLastFrameStatistics().GetCascadeSeconds(c),
+                    c < vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES
+                      ? baker->GetLastFrameStatistics().KeptError[c]
+                      : 0.0);
               }
             }
           }

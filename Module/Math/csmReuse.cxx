@@ -64,20 +64,24 @@ bool smallCameraStep(const Camera& before, const Camera& now, double vsDepth)
   return cosTurn >= std::cos(kSmallStepTurnDeg * kPi / 180.0) && moved <= kSmallStepShare * vsDepth;
 }
 
-bool keptMapServes(
-  double errorRatio, const MapSize& keptSize, const MapSize& need, bool targetOutOfReach)
+double keptMapError(double errorRatio, const MapSize& keptSize, const MapSize& need)
 {
   if (!std::isfinite(errorRatio) || errorRatio < 0.0 || keptSize.width <= 0 ||
     keptSize.height <= 0 || need.width <= 0 || need.height <= 0)
   {
-    return false;
+    return std::numeric_limits<double>::infinity();
   }
+  return errorRatio /
+    std::min(double(keptSize.width) / need.width, double(keptSize.height) / need.height);
+}
+
+bool keptMapServes(
+  double errorRatio, const MapSize& keptSize, const MapSize& need, bool targetOutOfReach)
+{
   // (Rounding: a map kept for the very view it was planned for has a ratio of 1.)
   constexpr double kRounding = 1e-9;
-  const double room =
-    std::min(double(keptSize.width) / need.width, double(keptSize.height) / need.height) /
-    (targetOutOfReach ? kCountHysteresis : 1.0);
-  return errorRatio <= room * (1.0 + kRounding);
+  const double allowed = targetOutOfReach ? 1.0 / kCountHysteresis : 1.0;
+  return keptMapError(errorRatio, keptSize, need) <= allowed * (1.0 + kRounding);
 }
 
 MapReuse compareKeptMap(const glm::dmat4& wsKeptToClip, const Cascade& fresh, const Camera& camera,

@@ -50,16 +50,21 @@ constexpr double kSmallStepTurnDeg = 5.0;
 constexpr double kSmallStepShare = 0.25;
 bool smallCameraStep(const Camera& before, const Camera& now, double vsDepth);
 
+/// The error of a kept map of keptSize texels over that of the tight fresh map of `need` texels
+/// that meets the error target: errorRatio (its error over the fresh map's at equal resolution,
+/// compareKeptMap; +infinity where it does not cover) times need / keptSize along the axis that
+/// gains least (aliasing falls with the texel size, Lloyd et al. 2006, Eq. 1). +infinity for
+/// sizes that are not positive or a ratio that is negative or not finite.
+double keptMapError(double errorRatio, const MapSize& keptSize, const MapSize& need);
+
 /// Does a kept map of keptSize texels serve where a tight fresh map needs `need` texels to meet
-/// the error target? Its error over the fresh map's at equal resolution is errorRatio
-/// (compareKeptMap; +infinity where it does not cover); at its own resolution its error is that
-/// ratio times need / keptSize (aliasing falls with the texel size, Lloyd et al. 2006, Eq. 1),
-/// which must be at most the fresh map's. Where no map of this frame meets the target
-/// (targetOutOfReach: errorTargetOutOfReach at the largest map the cascade may have, so that
-/// need is that map), every map is as good as maps can be and a fresh one misses the target too:
-/// there a kept map serves while its error is at most 1 / kCountHysteresis of the fresh one's,
-/// the hysteresis the cascade count keeps in the same case (Lloyd et al. 2006, §5.2), so that a
-/// walk does not redraw every map for a few percent of error that no map can bring to the target.
+/// the error target? Its keptMapError must be at most 1 (no worse than the fresh map's). Where no
+/// map of this frame meets the target (targetOutOfReach: errorTargetOutOfReach at the largest map
+/// the cascade may have, so that need is that map), every map is as good as maps can be and a fresh
+/// one misses the target too: there a kept map serves while its error is at most 1 /
+/// kCountHysteresis of the fresh one's, the hysteresis the cascade count keeps in the same case
+/// (Lloyd et al. 2006, §5.2), so that a walk does not redraw every map for a few percent of error
+/// that no map can bring to the target.
 bool keptMapServes(
   double errorRatio, const MapSize& keptSize, const MapSize& need, bool targetOutOfReach = false);
 

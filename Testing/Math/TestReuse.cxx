@@ -55,6 +55,22 @@ TEST(Reuse, AKeptMapServesWhileItsErrorMeetsAFreshMapsAtItsResolution)
   EXPECT_FALSE(csm::keptMapServes(0.5, csm::MapSize(0), csm::MapSize(64)));
 }
 
+TEST(Reuse, AKeptMapsErrorIsItsRatioOverTheTexelsItHasBeyondTheNeed)
+{
+  // 1.2 times the fresh map's error at equal resolution, 1440 x 500 texels where 1000 x 500 are
+  // needed: the t axis gains nothing, so 1.2; at 1440 x 720, 1.2 / 1.44.
+  EXPECT_DOUBLE_EQ(csm::keptMapError(1.2, csm::MapSize(1440, 500), csm::MapSize(1000, 500)), 1.2);
+  EXPECT_DOUBLE_EQ(
+    csm::keptMapError(1.2, csm::MapSize(1440, 720), csm::MapSize(1000, 500)), 1.2 / 1.44);
+  // A map smaller than the need is worse by the texels it lacks.
+  EXPECT_DOUBLE_EQ(csm::keptMapError(1.0, csm::MapSize(512), csm::MapSize(1024)), 2.0);
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(csm::keptMapError(inf, csm::MapSize(2048), csm::MapSize(64)), inf);
+  EXPECT_EQ(csm::keptMapError(std::nan(""), csm::MapSize(2048), csm::MapSize(64)), inf);
+  EXPECT_EQ(csm::keptMapError(-1.0, csm::MapSize(2048), csm::MapSize(64)), inf);
+  EXPECT_EQ(csm::keptMapError(1.0, csm::MapSize(2048), csm::MapSize(0, 64)), inf);
+}
+
 // Where even the largest map misses the error target, a kept map may be up to 1 / kCountHysteresis
 // worse than a fresh one (the count's own hysteresis there); its room for a map smaller than
 // that largest one shrinks as before.

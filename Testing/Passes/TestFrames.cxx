@@ -20,6 +20,7 @@
 #include "vtkWeakPointer.h"
 
 #include "csmCascadeCount.h" // kCountHysteresis
+#include "csmReuse.h"        // keptMapError
 #include "csmTestHelpers.h"
 
 #include <gtest/gtest.h>
@@ -334,6 +335,12 @@ TEST(Frames, WhereNoMapMeetsTheTargetAKeptMapStaysWithinTheCountsHysteresis)
       EXPECT_TRUE(ratio <= 1.0 + 1e-9 || unreachable) << "frame " << frame << " map " << c;
       worstRatio = std::max(worstRatio, ratio);
       keptWorse += ratio > 1.0 + 1e-9 ? 1 : 0;
+      // The statistics say the same: the least error of a kept map judged for this cascade, at
+      // its own resolution, within what serves.
+      const double keptError = baker->GetLastFrameStatistics().KeptError[c];
+      EXPECT_GT(keptError, 0.0) << "frame " << frame << " map " << c;
+      EXPECT_LE(keptError, (1.0 + 1e-9) / csm::kCountHysteresis)
+        << "frame " << frame << " map " << c;
     }
     last = now;
   }
@@ -343,6 +350,72 @@ TEST(Frames, WhereNoMapMeetsTheTargetAKeptMapStaysWithinTheCountsHysteresis)
   EXPECT_LT(rendered, cascades);
   std::printf("kept %d of %d maps, %d of them worse than a fresh one (worst ratio %.3f)\n", kept,
     cascades, keptWorse, worstRatio);
+}
+
+// Where the target is in reach, a map kept along a dolly meets the error target at every new view:
+// its error there, read by the error model (the kept matrix against a fresh plan, at its own
+// resolution), is at most that of a map of the fewest texels that meet the target; fresh maps
+// come in steps of RESOLUTION_STEP texels, so a kept map may be a little worse than a fresh one.
+TEST(Frames, AlongADollyEveryKeptMapMeetsTheErrorTarget)
+{
+  BoxOverPlane scene;
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  vtkCascadedShadowMapPlanner* planner = baker->GetPlanner();
+  planner->SceneFittedCascadesOff(); // (the maps that follow the view)
+  scene.Frame();
+  scene.Frame();
+  const int imageHeight = scene.Renderer->GetSize()[1];
+  int kept = 0, keptBeyondFresh = 0, cascades = 0;
+  std::vector<std::vector<double>> last;
+  for (int frame = 0; frame < 16; ++frame)
+  {
+    vtkCamera* camera = scene.Renderer->GetActiveCamera();
+    double eye[3], focal[3];
+    camera->GetPosition(eye);
+    camera->GetFocalPoint(focal);
+    for (int k = 0; k < 3; ++k)
+    {
+      const double step = 0.01 * (focal[k] - eye[k]);
+      eye[k] += step;
+      focal[k] += step;
+    }
+    camera->SetPosition(eye);
+    camera->SetFocalPoint(focal);
+    scene.Frame();
+    const auto& maps = baker->GetLightMaps().at(0);
+    std::vector<std::vector<double>> now;
+    for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
+    {
+      const auto& map = maps.Cascades[c];
+      now.emplace_back(map.WorldToMap, map.WorldToMap + 16);
+      int ceiling[2];
+      planner->GetCascadeResolutionCeiling(c, ceiling);
+      ASSERT_FALSE(planner->GetCascadeErrorTargetOutOfReach(c, imageHeight, ceiling));
+      ++cascades;
+      if (!map.IsMoved() && std::find(last.begin(), last.end(), now.back()) == last.end())
+      {
+        continue; // drawn afresh for this view
+      }
+      ++kept;
+      int fewest[2], fresh[2];
+      planner->GetCascadeResolution(c, imageHeight, 1, ceiling, fewest);
+      planner->GetCascadeResolution(
+        c, imageHeight, vtkCascadedShadowMapBakerPass::RESOLUTION_STEP, ceiling, fresh);
+      const double ratio = planner->CompareKeptMap(
+        c, map.WorldToMap, 0.0, std::min(map.Resolution[0], map.Resolution[1]));
+      const csm::MapSize size(map.Resolution[0], map.Resolution[1]);
+      EXPECT_LE(csm::keptMapError(ratio, size, csm::MapSize(fewest[0], fewest[1])), 1.0 + 1e-9)
+        << "frame " << frame << " map " << c;
+      keptBeyondFresh +=
+        csm::keptMapError(ratio, size, csm::MapSize(fresh[0], fresh[1])) > 1.0 + 1e-9 ? 1 : 0;
+    }
+    last = now;
+  }
+  EXPECT_GT(kept, 0);
+  EXPECT_GT(keptBeyondFresh, 0); // (kept where it meets the target, not only a fresh map's error)
+  std::printf("kept %d of %d maps, %d of them worse than a fresh map of whole steps\n", kept,
+    cascades, keptBeyondFresh);
 }
 
 namespace
