@@ -153,6 +153,18 @@ vtkSmartPointer<vtkActor> GroundPlane(double halfWidth, int resolution)
   return actor;
 }
 
+vtkSmartPointer<vtkActor> BoxActor(
+  double xmin, double xmax, double ymin, double ymax, double zmin, double zmax)
+{
+  vtkNew<vtkCubeSource> cube;
+  cube->SetBounds(xmin, xmax, ymin, ymax, zmin, zmax);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(cube->GetOutputPort());
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  return actor;
+}
+
 BoxOverPlane::BoxOverPlane(int width, int height)
   : BoxOverPlane(
       [width, height]()
@@ -169,11 +181,8 @@ BoxOverPlane::BoxOverPlane(const BoxOverPlaneSettings& s)
 {
   this->Ground->SetMapper(GroundPlane(s.GroundHalfWidth, s.GroundResolution)->GetMapper());
   this->Ground->GetProperty()->SetColor(s.GroundColor[0], s.GroundColor[1], s.GroundColor[2]);
-  vtkNew<vtkCubeSource> cube;
-  cube->SetBounds(s.Box);
-  vtkNew<vtkPolyDataMapper> cubeMapper;
-  cubeMapper->SetInputConnection(cube->GetOutputPort());
-  this->Box->SetMapper(cubeMapper);
+  this->Box->SetMapper(
+    BoxActor(s.Box[0], s.Box[1], s.Box[2], s.Box[3], s.Box[4], s.Box[5])->GetMapper());
   this->Box->GetProperty()->SetColor(s.BoxColor[0], s.BoxColor[1], s.BoxColor[2]);
   this->Renderer->AddActor(this->Ground);
   this->Renderer->AddActor(this->Box);

@@ -64,6 +64,10 @@ vtkSmartPointer<vtkActor> SegmentsActor(
 /// A flat square at y = 0, |x| and |z| up to halfWidth, of resolution x resolution quads.
 vtkSmartPointer<vtkActor> GroundPlane(double halfWidth, int resolution);
 
+/// A box (vtkCubeSource) with the given bounds: xmin, xmax, ymin, ymax, zmin, zmax.
+vtkSmartPointer<vtkActor> BoxActor(
+  double xmin, double xmax, double ymin, double ymax, double zmin, double zmax);
+
 /// The box-over-plane scene; the defaults are those of the pass tests.
 struct BoxOverPlaneSettings
 {

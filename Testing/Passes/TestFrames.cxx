@@ -51,6 +51,31 @@ void UseCameraLight(BoxOverPlane& scene)
   scene.Light->SetFocalPoint(0.0, 0.0, 0.0);
 }
 
+/// One step of a dolly: eye and focal point moved along the view by 1 % of their distance.
+void DollyStep(vtkCamera* camera)
+{
+  double eye[3], focal[3];
+  camera->GetPosition(eye);
+  camera->GetFocalPoint(focal);
+  for (int k = 0; k < 3; ++k)
+  {
+    const double step = 0.01 * (focal[k] - eye[k]);
+    eye[k] += step;
+    focal[k] += step;
+  }
+  camera->SetPosition(eye);
+  camera->SetFocalPoint(focal);
+}
+
+/// Was a map kept from the last frame (as it was, or moved with the view)? `last` holds the
+/// last frame's world -> map matrices; the map's own is appended to `now`.
+bool KeptFromLastFrame(const vtkCascadedShadowMapBakerPass::CascadeMap& map,
+  const std::vector<std::vector<double>>& last, std::vector<std::vector<double>>& now)
+{
+  now.emplace_back(map.WorldToMap, map.WorldToMap + 16);
+  return map.IsMoved() || std::find(last.begin(), last.end(), now.back()) != last.end();
+}
+
 void CopyCamera(BoxOverPlane& from, BoxOverPlane& to)
 {
   // (A copy does not modify the camera: VTK would draw the next frame from its last matrices.)
@@ -297,18 +322,7 @@ TEST(Frames, WhereNoMapMeetsTheTargetAKeptMapStaysWithinTheCountsHysteresis)
   std::vector<std::vector<double>> last;
   for (int frame = 0; frame < 16; ++frame)
   {
-    vtkCamera* camera = scene.Renderer->GetActiveCamera();
-    double eye[3], focal[3];
-    camera->GetPosition(eye);
-    camera->GetFocalPoint(focal);
-    for (int k = 0; k < 3; ++k)
-    {
-      const double step = 0.01 * (focal[k] - eye[k]);
-      eye[k] += step;
-      focal[k] += step;
-    }
-    camera->SetPosition(eye);
-    camera->SetFocalPoint(focal);
+    DollyStep(scene.Renderer->GetActiveCamera());
     scene.Frame();
     const auto& maps = baker->GetLightMaps().at(0);
     kept += baker->GetLastFrameStatistics().CascadesKept;
@@ -317,13 +331,12 @@ TEST(Frames, WhereNoMapMeetsTheTargetAKeptMapStaysWithinTheCountsHysteresis)
     for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
     {
       const auto& map = maps.Cascades[c];
-      now.emplace_back(map.WorldToMap, map.WorldToMap + 16);
       int ceiling[2];
       planner->GetCascadeResolutionCeiling(c, ceiling);
       const bool unreachable = planner->GetCascadeErrorTargetOutOfReach(c, imageHeight, ceiling);
       outOfReach += unreachable ? 1 : 0;
       ++cascades;
-      if (!map.IsMoved() && std::find(last.begin(), last.end(), now.back()) == last.end())
+      if (!KeptFromLastFrame(map, last, now))
       {
         continue; // drawn afresh for this view
       }
@@ -370,30 +383,18 @@ TEST(Frames, AlongADollyEveryKeptMapMeetsTheErrorTarget)
   std::vector<std::vector<double>> last;
   for (int frame = 0; frame < 16; ++frame)
   {
-    vtkCamera* camera = scene.Renderer->GetActiveCamera();
-    double eye[3], focal[3];
-    camera->GetPosition(eye);
-    camera->GetFocalPoint(focal);
-    for (int k = 0; k < 3; ++k)
-    {
-      const double step = 0.01 * (focal[k] - eye[k]);
-      eye[k] += step;
-      focal[k] += step;
-    }
-    camera->SetPosition(eye);
-    camera->SetFocalPoint(focal);
+    DollyStep(scene.Renderer->GetActiveCamera());
     scene.Frame();
     const auto& maps = baker->GetLightMaps().at(0);
     std::vector<std::vector<double>> now;
     for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
     {
       const auto& map = maps.Cascades[c];
-      now.emplace_back(map.WorldToMap, map.WorldToMap + 16);
       int ceiling[2];
       planner->GetCascadeResolutionCeiling(c, ceiling);
       ASSERT_FALSE(planner->GetCascadeErrorTargetOutOfReach(c, imageHeight, ceiling));
       ++cascades;
-      if (!map.IsMoved() && std::find(last.begin(), last.end(), now.back()) == last.end())
+      if (!KeptFromLastFrame(map, last, now))
       {
         continue; // drawn afresh for this view
       }

@@ -52,13 +52,7 @@ TEST(Passes, CastersOutsideACascadeAreNotDrawnIntoIt)
 {
   BoxOverPlane scene;
   // A second box far along the view: it cannot reach the near cascade's light volume.
-  vtkNew<vtkCubeSource> cube;
-  cube->SetBounds(-1, 1, 0, 2, -60, -58);
-  vtkNew<vtkPolyDataMapper> mapper;
-  mapper->SetInputConnection(cube->GetOutputPort());
-  vtkNew<vtkActor> far;
-  far->SetMapper(mapper);
-  scene.Renderer->AddActor(far);
+  scene.Renderer->AddActor(csmTest::BoxActor(-1, 1, 0, 2, -60, -58));
   vtkNew<vtkPlaneSource> plane;
   plane->SetOrigin(-10, 0, -70);
   plane->SetPoint1(10, 0, -70);

@@ -127,20 +127,10 @@ TEST(Passes, FromInsideAClosedRoomTheCascadesBeginAtItsNearestWall)
   BoxOverPlane scene;
   scene.Renderer->RemoveActor(scene.Ground);
   scene.Renderer->RemoveActor(scene.Box);
-  vtkNew<vtkCubeSource> room; // a closed box around the eye
-  room->SetBounds(-5.0, 5.0, 0.0, 6.0, -5.0, 5.0);
-  vtkNew<vtkPolyDataMapper> roomMapper;
-  roomMapper->SetInputConnection(room->GetOutputPort());
-  vtkNew<vtkActor> roomActor;
-  roomActor->SetMapper(roomMapper);
+  // A closed box around the eye; a block outside it, seen from outside: its back faces culled.
+  const vtkSmartPointer<vtkActor> roomActor = csmTest::BoxActor(-5.0, 5.0, 0.0, 6.0, -5.0, 5.0);
   scene.Renderer->AddActor(roomActor);
-  vtkNew<vtkCubeSource> block; // outside the room, seen from outside: its back faces culled
-  block->SetBounds(-1.0, 1.0, 1.0, 3.0, -12.0, -10.0);
-  vtkNew<vtkPolyDataMapper> blockMapper;
-  blockMapper->SetInputConnection(block->GetOutputPort());
-  vtkNew<vtkActor> blockActor;
-  blockActor->SetMapper(blockMapper);
-  scene.Renderer->AddActor(blockActor);
+  scene.Renderer->AddActor(csmTest::BoxActor(-1.0, 1.0, 1.0, 3.0, -12.0, -10.0));
   vtkCamera* camera = scene.Renderer->GetActiveCamera();
   camera->SetPosition(0.0, 3.0, 3.0);
   camera->SetFocalPoint(0.0, 3.0, -5.0); // the far wall, 8 away, fills the view
