@@ -150,6 +150,8 @@ void usage()
     "  --cull-without-receivers on|off  casters that shadow nothing (a ground under\n"
     "                     everything) left out of the maps [%s]\n"
     "  --visible-fit on|off  cascades begin at the nearest sample the view shows [%s]\n"
+    "  --footprint-fit on|off  with --visible-fit, each cascade's map covers only where the\n"
+    "                     view has samples at its depths [%s]\n"
     "  --scene-fitted on|off  the farthest cascade may be a map fixed in the world of what\n"
     "                     can be in shadow, kept while the scene and light stay [%s]\n"
     "  --move-maps on|off  kept maps move with the view, only the strips that came in\n"
@@ -174,7 +176,8 @@ void usage()
     "  --orbit DEG        degrees the camera turns over the frames [%g]; 0: a still camera\n"
     "  --interactive      render --frames as while the user drags the camera (the window's\n"
     "                     desired update rate at the interactor's 15 fps)\n"
-    "  --breakdown        with --frames: also print the median planning and map times\n"
+    "  --breakdown        also print the first frame's and (with --frames) the median\n"
+    "                     planning and map times\n"
     "  --keys K           press the window's keys K in turn (each one renders a frame, with\n"
     "                     the window's text), then render the image or --frames; e.g. tt\n"
     "keys (interactive): w warp, p partition, c cascades, f PCF size, k kernel, d debug view,\n"
@@ -184,10 +187,11 @@ void usage()
     vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES, d.Cascades, d.Lambda,
     d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
     d.CompactCasters ? "on" : "off", d.CullCastersWithoutReceivers ? "on" : "off",
-    d.VisibleDepthFit ? "on" : "off", d.SceneFittedCascades ? "on" : "off",
-    d.MoveKeptMaps ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF, kKernels[d.Kernel],
-    d.ConstantBias, d.SlopeBias, d.ClosedSurfaceBiasFactor, d.Blend, d.DepthClamp ? "on" : "off",
-    d.Darkness, kDebug[d.Debug], o.Light[0], o.Light[1], o.Light[2], o.Width, o.Height,
+    d.VisibleDepthFit ? "on" : "off", d.VisibleFootprintFit ? "on" : "off",
+    d.SceneFittedCascades ? "on" : "off", d.MoveKeptMaps ? "on" : "off", d.Alpha, d.Resolution,
+    d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias, d.SlopeBias,
+    d.ClosedSurfaceBiasFactor, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug],
+    o.Light[0], o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
                              : "needs an X display: xvfb-run -a",
     o.Orbit);
@@ -318,6 +322,12 @@ Options parse(int argc, char** argv)
     {
       const char* const names[] = { "off", "on" };
       o.Shadow.VisibleDepthFit = choice(f, v, names, 2) == 1;
+      next();
+    }
+    else if (f == "--footprint-fit")
+    {
+      const char* const names[] = { "off", "on" };
+      o.Shadow.VisibleFootprintFit = choice(f, v, names, 2) == 1;
       next();
     }
     else if (f == "--move-maps")
@@ -682,16 +692,36 @@ int main(int argc, char** argv)
     }
   }
 
+  if (app.Passes.Cascaded)
+    app.Passes.Cascaded->GetShadowMapBakerPass()->SetMeasureTimes(app.Opt.Breakdown);
+  // The first image's own time (what a user waits for once the scene is loaded: buffers
+  // uploaded, first maps drawn), with --breakdown its planning and map times.
+  bool renderedFirst = false;
+  auto renderFirst = [&]()
+  {
+    vtkNew<vtkTimerLog> firstTimer;
+    firstTimer->StartTimer();
+    window->Render();
+    window->WaitForCompletion();
+    firstTimer->StopTimer();
+    renderedFirst = true;
+    std::printf("first_frame_ms: %.3f\n", 1000.0 * firstTimer->GetElapsedTime());
+    if (app.Passes.Cascaded && app.Opt.Breakdown)
+    {
+      const auto& first = app.Passes.Cascaded->GetShadowMapBakerPass()->GetLastFrameStatistics();
+      std::printf("first_plan_ms: %.3f  first_map_ms: %.3f\n", 1000.0 * first.PlanSeconds,
+        1000.0 * first.MapSeconds);
+    }
+  };
+
   if (app.Opt.Frames > 0)
   {
     std::vector<double> times, planTimes, mapTimes;
-    if (app.Passes.Cascaded)
-      app.Passes.Cascaded->GetShadowMapBakerPass()->SetMeasureTimes(app.Opt.Breakdown);
     int cascadesRendered = 0, cascadesKept = 0, closedCasters = 0, compactCasters = 0,
         blocksDrawn = 0, withoutReceivers = 0;
     double texelsRendered = 0.0;
     vtkNew<vtkTimerLog> timer;
-    window->Render(); // warm-up: shader compilation, first maps
+    renderFirst(); // warm-up: shader compilation, first maps
     if (app.Opt.Interactive)
       window->SetDesiredUpdateRate(15.0); // as vtkRenderWindowInteractor while dragging
     for (int i = 0; i < app.Opt.Frames; ++i)
@@ -745,7 +775,10 @@ int main(int argc, char** argv)
 
   if (!app.Opt.Out.empty() || app.Opt.Offscreen)
   {
-    window->Render();
+    if (renderedFirst)
+      window->Render();
+    else
+      renderFirst();
     if (!app.Opt.Out.empty())
     {
       vtkNew<vtkWindowToImageFilter> grab;

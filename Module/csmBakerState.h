@@ -6,6 +6,8 @@
 
 #include "vtkCascadedShadowMapBakerPass.h"
 
+#include "csmVisibleDepth.h"
+
 #include "vtkCamera.h"
 #include "vtkMatrix4x4.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -34,6 +36,8 @@ struct csmRendererMaps
   vtkSmartPointer<vtkCamera> VisibleCamera;
   double VisibleAspect = 1.0;
   double VisibleWindow[2] = { 1.0, 0.0 };
+  /// ... and where its samples lie on its image, by depth.
+  csm::WindowFootprint VisibleFootprint;
   /// The camera of the last plan (MapSlack: did this frame's camera take a small step?).
   vtkSmartPointer<vtkCamera> LastCamera;
 };

@@ -150,6 +150,7 @@ csmCasterCollection::Counts csmCasterCollection::Collect(vtkRenderer* renderer,
     props.Receivers.push_back(b);
     if (!prop->HasOpaqueGeometry())
     {
+      props.TranslucentReceivers = true;
       continue;
     }
     const int closure = this->ClosureOf(prop, options.CullClosedCasters);

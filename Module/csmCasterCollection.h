@@ -62,6 +62,9 @@ struct csmFrameCasters
   };
   std::vector<Compact> Compacts;
   std::vector<std::array<double, 6>> Receivers;
+  /// Some receiver has no opaque geometry: the view's depth pass, which draws the casters,
+  /// does not show where it is.
+  bool TranslucentReceivers = false;
   /// What the cascade count and the scene-fitted map are judged by
   /// (vtkCascadedShadowMapPlanner::AddCasterLoad), per caster; all processes' when
   /// distributed (then without receiver boxes).

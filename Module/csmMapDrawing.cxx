@@ -121,7 +121,7 @@ vtkCascadedShadowCasterPass::CasterUniforms casterUniformsFor(
 
 /// The nearest and farthest sample of the renderer's viewport in the framebuffer being drawn
 /// (window depths); false when they cannot be read (a multisampled framebuffer, a GL error).
-bool readWindowDepths(vtkRenderer* renderer, double range[2])
+bool readWindowDepths(vtkRenderer* renderer, double range[2], csm::WindowFootprint& footprint)
 {
   vtkOpenGLRenderWindow* window =
     vtkOpenGLRenderWindow::SafeDownCast(renderer ? renderer->GetRenderWindow() : nullptr);
@@ -157,9 +157,9 @@ bool readWindowDepths(vtkRenderer* renderer, double range[2])
   {
     return false;
   }
-  const csm::WindowDepthRange samples = csm::windowDepthRange(depths.data(), depths.size());
-  range[0] = samples.min;
-  range[1] = samples.max;
+  footprint = csm::windowFootprint(depths.data(), width, height);
+  range[0] = footprint.range.min;
+  range[1] = footprint.range.max;
   return true;
 }
 
@@ -437,7 +437,7 @@ void csmMapDrawing::SetUpLightCamera(const LightMaps& maps, int c)
 }
 
 bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
-  const csmFrameCasters& props, double depths[2])
+  const csmFrameCasters& props, double depths[2], csm::WindowFootprint& footprint)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
   const double aspect = renderer->GetTiledAspectRatio();
@@ -524,5 +524,5 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   this->CasterPass->DrawCasters(renderer, s->GetFrameBuffer(), drawn);
   this->CasterPass->EndCascade();
   ostate->vtkglCullFace(static_cast<unsigned int>(savedCullFace));
-  return readWindowDepths(renderer, depths);
+  return readWindowDepths(renderer, depths, footprint);
 }

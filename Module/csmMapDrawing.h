@@ -6,7 +6,8 @@
 #ifndef csmMapDrawing_h
 #define csmMapDrawing_h
 
-#include "csmReuse.h" // for csm::TexelRect
+#include "csmReuse.h"        // for csm::TexelRect
+#include "csmVisibleDepth.h" // for csm::WindowFootprint
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkSmartPointer.h"
 
@@ -70,10 +71,11 @@ public:
 
   /// Draws the depth of the casters the view can see into the frame's own depth buffer (kept
   /// for the frame's geometry pass, a little behind the surfaces) and reads its nearest and
-  /// farthest sample (window depths); false where they cannot be read (a multisampled
-  /// framebuffer, a GL error).
+  /// farthest sample (window depths) and where the samples lie on the image by depth
+  /// (csm::windowFootprint); false where they cannot be read (a multisampled framebuffer, a GL
+  /// error).
   bool DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
-    const csmFrameCasters& props, double depths[2]);
+    const csmFrameCasters& props, double depths[2], csm::WindowFootprint& footprint);
 
 private:
   /// The light camera for a cascade: the light's rotation as view, the rest as projection.

@@ -346,7 +346,8 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
     return; // a multisampled depth buffer cannot be read directly: fitted to the boxes
   }
   double samples[2] = { 1.0, 0.0 };
-  const bool read = this->Drawing->DrawViewDepth(renderer, s, props, samples);
+  csm::WindowFootprint footprint;
+  const bool read = this->Drawing->DrawViewDepth(renderer, s, props, samples, footprint);
   this->Statistics.VisibleDepthsMeasured = true;
   if (read && samples[0] <= samples[1])
   {
@@ -355,6 +356,7 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
     state.VisibleAspect = aspect;
     state.VisibleWindow[0] = samples[0];
     state.VisibleWindow[1] = samples[1];
+    state.VisibleFootprint = std::move(footprint);
   }
 }
 
@@ -418,6 +420,10 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer, vtkOpenGLR
   {
     this->Planner->SetVisibleDepths(
       state.VisibleCamera, state.VisibleAspect, state.VisibleWindow[0], state.VisibleWindow[1]);
+    // Where on the image (VisibleFootprintFit): the depth pass draws the casters, so not where
+    // a receiver without opaque geometry may lie outside it.
+    this->Planner->SetVisibleFootprint(
+      this->VisibleFootprintFit && !props.TranslucentReceivers ? &state.VisibleFootprint : nullptr);
   }
   else
   {
@@ -487,6 +493,8 @@ void vtkCascadedShadowMapBakerPass::PlanLight(vtkRenderer* renderer, csmRenderer
       frame.Ceiling, frame.MostCascades));
   this->Statistics.VisibleDepthsUsed =
     this->Statistics.VisibleDepthsUsed || this->Planner->GetVisibleDepthsUsed();
+  this->Statistics.VisibleFootprintUsed =
+    this->Statistics.VisibleFootprintUsed || this->Planner->GetVisibleFootprintUsed();
   if (this->Planner->GetAtlasShrunk())
   {
     this->ReportOnce(false,
@@ -960,6 +968,7 @@ void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MeasureTimes: " << (this->MeasureTimes ? "on" : "off") << "\n";
   os << indent << "CullClosedCasters: " << (this->CullClosedCasters ? "on" : "off") << "\n";
   os << indent << "VisibleDepthFit: " << (this->VisibleDepthFit ? "on" : "off") << "\n";
+  os << indent << "VisibleFootprintFit: " << (this->VisibleFootprintFit ? "on" : "off") << "\n";
   os << indent
      << "CullCastersWithoutReceivers: " << (this->CullCastersWithoutReceivers ? "on" : "off")
      << "\n";

@@ -132,6 +132,14 @@ public:
   vtkGetMacro(VisibleDepthFit, bool);
   vtkBooleanMacro(VisibleDepthFit, bool);
 
+  /// With VisibleDepthFit, each cascade's receivers are only the part of the view where that
+  /// pass found samples at its depths (the image rectangle of each depth's samples; Lauritzen
+  /// et al. 2011's tight partition bounds), so a map spends no texels on empty sky. Not where a
+  /// receiver has no opaque geometry (that pass draws the casters only). On.
+  vtkSetMacro(VisibleFootprintFit, bool);
+  vtkGetMacro(VisibleFootprintFit, bool);
+  vtkBooleanMacro(VisibleFootprintFit, bool);
+
   /// glPolygonOffset factor and units while rendering the maps, finite (not on closed casters'
   /// exit layer: Results.md, "Closed casters"). 1.1, 2.
   void SetPolygonOffset(double factor, double units);
@@ -242,6 +250,7 @@ public:
     int CompactCasters = 0, BlocksDrawn = 0;       ///< casters from compact blocks, blocks drawn
     int CastersWithoutReceivers = 0;               ///< casters (or blocks) left out of a map
     bool VisibleDepthsUsed = false, VisibleDepthsMeasured = false; ///< measured in this frame
+    bool VisibleFootprintUsed = false; ///< a light's cascades were fitted to the footprint
     double PlanSeconds = 0.0, MapSeconds = 0.0, ClearSeconds = 0.0, CombineSeconds = 0.0;
     double CascadeSeconds[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     /// Per cascade, in a frame that is not interactive: the least error of a map kept from the
@@ -301,6 +310,7 @@ protected:
   double MapReuseTolerance = 1.25, InteractiveMapBorder = 0.2, MapSlack = 0.44;
   bool MeasureTimes = false, CullClosedCasters = true, CompactCasters = true;
   bool CullCastersWithoutReceivers = true, VisibleDepthFit = true, MoveKeptMaps = true;
+  bool VisibleFootprintFit = true;
 
   std::vector<std::unique_ptr<csmRendererMaps>> Renderers;
   vtkWeakPointer<vtkRenderer> LastRenderer;

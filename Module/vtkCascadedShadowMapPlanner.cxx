@@ -144,6 +144,7 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
     this->Internal->Setup = csm::ShadowSetup();
     this->Internal->Setup.message = "no camera or no light direction";
     this->Internal->VisibleUsed = false;
+    this->Internal->FootprintUsed = false;
     return;
   }
   csm::Settings settings;
@@ -173,6 +174,17 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   if (this->Internal->VisibleUsed)
   {
     cam.vsNear = visible.vsNear;
+  }
+  // Where the samples of this very view lie on its image, by depth: each cascade's receivers are
+  // only what the image rectangle of its samples shows (SetVisibleFootprint).
+  csm::ViewFootprint footprint;
+  this->Internal->FootprintUsed = this->Internal->VisibleUsed &&
+    !this->Internal->Footprint.isEmpty() && csm::sameImage(this->Internal->VisibleCamera, cam);
+  if (this->Internal->FootprintUsed)
+  {
+    footprint.window = this->Internal->Footprint;
+    footprint.measuredBy = this->Internal->VisibleCamera;
+    settings.visibleFootprint = &footprint;
   }
   const void* lightKey = light;
   const std::vector<csm::Bounds>* parts =
@@ -243,6 +255,7 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
   }
   // A spot light: one perspective map fitted to the lit part of the visible scene.
   this->Internal->VisibleUsed = false;
+  this->Internal->FootprintUsed = false;
 #if CSM_COMPARISON_TECHNIQUES
   this->Internal->ClearComparison();
 #endif
@@ -289,6 +302,17 @@ void vtkCascadedShadowMapPlanner::SetVisibleDepths(
 void vtkCascadedShadowMapPlanner::ClearVisibleDepths()
 {
   this->Internal->Visible = csm::DepthRange();
+  this->Internal->Footprint = csm::WindowFootprint();
+}
+
+void vtkCascadedShadowMapPlanner::SetVisibleFootprint(const csm::WindowFootprint* footprint)
+{
+  this->Internal->Footprint = footprint ? *footprint : csm::WindowFootprint();
+}
+
+bool vtkCascadedShadowMapPlanner::GetVisibleFootprintUsed() const
+{
+  return this->Internal->FootprintUsed;
 }
 
 bool vtkCascadedShadowMapPlanner::GetVisibleDepthsUsed() const
@@ -642,4 +666,6 @@ void vtkCascadedShadowMapPlanner::PrintSelf(ostream& os, vtkIndent indent)
 #endif
   os << indent << "PlannedCascades: " << this->GetNumberOfPlannedCascades() << "\n";
   os << indent << "VisibleDepthsUsed: " << (this->Internal->VisibleUsed ? "yes" : "no") << "\n";
+  os << indent << "VisibleFootprintUsed: " << (this->Internal->FootprintUsed ? "yes" : "no")
+     << "\n";
 }

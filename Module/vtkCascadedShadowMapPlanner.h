@@ -26,6 +26,10 @@
 class vtkCamera;
 class vtkLight;
 class vtkMatrix4x4;
+namespace csm
+{
+struct WindowFootprint;
+}
 
 class VTKRENDERINGCASCADEDSHADOWS_EXPORT vtkCascadedShadowMapPlanner : public vtkObject
 {
@@ -286,6 +290,18 @@ public:
   void ClearVisibleDepths();
   /// Did the last Plan() fit to the visible depths (SetVisibleDepths())?
   bool GetVisibleDepthsUsed() const;
+#if !defined(__VTK_WRAP__)
+  /**
+   * Where the samples of that same frame lie on its image, by depth (csm::windowFootprint of its
+   * depth buffer; null: nowhere known). A directional light's Plan() for the very view that
+   * measured them (csm::sameImage) then gives each cascade only the receivers that the image
+   * rectangle of its samples shows (Lauritzen et al. 2011's tight partition bounds): the whole
+   * view where its depths have none. Cleared with ClearVisibleDepths().
+   */
+  void SetVisibleFootprint(const csm::WindowFootprint* footprint);
+#endif
+  /// Did the last Plan() fit the cascades to the footprint (SetVisibleFootprint())?
+  bool GetVisibleFootprintUsed() const;
   /// Did every visible sample of a frame drawn by camera (window depths windowMin .. windowMax)
   /// fall in the view depths coveredNear .. coveredFar (csm::depthRangeHolds)?
   static bool DepthsHeld(vtkCamera* camera, double aspect, double coveredNear, double coveredFar,

@@ -51,6 +51,9 @@ struct vtkCascadedShadowMapPlanner::Internals
   csm::Camera VisibleCamera;
   csm::DepthRange Visible;
   bool VisibleUsed = false;
+  // SetVisibleFootprint(): where that camera's samples lie on its image, by depth.
+  csm::WindowFootprint Footprint;
+  bool FootprintUsed = false;
 
 #if CSM_COMPARISON_TECHNIQUES
   // The comparison techniques (vtkCascadedShadowMapPlannerComparison.cxx).

@@ -361,6 +361,9 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
         techniques.emplace_back();
         techniques.back().Label = "not moved";
         techniques.back().Shadow.MoveKeptMaps = false;
+        techniques.emplace_back();
+        techniques.back().Label = "no footprint";
+        techniques.back().Shadow.VisibleFootprintFit = false;
       }
       for (int round = 0; round < o.Rounds; ++round)
       {

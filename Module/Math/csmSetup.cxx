@@ -7,6 +7,7 @@
 #include "csmAliasing.h"
 #include "csmConvexBody.h"
 #include "csmGeometry.h"
+#include "csmVisibleDepth.h"
 
 #include <glm/geometric.hpp>
 
@@ -54,9 +55,10 @@ class ReceiverClipper
 {
 public:
   ReceiverClipper(const Camera& camera, const CameraFrame& frame, const Bounds* sceneBounds,
-    const std::vector<Bounds>* receiverParts)
+    const std::vector<Bounds>* receiverParts, const ViewFootprint* footprint = nullptr)
     : Cam(camera)
     , Frame(frame)
+    , Footprint(footprint && !footprint->window.isEmpty() ? footprint : nullptr)
   {
     if (!sceneBounds)
     {
@@ -79,7 +81,8 @@ public:
     }
   }
 
-  /// extra: more half-spaces (camera-centred) every part is clipped by.
+  /// extra: more half-spaces (camera-centred) every part is clipped by. With a footprint, the
+  /// partition is only the image rectangle of its visible samples (all of it where it has none).
   std::vector<glm::dvec3> body(
     double d0, double d1, const std::vector<Plane>* extra = nullptr) const
   {
@@ -88,6 +91,15 @@ public:
     for (const Plane& plane : extra ? *extra : std::vector<Plane>())
     {
       partition.clip(plane, epsilon);
+    }
+    if (this->Footprint)
+    {
+      const ScreenRect rect =
+        footprintRect(this->Footprint->window, this->Footprint->measuredBy, d0, d1);
+      for (const Plane& plane : screenRectPlanes(this->Cam, rect))
+      {
+        partition.clip(plane, epsilon);
+      }
     }
     if (!this->Clip)
     {
@@ -110,6 +122,7 @@ public:
 private:
   const Camera& Cam;
   const CameraFrame& Frame;
+  const ViewFootprint* Footprint = nullptr;
   bool Clip = false;
   std::vector<std::array<Plane, 6>> Boxes;
 };
@@ -415,7 +428,8 @@ ShadowSetup computeShadowSetup(const Camera& camera, const glm::dvec3& wsLightDi
   setup.gammaDeg = in.gamma / kDegree;
 
   // 1. Receivers, and the depth range of what is visible of them.
-  const ReceiverClipper receivers(camera, in.frame, sceneBounds, receiverParts);
+  const ReceiverClipper receivers(
+    camera, in.frame, sceneBounds, receiverParts, settings.visibleFootprint);
   double n = camera.vsNear;
   double f = camera.vsFar;
   if (sceneBounds && !fitDepthRange(receivers, camera, in.frame, n, f))

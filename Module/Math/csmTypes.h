@@ -64,6 +64,8 @@ struct Bounds
   }
 };
 
+struct ViewFootprint;
+
 struct Settings
 {
   WarpMode warp = WarpMode::Generalized;
@@ -77,6 +79,9 @@ struct Settings
   /// follow the view, where that meets the error target (with caster loads): the passes keep it
   /// while the scene and the light stay. Off for the analysis; the render passes turn it on.
   bool sceneFitted = false;
+  /// Where this very view has visible samples, by depth (csmVisibleDepth.h): each cascade's
+  /// receivers are then only those its samples' image rectangle shows. Null: the whole view.
+  const ViewFootprint* visibleFootprint = nullptr;
 };
 
 struct Cascade

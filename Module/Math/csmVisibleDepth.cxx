@@ -7,6 +7,7 @@
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace csm
@@ -145,6 +146,194 @@ bool depthRangeHolds(
   const double hi =
     windowDepthFromViewDepth(covered.vsFar, camera.vsNear, camera.vsFar, camera.parallel);
   return measured.min >= lo - kWindowDepthTolerance && measured.max <= hi + kWindowDepthTolerance;
+}
+
+bool ScreenRect::isEmpty() const
+{
+  return !(this->x0 <= this->x1 && this->y0 <= this->y1);
+}
+
+void ScreenRect::add(const ScreenRect& other)
+{
+  if (other.isEmpty())
+  {
+    return;
+  }
+  if (this->isEmpty())
+  {
+    *this = other;
+    return;
+  }
+  this->x0 = std::min(this->x0, other.x0);
+  this->y0 = std::min(this->y0, other.y0);
+  this->x1 = std::max(this->x1, other.x1);
+  this->y1 = std::max(this->y1, other.y1);
+}
+
+bool WindowFootprint::isEmpty() const
+{
+  return this->range.isEmpty() || this->bins.empty();
+}
+
+namespace
+{
+/// The bin of a window depth within the footprint's range (clamped to its bins).
+int footprintBin(const WindowFootprint& footprint, double w)
+{
+  const int count = static_cast<int>(footprint.bins.size());
+  const double span = footprint.range.max - footprint.range.min;
+  if (!(span > 0.0))
+  {
+    return 0;
+  }
+  const double t = (w - footprint.range.min) / span * count;
+  return std::max(0, std::min(count - 1, static_cast<int>(std::floor(t))));
+}
+}
+
+ScreenRect WindowFootprint::rectBetween(double w0, double w1) const
+{
+  ScreenRect rect;
+  if (this->isEmpty() || !(w0 <= w1) || w1 < this->range.min || w0 > this->range.max)
+  {
+    return rect;
+  }
+  const int first = footprintBin(*this, w0);
+  const int last = footprintBin(*this, w1);
+  for (int b = first; b <= last; ++b)
+  {
+    rect.add(this->bins[static_cast<size_t>(b)]);
+  }
+  return rect;
+}
+
+WindowFootprint windowFootprint(const float* windowDepths, int width, int height)
+{
+  WindowFootprint footprint;
+  if (!windowDepths || width < 1 || height < 1)
+  {
+    return footprint;
+  }
+  const size_t count = static_cast<size_t>(width) * static_cast<size_t>(height);
+  footprint.range = windowDepthRange(windowDepths, count);
+  if (footprint.range.isEmpty())
+  {
+    return footprint;
+  }
+  footprint.bins.assign(kFootprintBins, ScreenRect());
+  // Per bin, the pixel columns and rows its samples cover; then their pixels' full extent.
+  std::vector<std::array<int, 4>> cover(kFootprintBins, { width, height, -1, -1 });
+  for (int row = 0; row < height; ++row)
+  {
+    const float* line = windowDepths + static_cast<size_t>(row) * static_cast<size_t>(width);
+    for (int column = 0; column < width; ++column)
+    {
+      const double w = line[column];
+      if (!(w < 1.0) || !std::isfinite(w))
+      {
+        continue;
+      }
+      std::array<int, 4>& c = cover[static_cast<size_t>(footprintBin(footprint, w))];
+      c[0] = std::min(c[0], column);
+      c[1] = std::min(c[1], row);
+      c[2] = std::max(c[2], column);
+      c[3] = std::max(c[3], row);
+    }
+  }
+  for (int b = 0; b < kFootprintBins; ++b)
+  {
+    const std::array<int, 4>& c = cover[static_cast<size_t>(b)];
+    if (c[2] < c[0])
+    {
+      continue;
+    }
+    ScreenRect& rect = footprint.bins[static_cast<size_t>(b)];
+    rect.x0 = 2.0 * c[0] / width - 1.0;
+    rect.y0 = 2.0 * c[1] / height - 1.0;
+    rect.x1 = 2.0 * (c[2] + 1) / width - 1.0;
+    rect.y1 = 2.0 * (c[3] + 1) / height - 1.0;
+  }
+  return footprint;
+}
+
+bool sameImage(const Camera& a, const Camera& b)
+{
+  constexpr double tolerance = 1e-6;
+  if (!cameraError(a).empty() || !cameraError(b).empty() || a.parallel != b.parallel)
+  {
+    return false;
+  }
+  auto close = [&](double x, double y, double scale) {
+    return std::abs(x - y) <= tolerance * std::max({ std::abs(x), std::abs(y), scale });
+  };
+  auto sameDirection = [&](const glm::dvec3& u, const glm::dvec3& v)
+  { return glm::length(glm::normalize(u) - glm::normalize(v)) <= tolerance; };
+  // Positions compared at the nearest distance either view draws (a step shifts the image of
+  // a point at depth d by step / d).
+  const double scale = std::max(std::min(a.vsNear, b.vsNear), 1e-300);
+  const glm::dvec3 moved = a.wsPosition - b.wsPosition;
+  return glm::length(moved) <= tolerance * scale && sameDirection(a.wsDirection, b.wsDirection) &&
+    sameDirection(glm::cross(a.wsDirection, a.wsViewUp), glm::cross(b.wsDirection, b.wsViewUp)) &&
+    close(a.aspect, b.aspect, 0.0) &&
+    (a.parallel ? close(a.parallelScale, b.parallelScale, 0.0) : close(a.fovyDeg, b.fovyDeg, 0.0));
+}
+
+ScreenRect footprintRect(
+  const WindowFootprint& footprint, const Camera& camera, double vsD0, double vsD1)
+{
+  if (footprint.isEmpty() || !cameraError(camera).empty() || !(vsD0 <= vsD1))
+  {
+    return ScreenRect();
+  }
+  const double w0 = windowDepthFromViewDepth(vsD0, camera.vsNear, camera.vsFar, camera.parallel);
+  const double w1 = windowDepthFromViewDepth(vsD1, camera.vsNear, camera.vsFar, camera.parallel);
+  if (!std::isfinite(w0) || !std::isfinite(w1))
+  {
+    return ScreenRect();
+  }
+  return footprint.rectBetween(std::min(w0, w1), std::max(w0, w1));
+}
+
+std::vector<Plane> screenRectPlanes(const Camera& camera, const ScreenRect& rect)
+{
+  std::vector<Plane> planes;
+  if (rect.isEmpty() || !cameraError(camera).empty())
+  {
+    return planes;
+  }
+  const CameraFrame frame = cameraFrame(camera);
+  // A point p = a view + b right + c up (camera-centred) is at image x = b / (a tanX) in a
+  // perspective view, b / half width in a parallel one; x >= x0 is then
+  // dot(p, right - x0 tanX view) >= 0, or dot(p, right) - x0 halfWidth >= 0 (and so on).
+  const glm::dvec2 half = halfSize(camera, frame, 1.0);
+  const double tanAxis[2] = { frame.tanX, frame.tanY };
+  const glm::dvec3 axis[2] = { frame.right, frame.up };
+  const double low[2] = { rect.x0, rect.y0 };
+  const double high[2] = { rect.x1, rect.y1 };
+  for (int i = 0; i < 2; ++i)
+  {
+    for (int side = 0; side < 2; ++side)
+    {
+      const double sign = side == 0 ? 1.0 : -1.0;
+      const double edge = side == 0 ? low[i] : high[i];
+      Plane plane;
+      if (camera.parallel)
+      {
+        plane.normal = sign * axis[i];
+        plane.offset = -sign * edge * (i == 0 ? half.x : half.y);
+      }
+      else
+      {
+        plane.normal = sign * (axis[i] - edge * tanAxis[i] * frame.view);
+        plane.offset = 0.0;
+      }
+      const double length = glm::length(plane.normal);
+      plane.normal /= length;
+      plane.offset /= length;
+      planes.push_back(plane);
+    }
+  }
+  return planes;
 }
 
 } // namespace csm

@@ -5,9 +5,11 @@
 // checked against the range the cascades of that frame covered. Pure math, no VTK, no GL.
 #pragma once
 
+#include "csmConvexBody.h"
 #include "csmTypes.h"
 
 #include <cstddef>
+#include <vector>
 
 namespace csm
 {
@@ -69,5 +71,58 @@ DepthRange carryDepthRange(
 /// measurement (nothing visible).
 bool depthRangeHolds(
   const DepthRange& covered, const WindowDepthRange& measured, const Camera& camera);
+
+/// A rectangle of the image in normalized device coordinates ([-1, 1] across the viewport);
+/// empty when x0 > x1 or y0 > y1.
+struct ScreenRect
+{
+  double x0 = 1.0, y0 = 1.0, x1 = -1.0, y1 = -1.0;
+  bool isEmpty() const;
+  /// Grown to hold another rectangle (an empty one changes nothing).
+  void add(const ScreenRect& other);
+};
+
+/// Window-depth bins of a depth buffer's samples between the nearest and the farthest.
+constexpr int kFootprintBins = 64;
+
+/// Where on the image a frame's visible samples lie, by depth (the tight partition bounds of
+/// Lauritzen et al. 2011's sample distribution shadow maps): the window depths from the nearest
+/// to the farthest sample in kFootprintBins equal bins (about equal in 1 / view depth for a
+/// perspective view: fine near the eye), each with the rectangle of its samples' pixels.
+struct WindowFootprint
+{
+  WindowDepthRange range;
+  std::vector<ScreenRect> bins;
+  bool isEmpty() const;
+  /// The rectangle of the samples at window depths w0 .. w1 (of every bin that range touches);
+  /// empty where there are none.
+  ScreenRect rectBetween(double w0, double w1) const;
+};
+
+/// The footprint of a depth buffer of width x height values (rows from the bottom), those
+/// below 1 (1 is the cleared background); empty when there are none or the size is not positive.
+WindowFootprint windowFootprint(const float* windowDepths, int width, int height);
+
+/// A footprint and the camera that drew it.
+struct ViewFootprint
+{
+  WindowFootprint window;
+  Camera measuredBy;
+};
+
+/// Do two cameras see the same image, up to a relative 1e-6 (position against the nearer near
+/// distance, direction, up, angle or scale, aspect; the clipping range may differ otherwise)?
+/// A footprint serves only its own view.
+bool sameImage(const Camera& a, const Camera& b);
+
+/// The rectangle of the samples camera drew at view depths vsD0 .. vsD1 (its footprint);
+/// empty where there are none, or for an invalid camera.
+ScreenRect footprintRect(
+  const WindowFootprint& footprint, const Camera& camera, double vsD0, double vsD1);
+
+/// The camera-centred half-spaces whose intersection is the part of camera's view volume that
+/// projects into rect (planes through the eye, or for a parallel view parallel to its axis);
+/// none for an empty rectangle or an invalid camera.
+std::vector<Plane> screenRectPlanes(const Camera& camera, const ScreenRect& rect);
 
 } // namespace csm

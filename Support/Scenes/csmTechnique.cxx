@@ -42,6 +42,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->CompactCasters = baker->GetCompactCasters();
   this->CullCastersWithoutReceivers = baker->GetCullCastersWithoutReceivers();
   this->VisibleDepthFit = baker->GetVisibleDepthFit();
+  this->VisibleFootprintFit = baker->GetVisibleFootprintFit();
   this->SceneFittedCascades = baker->GetPlanner()->GetSceneFittedCascades();
   this->MoveKeptMaps = baker->GetMoveKeptMaps();
 #if CSM_COMPARISON_TECHNIQUES
@@ -75,6 +76,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetCompactCasters(o.CompactCasters);
   baker->SetCullCastersWithoutReceivers(o.CullCastersWithoutReceivers);
   baker->SetVisibleDepthFit(o.VisibleDepthFit);
+  baker->SetVisibleFootprintFit(o.VisibleFootprintFit);
   baker->GetPlanner()->SetSceneFittedCascades(o.SceneFittedCascades);
   baker->SetMoveKeptMaps(o.MoveKeptMaps);
 #if CSM_COMPARISON_TECHNIQUES

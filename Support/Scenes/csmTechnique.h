@@ -44,6 +44,7 @@ struct ShadowOptions
   bool CompactCasters;              ///< casters drawn into the maps from compact spatial blocks
   bool CullCastersWithoutReceivers; ///< casters that shadow nothing left out of the maps
   bool VisibleDepthFit;             ///< cascades fitted to the depths the view has samples at
+  bool VisibleFootprintFit;         ///< ... and to where on the image (VisibleFootprintFit)
   bool SceneFittedCascades;         ///< the farthest cascade may be a map fixed in the world
   bool MoveKeptMaps;                ///< kept maps move with the view (their strips drawn)
 #if CSM_COMPARISON_TECHNIQUES

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The visible depth range: from a depth buffer, carried to the next frame's camera, checked.
+#include "csmGeometry.h"
 #include "csmMathTestHelpers.h"
+#include "csmSetup.h"
 #include "csmVisibleDepth.h"
 
 #include <glm/geometric.hpp>
@@ -150,4 +152,163 @@ TEST(VisibleDepth, BadInputGivesNoRange)
   window.max = 0.3;
   EXPECT_TRUE(csm::viewDepthRange(window, bad).isEmpty());
   EXPECT_FALSE(csm::depthRangeHolds(csm::DepthRange(), window, cam));
+}
+
+TEST(VisibleDepth, AFootprintHoldsEachDepthsSamplesInTheirPixelsRectangle)
+{
+  // 64 x 48 pixels: a near block in the lower left (view depth 10), a far one in the upper
+  // right (view depth 400), background elsewhere; camera 1 .. 1000.
+  const csm::Camera cam = camera(1.0, 1000.0, 40.0, 4.0 / 3.0);
+  const int width = 64, height = 48;
+  std::vector<float> buffer(width * height, 1.0f);
+  const float nearW = static_cast<float>(csm::windowDepthFromViewDepth(10.0, 1.0, 1000.0, false));
+  const float farW = static_cast<float>(csm::windowDepthFromViewDepth(400.0, 1.0, 1000.0, false));
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 16; ++x)
+      buffer[y * width + x] = nearW; // columns 0-15, rows 0-11
+  for (int y = 36; y < 48; ++y)
+    for (int x = 48; x < 64; ++x)
+      buffer[y * width + x] = farW; // columns 48-63, rows 36-47
+  const csm::WindowFootprint footprint = csm::windowFootprint(buffer.data(), width, height);
+  ASSERT_FALSE(footprint.isEmpty());
+  EXPECT_EQ(static_cast<int>(footprint.bins.size()), csm::kFootprintBins);
+  EXPECT_FLOAT_EQ(static_cast<float>(footprint.range.min), nearW);
+  EXPECT_FLOAT_EQ(static_cast<float>(footprint.range.max), farW);
+
+  // Around the near block's depth: its pixels' rectangle, in NDC (pixel edges, not centres).
+  const csm::ScreenRect nearRect = csm::footprintRect(footprint, cam, 9.0, 11.0);
+  ASSERT_FALSE(nearRect.isEmpty());
+  EXPECT_DOUBLE_EQ(nearRect.x0, -1.0);
+  EXPECT_DOUBLE_EQ(nearRect.y0, -1.0);
+  EXPECT_DOUBLE_EQ(nearRect.x1, 2.0 * 16 / width - 1.0);
+  EXPECT_DOUBLE_EQ(nearRect.y1, 2.0 * 12 / height - 1.0);
+  const csm::ScreenRect farRect = csm::footprintRect(footprint, cam, 300.0, 500.0);
+  ASSERT_FALSE(farRect.isEmpty());
+  EXPECT_DOUBLE_EQ(farRect.x0, 2.0 * 48 / width - 1.0);
+  EXPECT_DOUBLE_EQ(farRect.y0, 2.0 * 36 / height - 1.0);
+  EXPECT_DOUBLE_EQ(farRect.x1, 1.0);
+  EXPECT_DOUBLE_EQ(farRect.y1, 1.0);
+  // Between them nothing; over both depths both blocks.
+  EXPECT_TRUE(csm::footprintRect(footprint, cam, 20.0, 100.0).isEmpty());
+  const csm::ScreenRect both = csm::footprintRect(footprint, cam, 5.0, 900.0);
+  EXPECT_DOUBLE_EQ(both.x0, -1.0);
+  EXPECT_DOUBLE_EQ(both.y1, 1.0);
+  // Beyond the samples, or a bad query: nothing.
+  EXPECT_TRUE(csm::footprintRect(footprint, cam, 600.0, 900.0).isEmpty());
+  EXPECT_TRUE(csm::footprintRect(footprint, cam, 11.0, 9.0).isEmpty());
+  EXPECT_TRUE(csm::footprintRect(footprint, csm::Camera{ {}, { 0, 0, 0 } }, 9.0, 11.0).isEmpty());
+  // Only background, no buffer or no pixels: an empty footprint.
+  std::vector<float> background(width * height, 1.0f);
+  EXPECT_TRUE(csm::windowFootprint(background.data(), width, height).isEmpty());
+  EXPECT_TRUE(csm::windowFootprint(nullptr, width, height).isEmpty());
+  EXPECT_TRUE(csm::windowFootprint(buffer.data(), 0, height).isEmpty());
+}
+
+TEST(VisibleDepth, AScreenRectanglesPlanesHoldWhatProjectsIntoIt)
+{
+  for (bool parallel : { false, true })
+  {
+    csm::Camera cam = camera(0.5, 100.0, 50.0, 1.5);
+    cam.wsPosition = { 3.0, -2.0, 7.0 };
+    cam.wsDirection = { 1.0, 0.2, -1.0 };
+    cam.wsViewUp = { 0.0, 1.0, 0.3 };
+    cam.parallel = parallel;
+    cam.parallelScale = 4.0;
+    const csm::CameraFrame frame = csm::cameraFrame(cam);
+    const csm::ScreenRect rect{ -0.5, 0.1, 0.25, 0.8 };
+    const std::vector<csm::Plane> planes = csm::screenRectPlanes(cam, rect);
+    ASSERT_EQ(planes.size(), 4u);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> ndc(-1.0, 1.0), depth(0.5, 100.0);
+    int inside = 0;
+    for (int i = 0; i < 2000; ++i)
+    {
+      const double x = ndc(random), y = ndc(random), d = depth(random);
+      const glm::dvec2 half = csm::halfSize(cam, frame, d);
+      const glm::dvec3 p = frame.view * d + frame.right * (x * half.x) + frame.up * (y * half.y);
+      bool inAll = true;
+      for (const csm::Plane& plane : planes)
+        inAll = inAll && glm::dot(plane.normal, p) + plane.offset >= -1e-9 * d;
+      const bool inRect = x >= rect.x0 && x <= rect.x1 && y >= rect.y0 && y <= rect.y1;
+      EXPECT_EQ(inAll, inRect) << "parallel " << parallel << " x " << x << " y " << y;
+      inside += inRect ? 1 : 0;
+    }
+    EXPECT_GT(inside, 100);
+    EXPECT_TRUE(csm::screenRectPlanes(cam, csm::ScreenRect()).empty());
+  }
+}
+
+TEST(VisibleDepth, AFootprintServesOnlyTheImageThatMeasuredIt)
+{
+  const csm::Camera a = camera(1.0, 1000.0, 40.0, 4.0 / 3.0);
+  csm::Camera b = a;
+  b.vsNear = 7.0; // another clipping range: the same image
+  EXPECT_TRUE(csm::sameImage(a, b));
+  b.wsPosition.x += 1e-3;
+  EXPECT_FALSE(csm::sameImage(a, b));
+  b = a;
+  b.wsDirection = { 0.01, 0.0, -1.0 };
+  EXPECT_FALSE(csm::sameImage(a, b));
+  b = a;
+  b.wsViewUp = { 0.1, 1.0, 0.0 }; // rolled
+  EXPECT_FALSE(csm::sameImage(a, b));
+  b = a;
+  b.fovyDeg = 41.0;
+  EXPECT_FALSE(csm::sameImage(a, b));
+  b = a;
+  b.aspect = 1.0;
+  EXPECT_FALSE(csm::sameImage(a, b));
+  b = a;
+  b.parallel = true;
+  EXPECT_FALSE(csm::sameImage(a, b));
+}
+
+TEST(VisibleDepth, CascadesFittedToAFootprintHoldOnlyThePartOfTheViewItShows)
+{
+  // Samples only in the lower half of the image, at every depth from 2 to 800 (a ground seen
+  // below the horizon, sky above): each cascade's body stays below the horizon and needs fewer
+  // texels than the whole view's slab.
+  csm::Camera cam = camera(1.0, 1000.0, 50.0, 4.0 / 3.0);
+  const int width = 160, height = 120;
+  std::vector<float> buffer(width * height, 1.0f);
+  for (int y = 0; y < height / 2; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      const double t = double(x) / (width - 1);
+      buffer[y * width + x] = static_cast<float>(
+        csm::windowDepthFromViewDepth(2.0 * std::pow(400.0, t), 1.0, 1000.0, false));
+    }
+  }
+  csm::ViewFootprint footprint;
+  footprint.window = csm::windowFootprint(buffer.data(), width, height);
+  footprint.measuredBy = cam;
+  csm::Camera fitted = cam;
+  fitted.vsNear = 2.0; // the nearest sample, as the planner carries it
+  fitted.vsFar = 800.0;
+  csm::Settings whole = csmMathTest::settings(csm::WarpMode::Generalized, csm::SplitScheme::Log, 3);
+  csm::Settings tight = whole;
+  tight.visibleFootprint = &footprint;
+  const glm::dvec3 light = csmMathTest::lightAt(cam, 60.0);
+  const csm::ShadowSetup a = csm::computeShadowSetup(fitted, light, nullptr, whole);
+  const csm::ShadowSetup b = csm::computeShadowSetup(fitted, light, nullptr, tight);
+  ASSERT_EQ(a.status, csm::Status::Ok);
+  ASSERT_EQ(b.status, csm::Status::Ok);
+  ASSERT_EQ(a.cascades.size(), b.cascades.size());
+  csmMathTest::expectBodyInUnitCube(b);
+  const csm::CameraFrame frame = csm::cameraFrame(cam);
+  double wholeStorage = 0.0, tightStorage = 0.0;
+  for (size_t i = 0; i < b.cascades.size(); ++i)
+  {
+    bool above = false;
+    for (const glm::dvec3& p : a.cascades[i].wsBody)
+      above = above || glm::dot(p - cam.wsPosition, frame.up) > 1e-6;
+    EXPECT_TRUE(above); // the whole view's slab reaches above the horizon
+    for (const glm::dvec3& p : b.cascades[i].wsBody)
+      EXPECT_LE(glm::dot(p - cam.wsPosition, frame.up), 1e-9 * glm::length(p - cam.wsPosition));
+    EXPECT_LT(b.cascades[i].storage, a.cascades[i].storage);
+    wholeStorage += a.cascades[i].storage;
+    tightStorage += b.cascades[i].storage;
+  }
+  EXPECT_LT(tightStorage, 0.75 * wholeStorage);
 }

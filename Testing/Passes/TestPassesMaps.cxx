@@ -216,7 +216,9 @@ TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
   std::printf("shadowed pixels: full maps %ld, maps from need %ld (%.1f %% of the texels)\n", full,
     needed, 100.0 * texels / (2.0 * baker->GetResolution() * baker->GetResolution()));
   EXPECT_GT(full, 800);
-  EXPECT_NEAR(static_cast<double>(needed), static_cast<double>(full), 0.03 * full);
+  // The same shadow up to its edge: at ErrorTarget 1 a texel spans up to a pixel, and each edge
+  // of this shadow (about 150 pixels around, 13 % of its area) may move by up to one.
+  EXPECT_NEAR(static_cast<double>(needed), static_cast<double>(full), 0.08 * full);
   // A larger window needs more texels (up to the ceiling).
   scene.Window->SetSize(960, 720);
   scene.Render();

@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -211,4 +212,72 @@ TEST(Passes, AGrabbedImageIsTheSameView)
   scene.Renderer->GetActiveCamera()->Azimuth(1.0);
   scene.Window->Render();
   EXPECT_TRUE(baker->GetLastFrameStatistics().VisibleDepthsMeasured);
+}
+
+// Where the view shows empty background around what it sees, each cascade's map covers only
+// the part of the image where the depth pass found samples at its depths (VisibleFootprintFit):
+// fewer texels for the same shadow. Not with a receiver the depth pass does not draw (a
+// translucent one).
+TEST(Passes, CascadesFittedToTheVisibleFootprintDrawFewerTexelsForTheSameShadow)
+{
+  BoxOverPlane scene(400, 300);
+  scene.Renderer->RemoveActor(scene.Ground);
+  scene.Renderer->RemoveActor(scene.Box);
+  // One prop: a plate with a block on it near the lower left of the view and a tower far off
+  // at the upper right. Its box holds most of the view volume, so the boxes do not tell where
+  // the image is empty; the depths do.
+  vtkNew<vtkAppendPolyData> parts;
+  for (const std::array<double, 6>& b : { std::array<double, 6>{ -7, -1, 0, 0.2, -2, 3 },
+         std::array<double, 6>{ -4.5, -3.5, 0.2, 1.7, -0.5, 0.5 },
+         std::array<double, 6>{ 8, 10, 4, 12, -30, -28 } })
+  {
+    vtkNew<vtkCubeSource> cube;
+    cube->SetBounds(b.data());
+    cube->Update();
+    parts->AddInputData(cube->GetOutput());
+  }
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(parts->GetOutputPort());
+  vtkNew<vtkActor> prop;
+  prop->SetMapper(mapper);
+  scene.Renderer->AddActor(prop);
+  scene.Light->SetPosition(6.0, 10.0, 2.0); // (toward the origin: the block's shadow beside it)
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->SetPosition(0.0, 6.0, 18.0);
+  camera->SetFocalPoint(0.0, 2.0, -5.0);
+  scene.Renderer->ResetCameraClippingRange();
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->GetPlanner()->SceneFittedCascadesOff(); // (the cascades that follow the view)
+  baker->GetPlanner()->AdaptiveCascadesOff();
+  baker->GetPlanner()->SetNumberOfCascades(2); // (the plate in the first, the tower in the last)
+  baker->VisibleFootprintFitOff();
+  auto whole = scene.Frame();
+  const auto wholeStats = baker->GetLastFrameStatistics();
+  EXPECT_TRUE(wholeStats.VisibleDepthsUsed);
+  EXPECT_FALSE(wholeStats.VisibleFootprintUsed);
+
+  baker->VisibleFootprintFitOn();
+  baker->Modified(); // (an option changed: every map drawn again)
+  auto fitted = scene.Frame();
+  const auto fittedStats = baker->GetLastFrameStatistics();
+  EXPECT_TRUE(fittedStats.VisibleFootprintUsed);
+  std::printf("texels: whole view %.0f, footprint %.0f\n", wholeStats.TexelsRendered,
+    fittedStats.TexelsRendered);
+  EXPECT_GT(fittedStats.CascadesRendered, 0);
+  EXPECT_LT(fittedStats.TexelsRendered, 0.6 * wholeStats.TexelsRendered); // 1.10 -> 0.52 M
+  const long shadowWhole = DarkenedPixels(whole, plain);
+  const long shadowFitted = DarkenedPixels(fitted, plain);
+  std::printf("darkened pixels: whole view %ld, footprint %ld\n", shadowWhole, shadowFitted);
+  EXPECT_GT(shadowWhole, 200); // the block's shadow on the plate
+  EXPECT_NEAR(shadowFitted, shadowWhole, 0.03 * shadowWhole);
+
+  // A translucent receiver: the footprint is not used.
+  vtkSmartPointer<vtkActor> glass = csmTest::BoxActor(4.0, 6.0, 0.0, 2.0, -1.0, 1.0);
+  glass->GetProperty()->SetOpacity(0.5);
+  scene.Renderer->AddActor(glass);
+  scene.Frame();
+  EXPECT_TRUE(baker->GetLastFrameStatistics().VisibleDepthsUsed);
+  EXPECT_FALSE(baker->GetLastFrameStatistics().VisibleFootprintUsed);
 }

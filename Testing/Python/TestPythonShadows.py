@@ -51,10 +51,11 @@ def option_names(code):
         names |= {name + "On", name + "Off"} if kind == "Boolean" else {kind + name}
     names |= set(re.findall(r"\b((?:Set|Get|Use)[A-Z]\w*)\s*\(", public))
     # The baker's per-light map state for the shadow pass (and its structs' own methods) and its
-    # frame statistics (C++ structs, for tests and benchmarks), not options. (The planner's
+    # frame statistics (C++ structs, for tests and benchmarks), not options; the planner's
+    # visible footprint, a struct of the math the baker measures each frame. (The planner's
     # GetNumberOfCascades is checked below.)
     return names - {"GetLightMaps", "GetLastFrameStatistics", "GetCascadeSeconds",
-                    "GetNumberOfCascades"}
+                    "GetNumberOfCascades", "SetVisibleFootprint"}
 
 
 def split_comparison(code):
