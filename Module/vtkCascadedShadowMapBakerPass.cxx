@@ -421,9 +421,20 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer, vtkOpenGLR
     this->Planner->SetVisibleDepths(
       state.VisibleCamera, state.VisibleAspect, state.VisibleWindow[0], state.VisibleWindow[1]);
     // Where on the image (VisibleFootprintFit): the depth pass draws the casters, so not where
-    // a receiver without opaque geometry may lie outside it.
+    // a receiver without opaque geometry may lie outside it; and its pixels are the camera's
+    // whole image only for an on-axis camera drawn in one tile (not a magnified screenshot's
+    // tiles, not an off-axis or shifted projection).
+    vtkCamera* camera = renderer->GetActiveCamera();
+    const double* tile = window->GetTileViewport();
+    const double* centre = camera->GetWindowCenter();
+    const bool wholeImage = window->GetTileScale()[0] == 1 && window->GetTileScale()[1] == 1 &&
+      tile[0] == 0.0 && tile[1] == 0.0 && tile[2] == 1.0 && tile[3] == 1.0 && centre[0] == 0.0 &&
+      centre[1] == 0.0 && !camera->GetUseOffAxisProjection() &&
+      !camera->GetUseExplicitProjectionTransformMatrix();
     this->Planner->SetVisibleFootprint(
-      this->VisibleFootprintFit && !props.TranslucentReceivers ? &state.VisibleFootprint : nullptr);
+      this->VisibleFootprintFit && !props.TranslucentReceivers && wholeImage
+        ? &state.VisibleFootprint
+        : nullptr);
   }
   else
   {

@@ -273,6 +273,16 @@ TEST(Passes, CascadesFittedToTheVisibleFootprintDrawFewerTexelsForTheSameShadow)
   EXPECT_GT(shadowWhole, 200); // the block's shadow on the plate
   EXPECT_NEAR(shadowFitted, shadowWhole, 0.03 * shadowWhole);
 
+  // A shifted projection (as a magnified screenshot's tiles have): the depth pass's pixels are
+  // not the camera's whole image, and the footprint is not used.
+  camera->SetWindowCenter(0.2, 0.0);
+  scene.Frame();
+  EXPECT_TRUE(baker->GetLastFrameStatistics().VisibleDepthsUsed);
+  EXPECT_FALSE(baker->GetLastFrameStatistics().VisibleFootprintUsed);
+  camera->SetWindowCenter(0.0, 0.0);
+  scene.Frame();
+  EXPECT_TRUE(baker->GetLastFrameStatistics().VisibleFootprintUsed);
+
   // A translucent receiver: the footprint is not used.
   vtkSmartPointer<vtkActor> glass = csmTest::BoxActor(4.0, 6.0, 0.0, 2.0, -1.0, 1.0);
   glass->GetProperty()->SetOpacity(0.5);
