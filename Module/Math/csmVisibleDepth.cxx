@@ -177,18 +177,30 @@ bool WindowFootprint::isEmpty() const
 
 namespace
 {
-/// The bin of a window depth within the footprint's range (clamped to its bins).
-int footprintBin(const WindowFootprint& footprint, double w)
+/// The bins of a footprint's range: a window depth's bin is (w - min) times `scale`, truncated
+/// and clamped to the bins (one formula for the samples and the queries).
+struct FootprintBins
 {
-  const int count = static_cast<int>(footprint.bins.size());
-  const double span = footprint.range.max - footprint.range.min;
-  if (!(span > 0.0))
+  double min = 0.0;
+  double scale = 0.0; ///< bins per window depth (0: a range of one depth, all in bin 0)
+  int count = 0;
+  explicit FootprintBins(const WindowFootprint& footprint)
+    : min(footprint.range.min)
+    , count(static_cast<int>(footprint.bins.size()))
   {
-    return 0;
+    const double span = footprint.range.max - footprint.range.min;
+    this->scale = span > 0.0 ? this->count / span : 0.0;
   }
-  const double t = (w - footprint.range.min) / span * count;
-  return std::max(0, std::min(count - 1, static_cast<int>(std::floor(t))));
-}
+  int of(double w) const
+  {
+    const double t = (w - this->min) * this->scale;
+    if (!(t > 0.0)) // also NaN
+    {
+      return 0;
+    }
+    return t >= this->count - 1 ? this->count - 1 : static_cast<int>(t);
+  }
+};
 }
 
 ScreenRect WindowFootprint::rectBetween(double w0, double w1) const
@@ -198,8 +210,9 @@ ScreenRect WindowFootprint::rectBetween(double w0, double w1) const
   {
     return rect;
   }
-  const int first = footprintBin(*this, w0);
-  const int last = footprintBin(*this, w1);
+  const FootprintBins binning(*this);
+  const int first = binning.of(w0);
+  const int last = binning.of(w1);
   for (int b = first; b <= last; ++b)
   {
     rect.add(this->bins[static_cast<size_t>(b)]);
@@ -221,23 +234,25 @@ WindowFootprint windowFootprint(const float* windowDepths, int width, int height
     return footprint;
   }
   footprint.bins.assign(kFootprintBins, ScreenRect());
+  const FootprintBins binning(footprint);
   // Per bin, the pixel columns and rows its samples cover; then their pixels' full extent.
   std::vector<std::array<int, 4>> cover(kFootprintBins, { width, height, -1, -1 });
+  const float below = 1.0f;
   for (int row = 0; row < height; ++row)
   {
     const float* line = windowDepths + static_cast<size_t>(row) * static_cast<size_t>(width);
     for (int column = 0; column < width; ++column)
     {
-      const double w = line[column];
-      if (!(w < 1.0) || !std::isfinite(w))
+      const float w = line[column];
+      if (!(w < below) || !(w >= 0.0f)) // the background, and NaN
       {
         continue;
       }
-      std::array<int, 4>& c = cover[static_cast<size_t>(footprintBin(footprint, w))];
+      std::array<int, 4>& c = cover[static_cast<size_t>(binning.of(w))];
       c[0] = std::min(c[0], column);
       c[1] = std::min(c[1], row);
       c[2] = std::max(c[2], column);
-      c[3] = std::max(c[3], row);
+      c[3] = row;
     }
   }
   for (int b = 0; b < kFootprintBins; ++b)
