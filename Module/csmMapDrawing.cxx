@@ -7,6 +7,7 @@
 #include "vtkCamera.h"
 #include "vtkCascadedShadowBlockMapper.h"
 #include "vtkCascadedShadowCasterPass.h"
+#include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPlanner.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
@@ -121,7 +122,16 @@ vtkCascadedShadowCasterPass::CasterUniforms casterUniformsFor(
 
 /// The nearest and farthest sample of the renderer's viewport in the framebuffer being drawn
 /// (window depths); false when they cannot be read (a multisampled framebuffer, a GL error).
-bool readWindowDepths(vtkRenderer* renderer, double range[2], csm::WindowFootprint& footprint)
+csm::Bounds boundsOf(const std::array<double, 6>& bounds)
+{
+  csm::Bounds box;
+  box.wsMin = glm::dvec3(bounds[0], bounds[2], bounds[4]);
+  box.wsMax = glm::dvec3(bounds[1], bounds[3], bounds[5]);
+  return box;
+}
+
+bool readWindowDepths(vtkRenderer* renderer, const std::vector<csm::BoxStandIn>& standIns,
+  double range[2], csm::WindowFootprint& footprint)
 {
   vtkOpenGLRenderWindow* window =
     vtkOpenGLRenderWindow::SafeDownCast(renderer ? renderer->GetRenderWindow() : nullptr);
@@ -157,7 +167,7 @@ bool readWindowDepths(vtkRenderer* renderer, double range[2], csm::WindowFootpri
   {
     return false;
   }
-  footprint = csm::windowFootprint(depths.data(), width, height);
+  footprint = csm::windowFootprint(depths.data(), width, height, standIns);
   range[0] = footprint.range.min;
   range[1] = footprint.range.max;
   return true;
@@ -453,10 +463,32 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   const double viewDeterminant = worldToClip->Determinant();
   std::map<vtkProp*, unsigned int> cullFaces;
   std::vector<vtkProp*> drawn;
+  // A caster (or block) small on the image for its triangles stands in by its box, which the
+  // footprint holds instead of its samples (csm::boxStandIn): drawing it would cost more than
+  // the lookups its depth spares. Screen-sized casters are drawn: their boxes do not hold them.
+  const glm::dmat4 wsToClip = glm::transpose(glm::make_mat4(worldToClip->GetData()));
+  std::vector<csm::BoxStandIn> standIns;
+  auto standsIn = [&](const std::array<double, 6>& bounds, double cells, bool screenSized)
+  {
+    csm::BoxStandIn standIn;
+    if (screenSized || !csm::boxStandIn(wsToClip, boundsOf(bounds), cells, width, height, standIn))
+    {
+      return false;
+    }
+    standIns.push_back(standIn);
+    return true;
+  };
   for (const csmFrameCasters::Caster& caster : props.Casters)
   {
     if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
           worldToClip->GetData(), caster.Bounds.data(), false))
+    {
+      continue;
+    }
+    float screenSizes[2];
+    vtkCascadedShadowMapBakerPass::GetScreenSizes(caster.Prop, screenSizes);
+    const bool screenSized = screenSizes[0] > 1.0f || screenSizes[1] > 1.0f;
+    if (caster.Compact < 0 && standsIn(caster.Bounds, caster.Cells, screenSized))
     {
       continue;
     }
@@ -473,10 +505,15 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
       for (size_t k = 0; k < compact.Bounds.size(); ++k)
       {
         if (vtkCascadedShadowMapPlanner::CascadeReachesBox(
-              worldToClip->GetData(), compact.Bounds[k].data(), false))
+              worldToClip->GetData(), compact.Bounds[k].data(), false) &&
+          !standsIn(compact.Bounds[k], compact.Cells[k], screenSized))
         {
           blocks.push_back(k);
         }
+      }
+      if (blocks.empty())
+      {
+        continue;
       }
       compact.Mapper->SetDrawnBlocks(blocks);
     }
@@ -524,5 +561,6 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   this->CasterPass->DrawCasters(renderer, s->GetFrameBuffer(), drawn);
   this->CasterPass->EndCascade();
   ostate->vtkglCullFace(static_cast<unsigned int>(savedCullFace));
-  return readWindowDepths(renderer, depths, footprint);
+  this->StandIns = static_cast<int>(standIns.size());
+  return readWindowDepths(renderer, standIns, depths, footprint);
 }

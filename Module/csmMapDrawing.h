@@ -76,6 +76,9 @@ public:
   /// error).
   bool DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
     const csmFrameCasters& props, double depths[2], csm::WindowFootprint& footprint);
+  /// Casters (or blocks) the last DrawViewDepth left out, their boxes standing in for them in
+  /// the footprint (csm::boxStandIn).
+  int GetStandIns() const { return this->StandIns; }
 
 private:
   /// The light camera for a cascade: the light's rotation as view, the rest as projection.
@@ -86,6 +89,7 @@ private:
   /// The pass in the casters' keys while they are drawn (their shader hooks); not the baker
   /// itself, which owns mappers (vtkCascadedShadowCasterPass says why).
   vtkSmartPointer<vtkCascadedShadowCasterPass> CasterPass;
+  int StandIns = 0;
 };
 
 #endif

@@ -349,6 +349,7 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
   csm::WindowFootprint footprint;
   const bool read = this->Drawing->DrawViewDepth(renderer, s, props, samples, footprint);
   this->Statistics.VisibleDepthsMeasured = true;
+  this->Statistics.DepthPassStandIns = this->Drawing->GetStandIns();
   if (read && samples[0] <= samples[1])
   {
     state.VisibleCamera = vtkSmartPointer<vtkCamera>::New();

@@ -251,6 +251,9 @@ public:
     int CastersWithoutReceivers = 0;               ///< casters (or blocks) left out of a map
     bool VisibleDepthsUsed = false, VisibleDepthsMeasured = false; ///< measured in this frame
     bool VisibleFootprintUsed = false; ///< a light's cascades were fitted to the footprint
+    /// Casters (or blocks) the visible-depth pass left out, small on the image for their
+    /// triangles: their boxes stand in for their samples (csm::boxStandIn).
+    int DepthPassStandIns = 0;
     double PlanSeconds = 0.0, MapSeconds = 0.0, ClearSeconds = 0.0, CombineSeconds = 0.0;
     double CascadeSeconds[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
     /// Per cascade, in a frame that is not interactive: the least error of a map kept from the

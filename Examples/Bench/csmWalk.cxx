@@ -414,16 +414,18 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
               if (o.PerFrame)
                 std::printf(
                   "    %s %s frame %d: %.1f ms, maps %d rendered %d kept (%d moved), "
-                  "%.2f M texels, %.0f k cells (%d blocks), near %.3g; depth pass and "
-                  "plan %.1f ms, maps %.1f ms (clears and moves %.1f), view and lookup %.1f ms\n",
+                  "%.2f M texels, %.0f k cells (%d blocks), near %.3g; depth pass (%d stood "
+                  "in by their boxes) and plan %.1f ms, maps %.1f ms (clears and moves %.1f), "
+                  "view and lookup %.1f ms\n",
                   name.c_str(), pathName.c_str(), i, ms,
                   baker->GetLastFrameStatistics().CascadesRendered,
                   baker->GetLastFrameStatistics().CascadesKept,
                   baker->GetLastFrameStatistics().CascadesMoved,
                   1e-6 * baker->GetLastFrameStatistics().TexelsRendered,
                   1e-3 * baker->GetLastFrameStatistics().CellsDrawn, stats.BlocksDrawn,
-                  baker->GetLightMaps().empty() ? 0.0 : baker->GetLightMaps()[0].SplitNear, planMs,
-                  mapsMs, clearMs, std::max(0.0, ms - planMs - mapsMs));
+                  baker->GetLightMaps().empty() ? 0.0 : baker->GetLightMaps()[0].SplitNear,
+                  stats.DepthPassStandIns, planMs, mapsMs, clearMs,
+                  std::max(0.0, ms - planMs - mapsMs));
               if (o.PerFrame && !baker->GetLightMaps().empty())
               {
                 const auto& maps = baker->GetLightMaps()[0];

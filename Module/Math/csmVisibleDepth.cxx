@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace csm
 {
@@ -220,7 +221,60 @@ ScreenRect WindowFootprint::rectBetween(double w0, double w1) const
   return rect;
 }
 
-WindowFootprint windowFootprint(const float* windowDepths, int width, int height)
+bool boxStandIn(const glm::dmat4& wsToClip, const Bounds& wsBox, double cells, int width,
+  int height, BoxStandIn& standIn)
+{
+  if (width < 1 || height < 1 || !(cells > 0.0) || !std::isfinite(cells) || wsBox.isEmpty() ||
+    !wsBox.isFinite())
+  {
+    return false;
+  }
+  BoxStandIn box;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  double x0 = inf, y0 = inf, x1 = -inf, y1 = -inf;
+  double w0 = inf, w1 = -inf;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::dvec4 wsCorner((corner & 1) ? wsBox.wsMax.x : wsBox.wsMin.x,
+      (corner & 2) ? wsBox.wsMax.y : wsBox.wsMin.y, (corner & 4) ? wsBox.wsMax.z : wsBox.wsMin.z,
+      1.0);
+    const glm::dvec4 clip = wsToClip * wsCorner;
+    if (!(clip.w > 0.0) || !std::isfinite(clip.x) || !std::isfinite(clip.y) ||
+      !std::isfinite(clip.z) || !std::isfinite(clip.w))
+    {
+      return false; // behind the eye's plane: no bounded rectangle
+    }
+    const glm::dvec3 ndc = glm::dvec3(clip) / clip.w;
+    x0 = std::min(x0, ndc.x);
+    y0 = std::min(y0, ndc.y);
+    x1 = std::max(x1, ndc.x);
+    y1 = std::max(y1, ndc.y);
+    const double w = 0.5 * ndc.z + 0.5; // GL's default depth range
+    w0 = std::min(w0, w);
+    w1 = std::max(w1, w);
+  }
+  box.rect.x0 = std::max(x0, -1.0);
+  box.rect.y0 = std::max(y0, -1.0);
+  box.rect.x1 = std::min(x1, 1.0);
+  box.rect.y1 = std::min(y1, 1.0);
+  box.depths.min = std::max(w0, 0.0);
+  box.depths.max = std::min(w1, 1.0);
+  if (!(box.rect.x0 < box.rect.x1) || !(box.rect.y0 < box.rect.y1) || box.depths.isEmpty())
+  {
+    return false; // outside the view (or edge-on): nothing to stand in for
+  }
+  const double pixels =
+    0.25 * (box.rect.x1 - box.rect.x0) * width * (box.rect.y1 - box.rect.y0) * height;
+  if (!(pixels < kDepthPassPixelsPerCell * cells))
+  {
+    return false;
+  }
+  standIn = box;
+  return true;
+}
+
+WindowFootprint windowFootprint(
+  const float* windowDepths, int width, int height, const std::vector<BoxStandIn>& standIns)
 {
   WindowFootprint footprint;
   if (!windowDepths || width < 1 || height < 1)
@@ -229,6 +283,14 @@ WindowFootprint windowFootprint(const float* windowDepths, int width, int height
   }
   const size_t count = static_cast<size_t>(width) * static_cast<size_t>(height);
   footprint.range = windowDepthRange(windowDepths, count);
+  for (const BoxStandIn& box : standIns)
+  {
+    if (!box.rect.isEmpty() && !box.depths.isEmpty())
+    {
+      footprint.range.min = std::min(footprint.range.min, box.depths.min);
+      footprint.range.max = std::max(footprint.range.max, box.depths.max);
+    }
+  }
   if (footprint.range.isEmpty())
   {
     return footprint;
@@ -267,6 +329,18 @@ WindowFootprint windowFootprint(const float* windowDepths, int width, int height
     rect.y0 = 2.0 * c[1] / height - 1.0;
     rect.x1 = 2.0 * (c[2] + 1) / width - 1.0;
     rect.y1 = 2.0 * (c[3] + 1) / height - 1.0;
+  }
+  // The stand-ins, in every bin their depths span.
+  for (const BoxStandIn& box : standIns)
+  {
+    if (box.rect.isEmpty() || box.depths.isEmpty())
+    {
+      continue;
+    }
+    for (int b = binning.of(box.depths.min); b <= binning.of(box.depths.max); ++b)
+    {
+      footprint.bins[static_cast<size_t>(b)].add(box.rect);
+    }
   }
   return footprint;
 }

@@ -8,6 +8,8 @@
 #include "csmConvexBody.h"
 #include "csmTypes.h"
 
+#include <glm/mat4x4.hpp>
+
 #include <cstddef>
 #include <vector>
 
@@ -99,9 +101,34 @@ struct WindowFootprint
   ScreenRect rectBetween(double w0, double w1) const;
 };
 
+/// A caster the visible-depth pass leaves out, represented by its box: the image rectangle and
+/// the window depths the box spans, which a footprint holds as if they were samples.
+struct BoxStandIn
+{
+  ScreenRect rect;
+  WindowDepthRange depths;
+};
+
+/// Pixels of the image a caster's box must cover per cell (triangle) for the visible-depth pass
+/// to draw the caster rather than stand its box in for it: each pixel whose hidden fragments
+/// the pass's depth spares the lookup (about 50 ns of llvmpipe, Results.md, "Walking through a
+/// structure") against each triangle the pass draws (about 130 ns, csm::kTexelsPerCasterTriangle).
+/// A property of the renderer, not of a scene.
+constexpr double kDepthPassPixelsPerCell = 2.5;
+
+/// The stand-in of a world box of `cells` triangles for an image of width x height pixels seen
+/// through wsToClip (world -> clip), where the box covers fewer than kDepthPassPixelsPerCell
+/// pixels a cell; false where it covers more, reaches behind the eye's plane (its rectangle is
+/// unbounded), or an input is not finite or positive.
+bool boxStandIn(const glm::dmat4& wsToClip, const Bounds& wsBox, double cells, int width,
+  int height, BoxStandIn& standIn);
+
 /// The footprint of a depth buffer of width x height values (rows from the bottom), those
-/// below 1 (1 is the cleared background); empty when there are none or the size is not positive.
-WindowFootprint windowFootprint(const float* windowDepths, int width, int height);
+/// below 1 (1 is the cleared background), and of the boxes that stood in for casters the buffer
+/// lacks (their window depths widen the range, their rectangles every bin they span); empty
+/// when there is none of either or the size is not positive.
+WindowFootprint windowFootprint(
+  const float* windowDepths, int width, int height, const std::vector<BoxStandIn>& standIns = {});
 
 /// A footprint and the camera that drew it.
 struct ViewFootprint

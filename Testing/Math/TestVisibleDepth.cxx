@@ -5,6 +5,8 @@
 #include "csmSetup.h"
 #include "csmVisibleDepth.h"
 
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
@@ -202,6 +204,87 @@ TEST(VisibleDepth, AFootprintHoldsEachDepthsSamplesInTheirPixelsRectangle)
   EXPECT_TRUE(csm::windowFootprint(background.data(), width, height).isEmpty());
   EXPECT_TRUE(csm::windowFootprint(nullptr, width, height).isEmpty());
   EXPECT_TRUE(csm::windowFootprint(buffer.data(), 0, height).isEmpty());
+}
+
+TEST(VisibleDepth, ABoxStandsInForACasterOnlyWhereItIsSmallOnTheImageForItsTriangles)
+{
+  // A 640 x 480 view from the origin down -z, 1 .. 1000, 40 degrees high.
+  const glm::dmat4 wsToClip = glm::perspective(glm::radians(40.0), 640.0 / 480.0, 1.0, 1000.0) *
+    glm::lookAt(glm::dvec3(0.0), glm::dvec3(0.0, 0.0, -1.0), glm::dvec3(0.0, 1.0, 0.0));
+  // A unit box 100 away covers about 44 pixels (480 / (2 * 99.5 * tan 20) a unit at its front).
+  const csm::Bounds far{ { -0.5, -0.5, -100.5 }, { 0.5, 0.5, -99.5 } };
+  csm::BoxStandIn standIn;
+  ASSERT_TRUE(csm::boxStandIn(wsToClip, far, 1000.0, 640, 480, standIn));
+  const double pixels =
+    0.25 * (standIn.rect.x1 - standIn.rect.x0) * 640 * (standIn.rect.y1 - standIn.rect.y0) * 480;
+  EXPECT_GT(pixels, 40.0);
+  EXPECT_LT(pixels, 48.0);
+  EXPECT_NEAR(standIn.rect.x0, -standIn.rect.x1, 1e-12); // centred on the view axis
+  EXPECT_NEAR(standIn.depths.min, csm::windowDepthFromViewDepth(99.5, 1.0, 1000.0, false), 1e-9);
+  EXPECT_NEAR(standIn.depths.max, csm::windowDepthFromViewDepth(100.5, 1.0, 1000.0, false), 1e-9);
+  // Drawn where its pixels pay for its triangles: fewer than pixels / kDepthPassPixelsPerCell.
+  EXPECT_FALSE(csm::boxStandIn(
+    wsToClip, far, 0.99 * pixels / csm::kDepthPassPixelsPerCell, 640, 480, standIn));
+  EXPECT_TRUE(csm::boxStandIn(
+    wsToClip, far, 1.01 * pixels / csm::kDepthPassPixelsPerCell, 640, 480, standIn));
+  // A box around the eye has no bounded rectangle; one beside the view nothing to stand in for.
+  const csm::Bounds around{ { -1.0, -1.0, -1.0 }, { 1.0, 1.0, 1.0 } };
+  EXPECT_FALSE(csm::boxStandIn(wsToClip, around, 1e9, 640, 480, standIn));
+  const csm::Bounds beside{ { 500.0, -0.5, -100.5 }, { 501.0, 0.5, -99.5 } };
+  EXPECT_FALSE(csm::boxStandIn(wsToClip, beside, 1e9, 640, 480, standIn));
+  // Bad input: drawn.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(csm::boxStandIn(wsToClip, far, 0.0, 640, 480, standIn));
+  EXPECT_FALSE(csm::boxStandIn(wsToClip, far, nan, 640, 480, standIn));
+  EXPECT_FALSE(csm::boxStandIn(wsToClip, far, 1000.0, 0, 480, standIn));
+  EXPECT_FALSE(csm::boxStandIn(
+    wsToClip, csm::Bounds{ { nan, 0, 0 }, { 1, 1, 1 } }, 1000.0, 640, 480, standIn));
+  EXPECT_FALSE(csm::boxStandIn(wsToClip, csm::Bounds(), 1000.0, 640, 480, standIn)); // empty
+}
+
+TEST(VisibleDepth, AFootprintHoldsTheBoxesThatStoodInForCastersTheDepthPassLeftOut)
+{
+  // 64 x 48 pixels: a near block in the lower left (view depth 10); a caster left out of the
+  // depth pass stands in by its box's rectangle at view depths 200 .. 250.
+  const csm::Camera cam = camera(1.0, 1000.0, 40.0, 4.0 / 3.0);
+  const int width = 64, height = 48;
+  std::vector<float> buffer(width * height, 1.0f);
+  const float nearW = static_cast<float>(csm::windowDepthFromViewDepth(10.0, 1.0, 1000.0, false));
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 16; ++x)
+      buffer[y * width + x] = nearW;
+  csm::BoxStandIn standIn;
+  standIn.rect = csm::ScreenRect{ 0.5, 0.25, 0.75, 0.5 };
+  standIn.depths.min = csm::windowDepthFromViewDepth(200.0, 1.0, 1000.0, false);
+  standIn.depths.max = csm::windowDepthFromViewDepth(250.0, 1.0, 1000.0, false);
+  const csm::WindowFootprint footprint =
+    csm::windowFootprint(buffer.data(), width, height, { standIn });
+  ASSERT_FALSE(footprint.isEmpty());
+  EXPECT_FLOAT_EQ(static_cast<float>(footprint.range.min), nearW);
+  EXPECT_DOUBLE_EQ(footprint.range.max, standIn.depths.max);
+  // Its depths: its rectangle, as if sampled; the block's depths: the block's pixels.
+  const csm::ScreenRect atBox = csm::footprintRect(footprint, cam, 190.0, 260.0);
+  EXPECT_DOUBLE_EQ(atBox.x0, 0.5);
+  EXPECT_DOUBLE_EQ(atBox.y0, 0.25);
+  EXPECT_DOUBLE_EQ(atBox.x1, 0.75);
+  EXPECT_DOUBLE_EQ(atBox.y1, 0.5);
+  const csm::ScreenRect atBlock = csm::footprintRect(footprint, cam, 9.0, 11.0);
+  EXPECT_DOUBLE_EQ(atBlock.x0, -1.0);
+  EXPECT_DOUBLE_EQ(atBlock.x1, 2.0 * 16 / width - 1.0);
+  EXPECT_TRUE(csm::footprintRect(footprint, cam, 20.0, 150.0).isEmpty());
+  // A stand-in nearer than every sample: the nearest depth is its box's.
+  csm::BoxStandIn nearer = standIn;
+  nearer.depths.min = csm::windowDepthFromViewDepth(5.0, 1.0, 1000.0, false);
+  EXPECT_DOUBLE_EQ(
+    csm::windowFootprint(buffer.data(), width, height, { nearer }).range.min, nearer.depths.min);
+  // Stand-ins only (nothing drawn): a footprint of their boxes; an empty one changes nothing.
+  std::vector<float> background(width * height, 1.0f);
+  const csm::WindowFootprint boxes =
+    csm::windowFootprint(background.data(), width, height, { standIn, csm::BoxStandIn() });
+  ASSERT_FALSE(boxes.isEmpty());
+  EXPECT_DOUBLE_EQ(csm::footprintRect(boxes, cam, 200.0, 250.0).x0, 0.5);
+  EXPECT_TRUE(
+    csm::windowFootprint(background.data(), width, height, { csm::BoxStandIn() }).isEmpty());
 }
 
 TEST(VisibleDepth, AScreenRectanglesPlanesHoldWhatProjectsIntoIt)

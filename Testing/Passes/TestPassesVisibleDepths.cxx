@@ -14,6 +14,7 @@
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkSphereSource.h"
 
 #include "csmTestHelpers.h"
 
@@ -27,6 +28,7 @@
 namespace
 {
 using csmTest::BoxOverPlane;
+using csmTest::BoxOverPlaneSettings;
 using csmTest::DarkenedPixels;
 using csmTest::DifferingValues;
 } // namespace
@@ -290,4 +292,59 @@ TEST(Passes, CascadesFittedToTheVisibleFootprintDrawFewerTexelsForTheSameShadow)
   scene.Frame();
   EXPECT_TRUE(baker->GetLastFrameStatistics().VisibleDepthsUsed);
   EXPECT_FALSE(baker->GetLastFrameStatistics().VisibleFootprintUsed);
+}
+
+// A caster small on the image for its triangles (a finely tessellated ball far off) is left out
+// of the visible-depth pass, its box standing in for its samples in the footprint: it still
+// casts its shadow, the same as with the cascades fitted to the scene's boxes.
+TEST(Passes, ACasterSmallOnTheImageForItsTrianglesStandsInByItsBoxForTheSameShadow)
+{
+  BoxOverPlaneSettings settings;
+  settings.Size[0] = 400;
+  settings.Size[1] = 300;
+  settings.GroundHalfWidth = 30.0;
+  settings.CameraFocalPoint[2] = -8.0;
+  BoxOverPlane scene(settings);
+  vtkNew<vtkSphereSource> ball;
+  ball->SetCenter(5.0, 1.5, -16.0);
+  ball->SetRadius(1.5);
+  ball->SetThetaResolution(100);
+  ball->SetPhiResolution(100); // 19,600 triangles over some 2,000 pixels
+  vtkNew<vtkPolyDataMapper> ballMapper;
+  ballMapper->SetInputConnection(ball->GetOutputPort());
+  vtkNew<vtkActor> ballActor;
+  ballActor->SetMapper(ballMapper);
+  scene.Renderer->AddActor(ballActor);
+  scene.Renderer->ResetCameraClippingRange();
+  auto plain = scene.Render();
+  ballActor->VisibilityOff();
+  auto plainWithout = scene.Render();
+  ballActor->VisibilityOn();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  auto boxes = [&]()
+  {
+    baker->VisibleDepthFitOff();
+    baker->Modified();
+    auto image = scene.Frame();
+    EXPECT_EQ(baker->GetLastFrameStatistics().DepthPassStandIns, 0);
+    return image;
+  }();
+  baker->VisibleDepthFitOn();
+  baker->Modified();
+  auto fitted = scene.Frame();
+  const auto stats = baker->GetLastFrameStatistics();
+  EXPECT_TRUE(stats.VisibleDepthsUsed);
+  EXPECT_GE(stats.DepthPassStandIns, 1); // the ball (its blocks); the ground and the box drawn
+  const long shadowBoxes = DarkenedPixels(boxes, plain);
+  const long shadowFitted = DarkenedPixels(fitted, plain);
+  std::printf("darkened pixels: boxes' fit %ld, visible depths with the ball standing in %ld\n",
+    shadowBoxes, shadowFitted);
+  EXPECT_GT(shadowBoxes, 400); // the box's shadow and the ball's
+  EXPECT_NEAR(shadowFitted, shadowBoxes, 0.03 * shadowBoxes);
+  // Without the ball the shadow is smaller: the ball's own shadow is among those pixels.
+  ballActor->VisibilityOff();
+  const long shadowWithout = DarkenedPixels(scene.Frame(), plainWithout);
+  std::printf("darkened pixels without the ball: %ld\n", shadowWithout);
+  EXPECT_LT(shadowWithout, shadowFitted - 20);
 }
