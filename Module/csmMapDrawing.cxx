@@ -121,15 +121,8 @@ vtkCascadedShadowCasterPass::CasterUniforms casterUniformsFor(
 }
 
 /// The nearest and farthest sample of the renderer's viewport in the framebuffer being drawn
-/// (window depths); false when they cannot be read (a multisampled framebuffer, a GL error).
-csm::Bounds boundsOf(const std::array<double, 6>& bounds)
-{
-  csm::Bounds box;
-  box.wsMin = glm::dvec3(bounds[0], bounds[2], bounds[4]);
-  box.wsMax = glm::dvec3(bounds[1], bounds[3], bounds[5]);
-  return box;
-}
-
+/// (window depths), and where they lie (with the boxes that stood in for casters left out);
+/// false when they cannot be read (a multisampled framebuffer, a GL error).
 bool readWindowDepths(vtkRenderer* renderer, const std::vector<csm::BoxStandIn>& standIns,
   double range[2], csm::WindowFootprint& footprint)
 {
@@ -447,8 +440,10 @@ void csmMapDrawing::SetUpLightCamera(const LightMaps& maps, int c)
 }
 
 bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
-  const csmFrameCasters& props, double depths[2], csm::WindowFootprint& footprint)
+  const csmFrameCasters& props, double depths[2], csm::WindowFootprint& footprint,
+  int& standInCount)
 {
+  standInCount = 0;
   vtkCamera* camera = renderer->GetActiveCamera();
   const double aspect = renderer->GetTiledAspectRatio();
   vtkOpenGLRenderWindow* window = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
@@ -471,7 +466,9 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   auto standsIn = [&](const std::array<double, 6>& bounds, double cells, bool screenSized)
   {
     csm::BoxStandIn standIn;
-    if (screenSized || !csm::boxStandIn(wsToClip, boundsOf(bounds), cells, width, height, standIn))
+    if (screenSized ||
+      !csm::boxStandIn(
+        wsToClip, csm::Bounds::fromMinMaxPairs(bounds.data()), cells, width, height, standIn))
     {
       return false;
     }
@@ -561,6 +558,6 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   this->CasterPass->DrawCasters(renderer, s->GetFrameBuffer(), drawn);
   this->CasterPass->EndCascade();
   ostate->vtkglCullFace(static_cast<unsigned int>(savedCullFace));
-  this->StandIns = static_cast<int>(standIns.size());
+  standInCount = static_cast<int>(standIns.size());
   return readWindowDepths(renderer, standIns, depths, footprint);
 }

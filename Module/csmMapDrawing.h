@@ -73,12 +73,11 @@ public:
   /// for the frame's geometry pass, a little behind the surfaces) and reads its nearest and
   /// farthest sample (window depths) and where the samples lie on the image by depth
   /// (csm::windowFootprint); false where they cannot be read (a multisampled framebuffer, a GL
-  /// error).
+  /// error). standInCount: the casters (or blocks) left out, small on the image for their
+  /// triangles, whose boxes stand in for their samples (csm::boxStandIn).
   bool DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
-    const csmFrameCasters& props, double depths[2], csm::WindowFootprint& footprint);
-  /// Casters (or blocks) the last DrawViewDepth left out, their boxes standing in for them in
-  /// the footprint (csm::boxStandIn).
-  int GetStandIns() const { return this->StandIns; }
+    const csmFrameCasters& props, double depths[2], csm::WindowFootprint& footprint,
+    int& standInCount);
 
 private:
   /// The light camera for a cascade: the light's rotation as view, the rest as projection.
@@ -89,7 +88,6 @@ private:
   /// The pass in the casters' keys while they are drawn (their shader hooks); not the baker
   /// itself, which owns mappers (vtkCascadedShadowCasterPass says why).
   vtkSmartPointer<vtkCascadedShadowCasterPass> CasterPass;
-  int StandIns = 0;
 };
 
 #endif

@@ -347,9 +347,9 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
   }
   double samples[2] = { 1.0, 0.0 };
   csm::WindowFootprint footprint;
-  const bool read = this->Drawing->DrawViewDepth(renderer, s, props, samples, footprint);
+  const bool read = this->Drawing->DrawViewDepth(
+    renderer, s, props, samples, footprint, this->Statistics.DepthPassStandIns);
   this->Statistics.VisibleDepthsMeasured = true;
-  this->Statistics.DepthPassStandIns = this->Drawing->GetStandIns();
   if (read && samples[0] <= samples[1])
   {
     state.VisibleCamera = vtkSmartPointer<vtkCamera>::New();

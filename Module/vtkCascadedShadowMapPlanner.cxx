@@ -102,16 +102,6 @@ bool toCamera(vtkCamera* camera, double aspect, csm::Camera& cam)
   return true;
 }
 
-csm::Bounds toBounds(const double bounds[6])
-{
-  csm::Bounds scene;
-  if (bounds)
-  {
-    scene.wsMin = { bounds[0], bounds[2], bounds[4] };
-    scene.wsMax = { bounds[1], bounds[3], bounds[5] };
-  }
-  return scene;
-}
 }
 
 namespace
@@ -161,7 +151,7 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   settings.sceneFitted = this->SceneFittedCascades &&
     (!vtkLightOf || const_cast<vtkLight*>(vtkLightOf)->LightTypeIsSceneLight());
   settings.stableOrthographic = true; // with GetCascadeMatrix(..., resolution)'s snap
-  const csm::Bounds scene = toBounds(bounds);
+  const csm::Bounds scene = csm::Bounds::fromMinMaxPairs(bounds);
   const glm::dvec3 direction(lightDirection[0], lightDirection[1], lightDirection[2]);
   // The visible samples of an earlier frame, carried to this camera: the cascades begin where
   // the view can have samples. (Only the near end: it sets the depth ratio that the splits and
@@ -261,7 +251,7 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
 #endif
   csm::Camera cam;
   toCamera(camera, aspect, cam);
-  const csm::Bounds scene = toBounds(bounds);
+  const csm::Bounds scene = csm::Bounds::fromMinMaxPairs(bounds);
   if (!camera)
   {
     this->Internal->Setup = csm::ShadowSetup();
@@ -346,7 +336,7 @@ void vtkCascadedShadowMapPlanner::AddReceiverBounds(const double bounds[6])
 {
   if (bounds)
   {
-    this->Internal->Receivers.push_back(toBounds(bounds));
+    this->Internal->Receivers.push_back(csm::Bounds::fromMinMaxPairs(bounds));
   }
 }
 
@@ -364,7 +354,7 @@ void vtkCascadedShadowMapPlanner::AddCasterLoad(
     bounds[0] <= bounds[1] && bounds[2] <= bounds[3] && bounds[4] <= bounds[5])
   {
     this->Internal->Casters.push_back(
-      { toBounds(bounds), cells, receiver, shadowsItself, screenSized });
+      { csm::Bounds::fromMinMaxPairs(bounds), cells, receiver, shadowsItself, screenSized });
   }
 }
 
@@ -609,8 +599,8 @@ bool vtkCascadedShadowMapPlanner::CascadeReachesBox(
   {
     return false;
   }
-  const csm::Bounds box{ { bounds[0], bounds[2], bounds[4] }, { bounds[1], bounds[3], bounds[5] } };
-  return !csm::boxOutsideClipVolume(fromRowMajor(worldToClip), box, depthClamp);
+  return !csm::boxOutsideClipVolume(
+    fromRowMajor(worldToClip), csm::Bounds::fromMinMaxPairs(bounds), depthClamp);
 }
 
 bool vtkCascadedShadowMapPlanner::ViewSeesOnlyOutsideOf(
@@ -618,7 +608,7 @@ bool vtkCascadedShadowMapPlanner::ViewSeesOnlyOutsideOf(
 {
   csm::Camera cam;
   return bounds && toCamera(camera, aspect, cam) &&
-    csm::eyeSeesOnlyOutsideOf(cam, toBounds(bounds));
+    csm::eyeSeesOnlyOutsideOf(cam, csm::Bounds::fromMinMaxPairs(bounds));
 }
 
 bool vtkCascadedShadowMapPlanner::CasterBoxReachesBox(const double lightDirection[3],
@@ -628,9 +618,9 @@ bool vtkCascadedShadowMapPlanner::CasterBoxReachesBox(const double lightDirectio
   {
     return true;
   }
-  return csm::sweptBoxReachesBox(toBounds(casterBounds),
-    glm::dvec3(lightDirection[0], lightDirection[1], lightDirection[2]), toBounds(receiverBounds),
-    minimumDistance);
+  return csm::sweptBoxReachesBox(csm::Bounds::fromMinMaxPairs(casterBounds),
+    glm::dvec3(lightDirection[0], lightDirection[1], lightDirection[2]),
+    csm::Bounds::fromMinMaxPairs(receiverBounds), minimumDistance);
 }
 
 int vtkCascadedShadowMapPlanner::GetCascadeAtDepth(

@@ -62,6 +62,18 @@ struct Bounds
       std::isfinite(this->wsMin.z) && std::isfinite(this->wsMax.x) &&
       std::isfinite(this->wsMax.y) && std::isfinite(this->wsMax.z);
   }
+  /// The box of six numbers in the order xmin, xmax, ymin, ymax, zmin, zmax (VTK's bounds);
+  /// empty for none.
+  static Bounds fromMinMaxPairs(const double* minMaxPairs)
+  {
+    Bounds box;
+    if (minMaxPairs)
+    {
+      box.wsMin = { minMaxPairs[0], minMaxPairs[2], minMaxPairs[4] };
+      box.wsMax = { minMaxPairs[1], minMaxPairs[3], minMaxPairs[5] };
+    }
+    return box;
+  }
 };
 
 struct ViewFootprint;

@@ -299,14 +299,13 @@ WindowFootprint windowFootprint(
   const FootprintBins binning(footprint);
   // Per bin, the pixel columns and rows its samples cover; then their pixels' full extent.
   std::vector<std::array<int, 4>> cover(kFootprintBins, { width, height, -1, -1 });
-  const float below = 1.0f;
   for (int row = 0; row < height; ++row)
   {
     const float* line = windowDepths + static_cast<size_t>(row) * static_cast<size_t>(width);
     for (int column = 0; column < width; ++column)
     {
       const float w = line[column];
-      if (!(w < below) || !(w >= 0.0f)) // the background, and NaN
+      if (!(w < 1.0f) || !(w >= 0.0f)) // the background, and NaN
       {
         continue;
       }
