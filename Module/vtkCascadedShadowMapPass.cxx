@@ -149,6 +149,7 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
           u.ToMap.push_back(static_cast<float>(mapFromView[4 * row + column]));
         }
       }
+      u.Handedness.push_back(vtkMatrix4x4::Determinant(mapFromView) < 0.0 ? -1.0f : 1.0f);
       // The map's rectangle in the atlas (the lower left of its tile), in [0, 1].
       u.Tile.push_back(static_cast<float>(map.Tile[0] / atlasWidth));
       u.Tile.push_back(static_cast<float>(map.Tile[1] / atlasHeight));
@@ -399,7 +400,7 @@ void vtkCascadedShadowMapPass::ReportOnce(const std::string& message)
 bool vtkCascadedShadowMapPass::SetShaderParameters(
   vtkShaderProgram* program, vtkAbstractMapper*, vtkProp* prop, vtkOpenGLVertexArrayObject*)
 {
-  if (this->Uniforms.Lights() == 0 || !program->IsUniformUsed("csmCount"))
+  if (this->Uniforms.Lights() == 0 || !program->IsUniformUsed("csmToMap"))
   {
     return true;
   }
@@ -431,6 +432,7 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   }
   program->SetUniformMatrix4x4v(
     "csmToMap", lights * kMaxCascades, const_cast<float*>(u.ToMap.data()));
+  program->SetUniform1fv("csmHandedness", lights * kMaxCascades, u.Handedness.data());
   program->SetUniform4fv("csmTile", lights * kMaxCascades, u.Tile.data());
   program->SetUniform2fv("csmTexel", lights * kMaxCascades, u.Texel.data());
   program->SetUniform1fv("csmSplitFar", lights * kMaxCascades, u.SplitFar.data());

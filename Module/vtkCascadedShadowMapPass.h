@@ -182,6 +182,7 @@ protected:
     std::vector<int> Count;                    ///< per light: cascades
     std::vector<float> SplitNear, Attenuation; ///< per light
     std::vector<float> ToMap;                  ///< per cascade: view -> map, 16 floats column-major
+    std::vector<float> Handedness;             ///< per cascade: the sign of ToMap's determinant
     std::vector<float> Tile;                   ///< per cascade: atlas offset and scale, 4 floats
     std::vector<float> SplitFar;               ///< per cascade
     std::vector<float>

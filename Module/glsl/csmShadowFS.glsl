@@ -155,9 +155,10 @@ float csmDither()
 }
 
 // Per shadowed light j (CSM_LIGHTS of them), its cascades at [j * CSM_MAX_CASCADES, ...): view
-// space -> map matrices, atlas tiles, texel sizes along s and t (in the cascade's [0,1]), far
-// split depths.
+// space -> map matrices and the signs of their determinants, atlas tiles, texel sizes along s
+// and t (in the cascade's [0,1]), far split depths.
 uniform mat4 csmToMap[CSM_LIGHTS * CSM_MAX_CASCADES];
+uniform float csmHandedness[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform vec4 csmTile[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform vec2 csmTexel[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmSplitFar[CSM_LIGHTS * CSM_MAX_CASCADES];
@@ -229,9 +230,8 @@ vec4 csmShadowIn(sampler2DShadow map, int j, int chosen, vec4 h, vec4 hx, vec4 h
 #ifdef CSM_CAMERA_SPACE
   biasScale = csmDepthBiasScale(cascade, h); // camera space maps (csmComparisonFS.glsl)
 #endif
-  float handedness = determinant(csmToMap[cascade]) < 0.0 ? -1.0 : 1.0;
-  float visibility =
-    csmVisibility(map, csmTile[cascade], csmTexel[cascade], h, hx, hy, biasScale, handedness, m);
+  float visibility = csmVisibility(
+    map, csmTile[cascade], csmTexel[cascade], h, hx, hy, biasScale, csmHandedness[cascade], m);
   return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), float(chosen), m, visibility);
 }
 
