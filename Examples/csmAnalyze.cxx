@@ -190,6 +190,8 @@ Options parse(int argc, char** argv)
     fail("--lambda must be in [0, 1]");
   if (o.errorTarget > 0.0 && (o.face || o.table))
     fail("--error-target chooses a number of z-partitions: not with --partition face or --table");
+  if (o.json && o.table)
+    fail("--table prints a table only: not with --json");
   return o;
 }
 

@@ -364,9 +364,15 @@ Options parse(int argc, char** argv)
       char extra = 0;
       if (!v || std::sscanf(v, "%lf,%lf,%lf%c", &o.Light[0], &o.Light[1], &o.Light[2], &extra) != 3)
         fail("--light needs X,Y,Z");
-      if (!std::isfinite(o.Light[0] + o.Light[1] + o.Light[2]) ||
-        o.Light[0] * o.Light[0] + o.Light[1] * o.Light[1] + o.Light[2] * o.Light[2] == 0.0)
-        fail("--light needs a finite, non-zero direction");
+      if (!std::isfinite(o.Light[0]) || !std::isfinite(o.Light[1]) || !std::isfinite(o.Light[2]))
+        fail("--light needs finite numbers");
+      // A direction: scaled so that its length neither overflows nor underflows.
+      const double largest =
+        std::max({ std::abs(o.Light[0]), std::abs(o.Light[1]), std::abs(o.Light[2]) });
+      if (largest == 0.0)
+        fail("--light needs a non-zero direction");
+      for (double& component : o.Light)
+        component /= largest;
       o.HaveLight = true;
       next();
     }

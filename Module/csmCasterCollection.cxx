@@ -82,17 +82,97 @@ bool hasScreenSizedCasters(const std::vector<Caster>& casters)
 
 } // namespace
 
-csmCasterCollection::csmCasterCollection()
-  : StopWorkers(std::make_shared<std::atomic<bool>>(false))
-{
-}
+csmCasterCollection::csmCasterCollection() = default;
 
 csmCasterCollection::~csmCasterCollection()
 {
   // Preparations under way stop at their next check (their futures wait for them below).
-  this->StopWorkers->store(true);
-  this->Closures.clear();
-  this->Blocks.clear();
+  for (auto& entry : this->Closures)
+  {
+    this->Retire(entry.second.Pending);
+  }
+  for (auto& entry : this->Blocks)
+  {
+    this->Retire(entry.second.Pending);
+  }
+  this->RetiredWork.clear();
+}
+
+template <typename T>
+void csmCasterCollection::Retire(Preparation<T>& preparation)
+{
+  if (!preparation.Result.valid())
+  {
+    return;
+  }
+  preparation.Cancel->store(true);
+  auto held = std::make_shared<std::future<std::shared_ptr<T>>>(std::move(preparation.Result));
+  this->RetiredWork.emplace_back(
+    [held]() { return held->wait_for(std::chrono::seconds(0)) == std::future_status::ready; });
+  preparation = Preparation<T>();
+}
+
+void csmCasterCollection::DropStoppedWork()
+{
+  this->RetiredWork.erase(std::remove_if(this->RetiredWork.begin(), this->RetiredWork.end(),
+                            [](const std::function<bool()>& stopped) { return stopped(); }),
+    this->RetiredWork.end());
+}
+
+vtkPolyData* csmCasterCollection::SnapshotOf(vtkPolyData* data)
+{
+  // Copies of the arrays themselves (same types, so copied as memory): a shallow copy of the
+  // polydata would share the application's vtkPoints and vtkCellArray objects, which it may
+  // resize, re-initialize or give new arrays while a worker reads them.
+  vtkSmartPointer<vtkPolyData>& snapshot = this->Snapshots[data];
+  if (snapshot)
+  {
+    return snapshot;
+  }
+  snapshot = vtkSmartPointer<vtkPolyData>::New();
+  if (vtkPoints* points = data->GetPoints(); points && points->GetData())
+  {
+    auto positions = vtk::TakeSmartPointer(points->GetData()->NewInstance());
+    positions->DeepCopy(points->GetData());
+    vtkNew<vtkPoints> owned;
+    owned->SetData(positions);
+    snapshot->SetPoints(owned);
+  }
+  // (Both cell arrays set, even empty: a worker never makes one.)
+  vtkNew<vtkCellArray> polys;
+  polys->DeepCopy(data->GetPolys());
+  snapshot->SetPolys(polys);
+  vtkNew<vtkCellArray> strips;
+  strips->DeepCopy(data->GetStrips());
+  snapshot->SetStrips(strips);
+  return snapshot;
+}
+
+template <typename T, typename Work>
+void csmCasterCollection::StartPreparation(
+  Preparation<T>& preparation, vtkPolyData* data, Work&& work)
+{
+  this->Retire(preparation);
+  preparation.Cancel = std::make_shared<std::atomic<bool>>(false);
+  preparation.Time = data->GetMTime();
+  vtkSmartPointer<vtkPolyData> copy = this->SnapshotOf(data);
+  preparation.Result = std::async(std::launch::async,
+    [copy, cancel = preparation.Cancel, work = std::forward<Work>(work)]()
+    { return work(copy, cancel.get()); });
+}
+
+bool csmCasterCollection::MayPrepare(
+  vtkPolyData* data, vtkMTimeType& seenTime, long long& seenFrame, int givenUp) const
+{
+  const vtkMTimeType time = data->GetMTime();
+  if (seenTime != time)
+  {
+    seenTime = time;
+    seenFrame = this->FrameNumber;
+    return false;
+  }
+  const long long wait = 1LL << std::min(givenUp, 10);
+  return this->ViewMoved && this->FrameNumber - seenFrame >= wait;
 }
 
 double csmCasterCollection::CellsOf(vtkProp* prop)
@@ -110,8 +190,13 @@ void csmCasterCollection::ForgetTheGone(vtkWindow* window)
 {
   // Forget the closed-surface answers for data that is gone, and the blocks of data or props
   // that are gone (releasing their buffers in this window's context, which is current).
+  // A preparation for data that is gone is retired, not waited for.
   for (auto it = this->Closures.begin(); it != this->Closures.end();)
   {
+    if (!it->second.Data)
+    {
+      this->Retire(it->second.Pending);
+    }
     it = it->second.Data ? std::next(it) : this->Closures.erase(it);
   }
   for (auto it = this->Blocks.begin(); it != this->Blocks.end();)
@@ -121,8 +206,13 @@ void csmCasterCollection::ForgetTheGone(vtkWindow* window)
     {
       it->second.Mapper->ReleaseGraphicsResources(window);
     }
+    if (gone)
+    {
+      this->Retire(it->second.Pending);
+    }
     it = gone ? this->Blocks.erase(it) : std::next(it);
   }
+  this->DropStoppedWork();
   for (auto it = this->Proxies.begin(); it != this->Proxies.end();)
   {
     it = it->second.Window && it->second.Prop ? std::next(it) : this->Proxies.erase(it);
@@ -134,6 +224,7 @@ csmCasterCollection::Counts csmCasterCollection::Collect(vtkRenderer* renderer,
 {
   this->FrameNumber = frame;
   this->ViewMoved = viewMoved;
+  this->Snapshots.clear(); // (the workers hold theirs)
   this->ForgetTheGone(renderer->GetRenderWindow());
   Counts counts;
   // Casters: visible opaque props. Receivers: every visible prop; their boxes fit the cascades.
@@ -266,6 +357,7 @@ double triangleCount(vtkPolyData* data)
 
 struct csmPreparedBlocks
 {
+  vtkIdType Points = 0; ///< of the data the corners index
   std::vector<std::uint32_t> Corners;
   std::vector<std::pair<std::size_t, std::size_t>> Blocks;
   std::vector<std::array<double, 6>> Bounds;
@@ -279,11 +371,12 @@ struct csmPreparedClosure
 namespace
 {
 std::shared_ptr<csmPreparedBlocks> prepareBlocks(
-  vtkSmartPointer<vtkPolyData> data, std::size_t perBlock, const std::atomic<bool>* stop)
+  vtkPolyData* data, std::size_t perBlock, const std::atomic<bool>* stop)
 {
   auto result = std::make_shared<csmPreparedBlocks>();
   vtkPoints* points = data->GetPoints();
   const vtkIdType pointCount = points ? points->GetNumberOfPoints() : 0;
+  result->Points = pointCount;
   if (pointCount == 0 ||
     pointCount > static_cast<vtkIdType>(std::numeric_limits<std::uint32_t>::max()))
   {
@@ -440,38 +533,34 @@ const csmCasterCollection::Closure& csmCasterCollection::ClassifiedShape(vtkPoly
   }
   else
   {
-    // A big mesh is classified by a worker thread; frames go on meanwhile.
-    if (!closure.Pending.valid() || closure.PendingTime != data->GetMTime())
+    // A big mesh is classified by a worker thread; frames go on meanwhile (from the second
+    // frame that draws it on, as its blocks).
+    if (!closure.Pending.Result.valid() || closure.Pending.Time != data->GetMTime())
     {
-      // (From the second frame that draws it on, as its blocks.)
-      if (closure.SeenTime != data->GetMTime() || closure.SeenFrame >= this->FrameNumber ||
-        !this->ViewMoved)
+      if (closure.Pending.Result.valid())
       {
-        if (closure.SeenTime != data->GetMTime())
-        {
-          closure.SeenTime = data->GetMTime();
-          closure.SeenFrame = this->FrameNumber;
-        }
-        return closure;
+        this->Retire(closure.Pending); // its data changed
+        ++closure.GivenUp;
       }
-      auto copy = vtkSmartPointer<vtkPolyData>::New();
-      copy->ShallowCopy(data);
-      closure.PendingTime = data->GetMTime();
-      std::shared_ptr<std::atomic<bool>> stop = this->StopWorkers;
-      closure.Pending = std::async(std::launch::async,
-        [copy, stop]()
-        {
-          auto prepared = std::make_shared<csmPreparedClosure>();
-          prepared->Closure = classifyPolyData(copy, stop.get());
-          return prepared;
-        });
+      if (this->MayPrepare(data, closure.SeenTime, closure.SeenFrame, closure.GivenUp))
+      {
+        this->StartPreparation(closure.Pending, data,
+          [](vtkPolyData* copy, const std::atomic<bool>* stop)
+          {
+            auto prepared = std::make_shared<csmPreparedClosure>();
+            prepared->Closure = classifyPolyData(copy, stop);
+            return prepared;
+          });
+      }
       return closure;
     }
-    if (closure.Pending.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+    if (closure.Pending.Result.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
     {
       return closure;
     }
-    c = closure.Pending.get()->Closure;
+    c = closure.Pending.Result.get()->Closure;
+    closure.Pending = Preparation<csmPreparedClosure>();
+    closure.GivenUp = 0;
   }
   closure.Time = data->GetMTime();
   closure.Orientation = c.closed && c.volume != 0.0 ? (c.volume > 0.0 ? 1 : -1) : 0;
@@ -530,53 +619,58 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
   // without culling inside it) until the blocks are ready.
   CasterBlocks& blocks = this->Blocks[{ window, data }];
   const vtkMTimeType dataTime = data->GetMTime();
-  const bool current = blocks.Data == data && blocks.Window == window && blocks.Time == dataTime &&
-    blocks.Mapper && blocks.Mapper->HasTriangles();
+  // (Prepared for this very data, into blocks or into nothing usable.)
+  const bool current = blocks.Data == data && blocks.Window == window && blocks.Time == dataTime;
   if (!current)
   {
-    if (!blocks.Pending.valid() || blocks.PendingTime != dataTime || blocks.Data != data ||
-      blocks.Window != window)
+    std::shared_ptr<csmPreparedBlocks> prepared;
+    const size_t triangles = static_cast<size_t>(triangleCount(data));
+    const size_t perBlock = std::max<size_t>(vtkCascadedShadowMapBakerPass::MINIMUM_BLOCK_TRIANGLES,
+      (triangles + vtkCascadedShadowMapBakerPass::MAXIMUM_BLOCKS - 1) /
+        vtkCascadedShadowMapBakerPass::MAXIMUM_BLOCKS);
+    if (blocks.Data != data || blocks.Window != window)
     {
-      const size_t triangles = static_cast<size_t>(triangleCount(data));
-      const bool now =
-        triangles <= vtkCascadedShadowMapBakerPass::SYNCHRONOUS_PREPARATION_TRIANGLES;
+      this->Retire(blocks.Pending);
+      blocks.Window = window;
+      blocks.Data = data;
+      blocks.SeenTime = 0;
+      blocks.GivenUp = 0;
+    }
+    if (triangles <= vtkCascadedShadowMapBakerPass::SYNCHRONOUS_PREPARATION_TRIANGLES)
+    {
+      // A small mesh at once, from its own data (this thread's).
+      this->Retire(blocks.Pending);
+      prepared = prepareBlocks(data, perBlock, nullptr);
+    }
+    else
+    {
       // A big mesh is prepared once a later frame's view moved (the maps that follow a moving
       // view are drawn again and again; a still view keeps its maps): a single image (a
       // screenshot, a batch frame, even rendered twice) never waits for, nor holds the memory
       // of, its preparation.
-      const bool seen = blocks.SeenTime == dataTime && blocks.Data == data &&
-        blocks.Window == window && blocks.SeenFrame < this->FrameNumber && this->ViewMoved;
-      if (!seen)
+      if (blocks.Pending.Result.valid() && blocks.Pending.Time != dataTime)
       {
-        blocks.SeenFrame = this->FrameNumber;
+        this->Retire(blocks.Pending); // its data changed
+        ++blocks.GivenUp;
       }
-      blocks.Window = window;
-      blocks.Data = data;
-      blocks.SeenTime = dataTime;
-      if (!now && !seen)
+      if (!blocks.Pending.Result.valid())
+      {
+        if (this->MayPrepare(data, blocks.SeenTime, blocks.SeenFrame, blocks.GivenUp))
+        {
+          this->StartPreparation(blocks.Pending, data,
+            [perBlock](vtkPolyData* copy, const std::atomic<bool>* stop)
+            { return prepareBlocks(copy, perBlock, stop); });
+        }
+        return false; // (picked up in a later frame, whenever it is ready)
+      }
+      if (blocks.Pending.Result.wait_for(std::chrono::seconds(0)) == std::future_status::timeout)
       {
         return false;
       }
-      auto copy = vtkSmartPointer<vtkPolyData>::New();
-      copy->ShallowCopy(data); // the prop's own points and cells, held while prepared
-      const size_t perBlock =
-        std::max<size_t>(vtkCascadedShadowMapBakerPass::MINIMUM_BLOCK_TRIANGLES,
-          (triangles + vtkCascadedShadowMapBakerPass::MAXIMUM_BLOCKS - 1) /
-            vtkCascadedShadowMapBakerPass::MAXIMUM_BLOCKS);
-      blocks.PendingTime = dataTime;
-      blocks.Pending = std::async(now ? std::launch::deferred : std::launch::async,
-        [copy, perBlock, stop = this->StopWorkers]()
-        { return prepareBlocks(copy, perBlock, stop.get()); });
-      if (!now)
-      {
-        return false; // (picked up in a later frame, whenever it is ready)
-      }
+      prepared = blocks.Pending.Result.get();
+      blocks.Pending = Preparation<csmPreparedBlocks>();
+      blocks.GivenUp = 0;
     }
-    if (blocks.Pending.wait_for(std::chrono::seconds(0)) == std::future_status::timeout)
-    {
-      return false;
-    }
-    std::shared_ptr<csmPreparedBlocks> prepared = blocks.Pending.get();
     if (blocks.Mapper)
     {
       blocks.Mapper->ReleaseGraphicsResources(window);
@@ -586,7 +680,7 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
     blocks.Cells.clear();
     blocks.Time = dataTime;
     blocks.Build = ++this->BlockBuilds;
-    if (prepared->Blocks.empty())
+    if (prepared->Blocks.empty() || prepared->Points != data->GetNumberOfPoints())
     {
       return false; // nothing usable (no area, a bad index or position): drawn as it is
     }
@@ -604,7 +698,7 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
     blocks.Bounds = std::move(prepared->Bounds);
     blocks.Mapper->SetBlocks(std::move(prepared->Corners), std::move(prepared->Blocks));
   }
-  return blocks.Mapper != nullptr;
+  return blocks.Mapper && blocks.Mapper->HasTriangles();
 }
 
 bool csmCasterCollection::AddCompactCaster(
@@ -802,6 +896,7 @@ void csmCasterCollection::ReleaseGraphicsResources(vtkWindow* w)
     {
       it->second.Mapper->ReleaseGraphicsResources(context);
     }
+    this->Retire(it->second.Pending);
     it = this->Blocks.erase(it);
   }
   for (auto it = this->Proxies.begin(); it != this->Proxies.end();)

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <atomic>
+#include <functional>
 #include <future>
 #include <map>
 #include <memory>
@@ -144,8 +145,39 @@ private:
   bool PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindow* window);
   void ForgetTheGone(vtkWindow* window);
 
+  /// A worker thread's preparation of a big mesh: its result to come, the flag that stops it
+  /// early, and the data time it was started for.
+  template <typename T>
+  struct Preparation
+  {
+    std::future<std::shared_ptr<T>> Result;
+    std::shared_ptr<std::atomic<bool>> Cancel;
+    vtkMTimeType Time = 0;
+  };
+  /// Starts `work` on a worker thread, on a copy of the data's points and cells the worker owns
+  /// (the application may edit its data in place between renders); a preparation under way is
+  /// retired first.
+  template <typename T, typename Work>
+  void StartPreparation(Preparation<T>& preparation, vtkPolyData* data, Work&& work);
+  /// Cancels a preparation and keeps its worker until it stops, without waiting for it.
+  template <typename T>
+  void Retire(Preparation<T>& preparation);
+  /// Drops the retired preparations whose workers stopped.
+  void DropStoppedWork();
+  /// May a big mesh's preparation start this frame? Once its data stayed the same since an
+  /// earlier frame and the view moved; a mesh whose preparations were given up because its data
+  /// changed waits twice as many frames each time (a mesh that changes every frame is drawn as
+  /// it is, never prepared).
+  bool MayPrepare(
+    vtkPolyData* data, vtkMTimeType& seenTime, long long& seenFrame, int givenUp) const;
+  /// The copy of a big mesh's points and cells for this frame's workers (one per data and
+  /// frame).
+  vtkPolyData* SnapshotOf(vtkPolyData* data);
+
   long long FrameNumber = 0;
   bool ViewMoved = false;
+  std::map<vtkPolyData*, vtkSmartPointer<vtkPolyData>> Snapshots;
+  std::vector<std::function<bool()>> RetiredWork; ///< each: true once its worker stopped
   /// csm::classifySurface's answer per polydata, kept while the data does not change.
   struct Closure
   {
@@ -153,11 +185,11 @@ private:
     vtkMTimeType Time = 0;
     int Orientation = 0; ///< +1 outward, -1 inward, 0 open
     bool Planar = false;
-    bool ShadowsItself = true; ///< csm::SurfaceClosure::canShadowItself
-    std::future<std::shared_ptr<csmPreparedClosure>> Pending; ///< a big mesh's, under way
-    vtkMTimeType PendingTime = 0;
+    bool ShadowsItself = true;               ///< csm::SurfaceClosure::canShadowItself
+    Preparation<csmPreparedClosure> Pending; ///< a big mesh's, under way
     vtkMTimeType SeenTime = 0;
     long long SeenFrame = 0;
+    int GivenUp = 0; ///< preparations given up in a row because the data changed
   };
   std::map<vtkPolyData*, Closure> Closures;
   /// Compact blocks of a polydata in one window (the mapper holds that context's buffers),
@@ -171,10 +203,10 @@ private:
     vtkSmartPointer<vtkCascadedShadowBlockMapper> Mapper;
     std::vector<std::array<double, 6>> Bounds; ///< per block, in the data's coordinates
     std::vector<double> Cells;                 ///< per block: its triangles
-    std::future<std::shared_ptr<csmPreparedBlocks>> Pending;
-    vtkMTimeType PendingTime = 0;
+    Preparation<csmPreparedBlocks> Pending;
     vtkMTimeType SeenTime = 0; ///< of the data a frame drew as it is, not yet prepared
     long long SeenFrame = 0;   ///< that frame
+    int GivenUp = 0;           ///< preparations given up in a row because the data changed
   };
   std::map<std::pair<vtkWindow*, vtkPolyData*>, CasterBlocks> Blocks;
   /// The actor that draws a prop's blocks in one window (its property, a copy of its matrix).
@@ -189,8 +221,6 @@ private:
   };
   std::map<std::pair<vtkWindow*, vtkProp*>, CasterProxy> Proxies;
   int BlockBuilds = 0;
-  /// Set when the collection goes: the worker threads' preparations stop early.
-  std::shared_ptr<std::atomic<bool>> StopWorkers;
 };
 
 #endif

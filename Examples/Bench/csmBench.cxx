@@ -304,7 +304,7 @@ void Apply(const View& v, vtkRenderer* renderer, vtkLight* light, const csmScene
 /// The misclassified pixels of one view: false shadow red, false light blue, the pixels
 /// classified right light grey (lit) and dark grey (shadowed), those not compared the plain
 /// render darkened.
-void WriteErrorImage(const std::string& file, vtkImageData* plain,
+bool WriteErrorImage(const std::string& file, vtkImageData* plain,
   const std::vector<char>& comparable, const std::vector<char>& occluded,
   const std::vector<float>& factor)
 {
@@ -342,7 +342,11 @@ void WriteErrorImage(const std::string& file, vtkImageData* plain,
   writer->SetInputData(image);
   writer->Write();
   if (writer->GetErrorCode() != 0)
-    std::fprintf(stderr, "csm-bench: cannot write %s\n", file.c_str());
+  {
+    std::fprintf(stderr, "csm-bench: error: cannot write %s\n", file.c_str());
+    return false;
+  }
+  return true;
 }
 
 vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
@@ -946,7 +950,8 @@ int main(int argc, char** argv)
         {
           std::string name = sceneName + "-" + t.Label + "-" + v.Name + ".png";
           std::replace(name.begin(), name.end(), ' ', '_');
-          WriteErrorImage(o.ErrorImages + "/" + name, plain, comparable, occluded, factor);
+          if (!WriteErrorImage(o.ErrorImages + "/" + name, plain, comparable, occluded, factor))
+            std::exit(1); // (said why)
         }
         t.Errors.Considered += c.Considered;
         t.Errors.FalseShadow += c.FalseShadow;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace csm
 {
@@ -13,6 +14,7 @@ namespace
 {
 constexpr double kMinDistance = 1e-50; // camera near and far distances a double handles
 constexpr double kMaxDistance = 1e50;
+constexpr double kMinDepthGap = 1e-9; // far must exceed near by this fraction of near
 } // namespace
 
 std::string cameraError(const Camera& camera)
@@ -29,9 +31,16 @@ std::string cameraError(const Camera& camera)
   {
     return "camera near distance must be finite and > 0";
   }
-  if (!(camera.vsFar > camera.vsNear * (1.0 + 1e-9)))
+  if (!(camera.vsFar > camera.vsNear * (1.0 + kMinDepthGap)))
   {
-    return "camera far distance must be greater than near";
+    if (!(camera.vsFar > camera.vsNear))
+    {
+      return "camera far distance must be greater than near";
+    }
+    char text[96];
+    std::snprintf(text, sizeof(text),
+      "camera far distance must exceed near by more than %g of near", kMinDepthGap);
+    return text;
   }
   // Beyond these the squared distances of the body's points over- or underflow a double.
   if (camera.vsNear < kMinDistance || camera.vsFar > kMaxDistance)

@@ -17,7 +17,9 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
 #include <fstream>
 #include <sstream>
 #include <unistd.h>
@@ -262,8 +264,14 @@ std::string CheckOutputFile(const std::string& path)
   if (vtksys::SystemTools::FileIsDirectory(path))
     return "'" + path + "' is a directory";
   if (vtksys::SystemTools::FileExists(path))
-    return access(path.c_str(), W_OK) == 0 ? std::string()
-                                           : "cannot write '" + path + "': " + std::strerror(errno);
+  {
+    // Opened for writing, not truncated (access() answers yes to root for any file).
+    const int fd = open(path.c_str(), O_WRONLY | O_APPEND | O_NONBLOCK);
+    if (fd < 0)
+      return "cannot write '" + path + "': " + std::strerror(errno);
+    close(fd);
+    return {};
+  }
   const std::string folder = vtksys::SystemTools::GetFilenamePath(path);
   const std::string error = CheckOutputFolder(folder.empty() ? "." : folder);
   return error.empty() ? error : "cannot write '" + path + "': " + error;
@@ -275,8 +283,13 @@ std::string CheckOutputFolder(const std::string& path)
     return "the folder '" + path + "' does not exist";
   if (!vtksys::SystemTools::FileIsDirectory(path))
     return "'" + path + "' is not a folder";
-  if (access(path.c_str(), W_OK | X_OK) != 0)
+  // A file made and removed again (access() answers yes to root for any folder, even /proc).
+  std::string probe = path + "/.csm-write-check-XXXXXX";
+  const int fd = mkstemp(probe.data());
+  if (fd < 0)
     return "cannot write in the folder '" + path + "': " + std::strerror(errno);
+  close(fd);
+  unlink(probe.c_str());
   return {};
 }
 

@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -800,12 +801,15 @@ bool FromFile(const std::string& path, Scene& scene, std::string& error)
     error = "cannot read '" + path + "': it is a directory, not a file";
     return false;
   }
+  struct stat status;
   if (!vtksys::SystemTools::FileExists(path, true))
   {
-    error = "cannot read '" + path + "': no such file";
+    // Why not, as the system says (a loop of symbolic links, a folder without access, ...).
+    const int why = stat(path.c_str(), &status) == 0 ? EACCES : errno;
+    error = "cannot read '" + path +
+      "': " + (why == ENOENT ? std::string("no such file") : std::string(std::strerror(why)));
     return false;
   }
-  struct stat status;
   if (stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode))
   {
     // A named pipe would block the checks and the reader; a device may never end.

@@ -219,6 +219,26 @@ def offscreen_no_display():
 
 
 tri = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
+def symlink_loop():
+    # Two links naming each other: the system's reason, not "no such file".
+    for a, b in (("loop-a.ply", "loop-b.ply"), ("loop-b.ply", "loop-a.ply")):
+        if os.path.lexists(path(a)):
+            os.remove(path(a))
+        os.symlink(path(b), path(a))
+    return expect_error(["--scene", path("loop-a.ply"), "--offscreen", "--out", path("x.png")],
+                        ["Too many levels of symbolic links"])
+
+
+def light_huge():
+    # A direction of huge components is a direction (its length would overflow): it renders.
+    rc, out, err = run(["--offscreen", "--light", "1e308,1e308,0", "--out", path("x.png")],
+                       NO_DISPLAY if osmesa else None)
+    if rc != 0:
+        return "exit status %s: %s" % (rc, err[:300])
+    print("ok: rendered with --light 1e308,1e308,0")
+    return None
+
+
 cases = {
     "obj_bad_index": lambda: expect_error(
         ["--scene", write("bad-index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999\n"), "--offscreen",
@@ -268,6 +288,8 @@ cases = {
          "--offscreen", "--out", path("x.png")], ["not finite"]),
     "directory": lambda: expect_error(["--scene", tmp, "--offscreen", "--out", path("x.png")],
                                       ["is a directory"]),
+    "symlink_loop": symlink_loop,
+    "light_huge": light_huge,
     "range_message": lambda: expect_error(["--darkness", "2"], ["--darkness must be in [0, 1] (see --help)"]),
     "triangles_cap": lambda: expect_error(["--triangles", "5e7"], ["--triangles must be in [1000, "]),
     # The interactive window needs a display; so does --offscreen without the OSMesa window.

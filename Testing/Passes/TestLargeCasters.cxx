@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Big casters: their compact blocks are prepared by a worker thread while the frames draw them
-// as they are, with the same shadows; an edit prepares again only the prop that changed.
+// as they are, with the same shadows; an edit prepares again only the prop that changed; the
+// application may edit a mesh in place while a worker prepares it.
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPoints.h"
@@ -18,8 +22,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 namespace
 {
@@ -28,13 +39,13 @@ using csmTest::DarkenedPixels;
 using csmTest::DifferingValues;
 
 /// A finely tessellated ball (more triangles than the baker prepares at once) over the ground.
-vtkSmartPointer<vtkPolyData> BigBall(double x)
+vtkSmartPointer<vtkPolyData> BigBall(double x, int resolution = 520, double z = 3.0)
 {
   vtkNew<vtkSphereSource> ball;
-  ball->SetCenter(x, 2.0, 3.0);
+  ball->SetCenter(x, 2.0, z);
   ball->SetRadius(1.0);
-  ball->SetThetaResolution(520);
-  ball->SetPhiResolution(520);
+  ball->SetThetaResolution(resolution);
+  ball->SetPhiResolution(resolution);
   ball->Update();
   vtkSmartPointer<vtkPolyData> data = ball->GetOutput();
   return data;
@@ -130,3 +141,149 @@ TEST(LargeCasters, APropNotYetPreparedCastsTheSameShadow)
   EXPECT_GT(DifferingValues(whileMoving, prepared, 8), 1000); // the shadow moved at once
   EXPECT_LE(DifferingValues(movedPrepared, whileMoving, 8), 40);
 }
+
+namespace
+{
+/// The ways VTK lets an application edit a mesh in place between two renders.
+const std::vector<std::pair<std::string, std::function<void(vtkPolyData*)>>>& InPlaceEdits()
+{
+  static const std::vector<std::pair<std::string, std::function<void(vtkPolyData*)>>> edits = {
+    { "PolysInitialize", [](vtkPolyData* data) { data->GetPolys()->Initialize(); } },
+    { "PointsResizeThenMoved",
+      [](vtkPolyData* data)
+      {
+        vtkPoints* points = data->GetPoints();
+        const vtkIdType n = points->GetNumberOfPoints();
+        points->Resize(3 * n);
+        for (vtkIdType i = 0; i < n; ++i)
+        {
+          double p[3];
+          points->GetPoint(i, p);
+          points->SetPoint(i, p[0] + 4.0, p[1], p[2]);
+        }
+      } },
+    { "PointsSetData",
+      [](vtkPolyData* data)
+      {
+        vtkNew<vtkFloatArray> moved;
+        moved->DeepCopy(data->GetPoints()->GetData());
+        for (vtkIdType i = 0; i < moved->GetNumberOfTuples(); ++i)
+        {
+          moved->SetComponent(i, 0, moved->GetComponent(i, 0) + 4.0);
+        }
+        data->GetPoints()->SetData(moved);
+      } },
+    { "SetNumberOfPoints",
+      [](vtkPolyData* data)
+      {
+        // Fewer points, then the polygons that use them only.
+        vtkPoints* points = data->GetPoints();
+        const vtkIdType n = points->GetNumberOfPoints() / 2;
+        points->SetNumberOfPoints(n);
+        vtkNew<vtkCellArray> kept;
+        vtkIdType count;
+        const vtkIdType* ids;
+        auto cells = vtk::TakeSmartPointer(data->GetPolys()->NewIterator());
+        for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
+        {
+          cells->GetCurrentCell(count, ids);
+          if (std::all_of(ids, ids + count, [n](vtkIdType id) { return id < n; }))
+          {
+            kept->InsertNextCell(count, ids);
+          }
+        }
+        data->GetPolys()->DeepCopy(kept);
+      } },
+    { "InsertNextCell",
+      [](vtkPolyData* data)
+      {
+        const vtkIdType triangle[3] = { 0, 1, 2 };
+        for (int i = 0; i < 1000; ++i)
+        {
+          data->GetPolys()->InsertNextCell(3, triangle);
+        }
+      } },
+    { "DeepCopyInto", [](vtkPolyData* data) { data->DeepCopy(BigBall(1.0, 200)); } },
+    { "SetPoints",
+      [](vtkPolyData* data)
+      {
+        vtkNew<vtkPoints> moved;
+        moved->DeepCopy(data->GetPoints());
+        for (vtkIdType i = 0; i < moved->GetNumberOfPoints(); ++i)
+        {
+          double p[3];
+          moved->GetPoint(i, p);
+          moved->SetPoint(i, p[0], p[1] + 1.0, p[2]);
+        }
+        data->SetPoints(moved);
+      } },
+  };
+  return edits;
+}
+
+int EnvironmentOr(const char* name, int fallback)
+{
+  const char* value = std::getenv(name);
+  return value && std::atoi(value) > 0 ? std::atoi(value) : fallback;
+}
+
+class InPlaceEdit : public ::testing::TestWithParam<size_t>
+{
+};
+} // namespace
+
+// A big mesh is edited in place (as VTK lets an application do between renders) right after a
+// camera move started its preparation on a worker thread: the worker reads its own copy, the
+// frame after the edit shows the edited mesh as a fresh chain does, and nothing waits for the
+// preparation that the edit made useless. CSM_INPLACE_REPEATS (3) and CSM_INPLACE_RESOLUTION
+// (520: 540k triangles; 1400: 3.9 M) make the run longer.
+TEST_P(InPlaceEdit, WhileAWorkerPreparesTheMesh)
+{
+  const auto& [name, edit] = InPlaceEdits()[GetParam()];
+  const int repeats = EnvironmentOr("CSM_INPLACE_REPEATS", 3);
+  const int resolution = EnvironmentOr("CSM_INPLACE_RESOLUTION", 520);
+  for (int run = 0; run < repeats; ++run)
+  {
+    BoxOverPlane scene;
+    // Every other run the ball is behind the camera: it draws nothing, and the frame that
+    // starts its preparation ends long before the worker has read the mesh.
+    const bool behind = run % 2 == 1;
+    vtkSmartPointer<vtkPolyData> data = BigBall(-3.0, resolution, behind ? 30.0 : 3.0);
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(data);
+    vtkNew<vtkActor> ball;
+    ball->SetMapper(mapper);
+    scene.Renderer->AddActor(ball);
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+    scene.Frame();
+    scene.Renderer->GetActiveCamera()->Azimuth(1.0); // the worker starts in this frame
+    scene.Frame();
+    // The edit at another moment of the worker's preparation each run.
+    std::this_thread::sleep_for(std::chrono::milliseconds((run / 2 * 30) % 150));
+    edit(data);
+    data->Modified();
+    const auto start = std::chrono::steady_clock::now();
+    auto edited = scene.Frame();
+    const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    BoxOverPlane fresh;
+    vtkNew<vtkPolyData> same;
+    same->DeepCopy(data);
+    vtkNew<vtkPolyDataMapper> freshMapper;
+    freshMapper->SetInputData(same);
+    vtkNew<vtkActor> freshBall;
+    freshBall->SetMapper(freshMapper);
+    fresh.Renderer->AddActor(freshBall);
+    fresh.Renderer->GetActiveCamera()->DeepCopy(scene.Renderer->GetActiveCamera());
+    fresh.Renderer->GetActiveCamera()->Modified();
+    vtkCascadedShadowMapPass::UseShadowsOn(fresh.Renderer);
+    EXPECT_EQ(DifferingValues(fresh.Frame(), edited), 0) << name << ", run " << run;
+    // The frames go on while a worker stops; say how long the edited frame took.
+    std::printf("%s run %d: the frame after the edit %.3f s\n", name.c_str(), run, seconds);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(LargeCasters, InPlaceEdit,
+  ::testing::Range<size_t>(0, InPlaceEdits().size()),
+  [](const ::testing::TestParamInfo<size_t>& info) { return InPlaceEdits()[info.param].first; });
