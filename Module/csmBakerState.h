@@ -4,7 +4,7 @@
 #ifndef csmBakerState_h
 #define csmBakerState_h
 
-#include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkCascadedShadowMapTypes.h" // for LightMaps
 
 #include "csmVisibleDepth.h"
 
@@ -19,12 +19,15 @@
 #include <cmath>
 #include <vector>
 
+class vtkOpenGLRenderWindow;
+class vtkRenderer;
+
 /// The maps of one renderer and the GL objects (of its window's context) that hold them.
 struct csmRendererMaps
 {
   vtkWeakPointer<vtkRenderer> Renderer;
   vtkOpenGLRenderWindow* Window = nullptr; ///< the context of the atlases and framebuffer
-  std::vector<vtkCascadedShadowMapBakerPass::LightMaps> Maps;
+  std::vector<vtkCascadedShadows::LightMaps> Maps;
   std::vector<vtkSmartPointer<vtkTextureObject>> AtlasPool; ///< one per light slot, reused
   vtkSmartPointer<vtkOpenGLFramebufferObject> FrameBuffer;
   /// Rows of a map in transit while it moves with the view (csmMapDrawing::MoveMap).
@@ -43,8 +46,8 @@ struct csmRendererMaps
 };
 
 /// Were the maps rendered for the same light geometry?
-inline bool sameLightGeometry(const vtkCascadedShadowMapBakerPass::LightMaps& a,
-  const vtkCascadedShadowMapBakerPass::LightMaps& b)
+inline bool sameLightGeometry(
+  const vtkCascadedShadows::LightMaps& a, const vtkCascadedShadows::LightMaps& b)
 {
   return a.Kind == b.Kind && a.ConeAngle == b.ConeAngle &&
     std::equal(a.Position, a.Position + 3, b.Position) &&

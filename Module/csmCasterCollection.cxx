@@ -1,16 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "csmCasterCollection.h"
 
-#include "csmCasterBlocks.h"
-#include "csmClosedSurface.h"
+#include "csmCasterPreparation.h"
+#include "csmProps.h"
+#include "csmVTKMath.h"
 
 #include "vtkActor.h"
 #include "vtkCascadedShadowBlockMapper.h"
-#include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPlanner.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
 #include "vtkCommunicator.h"
+#include "vtkDataArray.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
@@ -71,7 +72,7 @@ bool hasScreenSizedCasters(const std::vector<Caster>& casters)
   while (vtkProp* prop = actors->GetNextProp(it))
   {
     float sizes[2];
-    vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, sizes);
+    csmScreenSizes(prop, sizes);
     if (sizes[0] > 1.0f || sizes[1] > 1.0f)
     {
       return true;
@@ -121,9 +122,9 @@ void csmCasterCollection::DropStoppedWork()
 
 vtkPolyData* csmCasterCollection::SnapshotOf(vtkPolyData* data)
 {
-  // Copies of the arrays themselves (same types, so copied as memory): a shallow copy of the
-  // polydata would share the application's vtkPoints and vtkCellArray objects, which it may
-  // resize, re-initialize or give new arrays while a worker reads them.
+  // Copies of the arrays themselves: a shallow copy of the polydata would share the
+  // application's vtkPoints and vtkCellArray objects, which it may resize, re-initialize or give
+  // new arrays while a worker reads them.
   vtkSmartPointer<vtkPolyData>& snapshot = this->Snapshots[data];
   if (snapshot)
   {
@@ -132,19 +133,13 @@ vtkPolyData* csmCasterCollection::SnapshotOf(vtkPolyData* data)
   snapshot = vtkSmartPointer<vtkPolyData>::New();
   if (vtkPoints* points = data->GetPoints(); points && points->GetData())
   {
-    auto positions = vtk::TakeSmartPointer(points->GetData()->NewInstance());
-    positions->DeepCopy(points->GetData());
     vtkNew<vtkPoints> owned;
-    owned->SetData(positions);
+    owned->SetData(csmOwnCopy(points->GetData()));
     snapshot->SetPoints(owned);
   }
   // (Both cell arrays set, even empty: a worker never makes one.)
-  vtkNew<vtkCellArray> polys;
-  polys->DeepCopy(data->GetPolys());
-  snapshot->SetPolys(polys);
-  vtkNew<vtkCellArray> strips;
-  strips->DeepCopy(data->GetStrips());
-  snapshot->SetStrips(strips);
+  snapshot->SetPolys(csmOwnCopy(data->GetPolys()));
+  snapshot->SetStrips(csmOwnCopy(data->GetStrips()));
   return snapshot;
 }
 
@@ -269,7 +264,7 @@ csmCasterCollection::Counts csmCasterCollection::Collect(vtkRenderer* renderer,
       caster.ShadowsItself = itself;
       caster.Receiver = static_cast<int>(props.Receivers.size()) - 1;
       float sizes[2];
-      vtkCascadedShadowMapBakerPass::GetScreenSizes(caster.Prop, sizes);
+      csmScreenSizes(caster.Prop, sizes);
       const bool screenSized = sizes[0] > 1.0f || sizes[1] > 1.0f;
       if (caster.Compact < 0)
       {
@@ -291,199 +286,6 @@ csmCasterCollection::Counts csmCasterCollection::Collect(vtkRenderer* renderer,
 
 namespace
 {
-/// The positions and the triangles of a polydata's polygons (fans) and strips (false: no points).
-/// Calls f(a, b, c) for every triangle of a polydata's polygons (fans) and strips, wound as
-/// drawn; safe beside the main thread's own reading (each traversal has its own iterator).
-/// Stops early (returning false) once `stop` is set.
-template <typename F>
-bool forEachTriangle(vtkPolyData* data, F&& f, const std::atomic<bool>* stop = nullptr)
-{
-  vtkIdType n;
-  const vtkIdType* ids;
-  vtkIdType visited = 0;
-  auto stopped = [&visited, stop]()
-  { return stop && (++visited & 0xfff) == 0 && stop->load(std::memory_order_relaxed); };
-  auto polys = vtk::TakeSmartPointer(data->GetPolys()->NewIterator());
-  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
-  {
-    if (stopped())
-    {
-      return false;
-    }
-    polys->GetCurrentCell(n, ids);
-    for (vtkIdType k = 2; k < n; ++k)
-    {
-      f(ids[0], ids[k - 1], ids[k]);
-    }
-  }
-  auto strips = vtk::TakeSmartPointer(data->GetStrips()->NewIterator());
-  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
-  {
-    if (stopped())
-    {
-      return false;
-    }
-    strips->GetCurrentCell(n, ids);
-    for (vtkIdType k = 2; k < n; ++k)
-    {
-      // Every other triangle of a strip is wound the other way round.
-      if (k % 2 == 0)
-      {
-        f(ids[k - 2], ids[k - 1], ids[k]);
-      }
-      else
-      {
-        f(ids[k - 1], ids[k - 2], ids[k]);
-      }
-    }
-  }
-  return true;
-}
-
-/// Triangles of a polydata (polygons as fans, strips) without traversing them.
-double triangleCount(vtkPolyData* data)
-{
-  const double polys = static_cast<double>(data->GetPolys()->GetNumberOfConnectivityIds()) -
-    2.0 * static_cast<double>(data->GetPolys()->GetNumberOfCells());
-  const double strips = static_cast<double>(data->GetStrips()->GetNumberOfConnectivityIds()) -
-    2.0 * static_cast<double>(data->GetStrips()->GetNumberOfCells());
-  return std::max(0.0, polys) + std::max(0.0, strips);
-}
-
-/// A big caster's triangles in compact blocks (csm::orderIntoBlocks), for
-/// vtkCascadedShadowBlockMapper: the corners block after block, each block's triangles and its
-/// box in the data's coordinates. Empty where the mesh has no usable triangle.
-} // namespace
-
-struct csmPreparedBlocks
-{
-  vtkIdType Points = 0; ///< of the data the corners index
-  std::vector<std::uint32_t> Corners;
-  std::vector<std::pair<std::size_t, std::size_t>> Blocks;
-  std::vector<std::array<double, 6>> Bounds;
-};
-
-struct csmPreparedClosure
-{
-  csm::SurfaceClosure Closure;
-};
-
-namespace
-{
-std::shared_ptr<csmPreparedBlocks> prepareBlocks(
-  vtkPolyData* data, std::size_t perBlock, const std::atomic<bool>* stop)
-{
-  auto result = std::make_shared<csmPreparedBlocks>();
-  vtkPoints* points = data->GetPoints();
-  const vtkIdType pointCount = points ? points->GetNumberOfPoints() : 0;
-  result->Points = pointCount;
-  if (pointCount == 0 ||
-    pointCount > static_cast<vtkIdType>(std::numeric_limits<std::uint32_t>::max()))
-  {
-    return result;
-  }
-  std::vector<std::uint32_t> corners;
-  std::vector<glm::vec3> centroids;
-  corners.reserve(3 * static_cast<size_t>(triangleCount(data)));
-  centroids.reserve(static_cast<size_t>(triangleCount(data)));
-  bool valid = true;
-  valid = forEachTriangle(
-            data,
-            [&](vtkIdType a, vtkIdType b, vtkIdType c)
-            {
-              if (a < 0 || b < 0 || c < 0 || a >= pointCount || b >= pointCount || c >= pointCount)
-              {
-                valid = false;
-                return;
-              }
-              if (a == b || b == c || c == a)
-              {
-                return; // covers no texel
-              }
-              double pa[3], pb[3], pc[3];
-              points->GetPoint(a, pa);
-              points->GetPoint(b, pb);
-              points->GetPoint(c, pc);
-              corners.insert(corners.end(),
-                { static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
-                  static_cast<std::uint32_t>(c) });
-              centroids.emplace_back(static_cast<float>((pa[0] + pb[0] + pc[0]) / 3.0),
-                static_cast<float>((pa[1] + pb[1] + pc[1]) / 3.0),
-                static_cast<float>((pa[2] + pb[2] + pc[2]) / 3.0));
-            },
-            stop) &&
-    valid;
-  if (!valid || centroids.empty())
-  {
-    return result;
-  }
-  csm::BlockOrder order = csm::orderIntoBlocks(centroids, perBlock);
-  std::vector<glm::vec3>().swap(centroids);
-  if (order.blocks.empty() || (stop && stop->load()))
-  {
-    return result;
-  }
-  result->Corners.resize(corners.size());
-  for (size_t i = 0; i < order.order.size(); ++i)
-  {
-    std::copy_n(corners.begin() + 3 * static_cast<std::ptrdiff_t>(order.order[i]), 3,
-      result->Corners.begin() + 3 * static_cast<std::ptrdiff_t>(i));
-  }
-  std::vector<std::uint32_t>().swap(corners);
-  std::vector<std::uint32_t>().swap(order.order);
-  result->Blocks = std::move(order.blocks);
-  for (const auto& [first, count] : result->Blocks)
-  {
-    std::array<double, 6> box = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
-      VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
-    for (size_t i = 3 * first; i < 3 * (first + count); ++i)
-    {
-      double p[3];
-      points->GetPoint(result->Corners[i], p);
-      for (int k = 0; k < 3; ++k)
-      {
-        box[2 * k] = std::min(box[2 * k], p[k]);
-        box[2 * k + 1] = std::max(box[2 * k + 1], p[k]);
-      }
-    }
-    result->Bounds.push_back(box);
-  }
-  return result;
-}
-
-bool trianglesOf(vtkPolyData* data, std::vector<glm::dvec3>& positions,
-  std::vector<std::array<std::int64_t, 3>>& triangles, const std::atomic<bool>* stop = nullptr)
-{
-  // (Cell iterators and GetPoint into a buffer: safe beside the main thread's own reading.)
-  vtkPoints* points = data->GetPoints();
-  if (!points || points->GetNumberOfPoints() == 0)
-  {
-    return false;
-  }
-  positions.resize(static_cast<size_t>(points->GetNumberOfPoints()));
-  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
-  {
-    double p[3];
-    points->GetPoint(i, p);
-    positions[static_cast<size_t>(i)] = glm::dvec3(p[0], p[1], p[2]);
-  }
-  triangles.clear();
-  return forEachTriangle(
-    data,
-    [&triangles](vtkIdType a, vtkIdType b, vtkIdType c) {
-      triangles.push_back({ a, b, c });
-    },
-    stop);
-}
-
-/// csm::classifySurface of a polydata.
-csm::SurfaceClosure classifyPolyData(vtkPolyData* data, const std::atomic<bool>* stop = nullptr)
-{
-  std::vector<glm::dvec3> positions;
-  std::vector<std::array<std::int64_t, 3>> triangles;
-  return trianglesOf(data, positions, triangles, stop) ? csm::classifySurface(positions, triangles)
-                                                       : csm::SurfaceClosure();
-}
 
 /// The polydata of a prop that may be drawn from compact blocks: a plain actor and mapper,
 /// polygons or strips drawn as a surface, nothing else (see CompactCasters).
@@ -520,16 +322,16 @@ const csmCasterCollection::Closure& csmCasterCollection::ClassifiedShape(vtkPoly
   closure.Orientation = 0;
   closure.Planar = false;
   closure.ShadowsItself = true;
-  const double triangles = triangleCount(data);
-  if (triangles > vtkCascadedShadowMapBakerPass::MOST_CLASSIFIED_TRIANGLES)
+  const double triangles = csmTriangleCount(data);
+  if (triangles > vtkCascadedShadows::MostClassifiedTriangles)
   {
     closure.Time = data->GetMTime(); // not classified: what it costs outweighs what it saves
     return closure;
   }
   csm::SurfaceClosure c;
-  if (triangles <= vtkCascadedShadowMapBakerPass::SYNCHRONOUS_PREPARATION_TRIANGLES)
+  if (triangles <= vtkCascadedShadows::SynchronousPreparationTriangles)
   {
-    c = classifyPolyData(data);
+    c = csmClassifyPolyData(data, nullptr);
   }
   else
   {
@@ -548,7 +350,7 @@ const csmCasterCollection::Closure& csmCasterCollection::ClassifiedShape(vtkPoly
           [](vtkPolyData* copy, const std::atomic<bool>* stop)
           {
             auto prepared = std::make_shared<csmPreparedClosure>();
-            prepared->Closure = classifyPolyData(copy, stop);
+            prepared->Closure = csmClassifyPolyData(copy, stop);
             return prepared;
           });
       }
@@ -624,10 +426,9 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
   if (!current)
   {
     std::shared_ptr<csmPreparedBlocks> prepared;
-    const size_t triangles = static_cast<size_t>(triangleCount(data));
-    const size_t perBlock = std::max<size_t>(vtkCascadedShadowMapBakerPass::MINIMUM_BLOCK_TRIANGLES,
-      (triangles + vtkCascadedShadowMapBakerPass::MAXIMUM_BLOCKS - 1) /
-        vtkCascadedShadowMapBakerPass::MAXIMUM_BLOCKS);
+    const size_t triangles = static_cast<size_t>(csmTriangleCount(data));
+    const size_t perBlock = std::max<size_t>(vtkCascadedShadows::MinimumBlockTriangles,
+      (triangles + vtkCascadedShadows::MaximumBlocks - 1) / vtkCascadedShadows::MaximumBlocks);
     if (blocks.Data != data || blocks.Window != window)
     {
       this->Retire(blocks.Pending);
@@ -636,11 +437,11 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
       blocks.SeenTime = 0;
       blocks.GivenUp = 0;
     }
-    if (triangles <= vtkCascadedShadowMapBakerPass::SYNCHRONOUS_PREPARATION_TRIANGLES)
+    if (triangles <= vtkCascadedShadows::SynchronousPreparationTriangles)
     {
       // A small mesh at once, from its own data (this thread's).
       this->Retire(blocks.Pending);
-      prepared = prepareBlocks(data, perBlock, nullptr);
+      prepared = csmPrepareBlocks(data, perBlock, nullptr);
     }
     else
     {
@@ -659,7 +460,7 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
         {
           this->StartPreparation(blocks.Pending, data,
             [perBlock](vtkPolyData* copy, const std::atomic<bool>* stop)
-            { return prepareBlocks(copy, perBlock, stop); });
+            { return csmPrepareBlocks(copy, perBlock, stop); });
         }
         return false; // (picked up in a later frame, whenever it is ready)
       }
@@ -797,8 +598,7 @@ bool csmFrameCasters::CasterHasReceivers(const Caster& caster, const double* tra
   for (size_t r = 0; r < this->Receivers.size(); ++r)
   {
     if (static_cast<int>(r) != caster.Receiver &&
-      vtkCascadedShadowMapPlanner::CasterBoxReachesBox(
-        travel, caster.Bounds.data(), this->Receivers[r].data(), minimum))
+      csmCasterBoxReachesBox(travel, caster.Bounds.data(), this->Receivers[r].data(), minimum))
     {
       return true;
     }
@@ -921,7 +721,7 @@ void csmFrameCasters::FeedPlanner(vtkCascadedShadowMapPlanner* planner) const
   // casters; beyond, one load of all their cells in the scene's box, which every cascade draws).
   // Screen-sized casters (tubes, spheres, wide lines) cost their fragments, not their cells,
   // and have no fixed extent: with any of them the count is the fewest that meets the target
-  // and there is no scene-fitted map (Results.md, "Screen-sized casters").
+  // and there is no scene-fitted map (Tried.md, "Screen-sized casters").
   planner->ClearCasterLoads();
   const bool screenSizedCasters = std::any_of(this->CasterLoads.begin(), this->CasterLoads.end(),
     [](const csmFrameCasters::CasterLoad& l) { return l.ScreenSized; });

@@ -6,6 +6,7 @@
 #ifndef csmCasterCollection_h
 #define csmCasterCollection_h
 
+#include "vtkCascadedShadowMapTypes.h" // for the compact casters' limits
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 #include "vtkWeakPointer.h"

@@ -2,12 +2,13 @@
 #include "csmMapDrawing.h"
 
 #include "csmCasterCollection.h"
+#include "csmProps.h"
+#include "csmVTKMath.h"
 #include "csmVisibleDepth.h"
 
 #include "vtkCamera.h"
 #include "vtkCascadedShadowBlockMapper.h"
 #include "vtkCascadedShadowCasterPass.h"
-#include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPlanner.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
@@ -56,7 +57,7 @@ int closedFaceTowardViewer(int closure, double worldToClipDeterminant)
 bool casterHasReceivers(const csmFrameCasters& props, const csmFrameCasters::Caster& caster,
   const csmMapDrawing::LightMaps& maps, bool distributed)
 {
-  if (maps.Kind != vtkCascadedShadowMapBakerPass::LightKind::Directional || distributed)
+  if (maps.Kind != vtkCascadedShadows::LightKind::Directional || distributed)
   {
     return true;
   }
@@ -96,7 +97,7 @@ vtkCascadedShadowCasterPass::CasterUniforms casterUniformsFor(
   const double* position = maps.Position;
   const double* focal = maps.FocalPoint;
   double light[4];
-  if (maps.Kind == vtkCascadedShadowMapBakerPass::LightKind::Directional)
+  if (maps.Kind == vtkCascadedShadows::LightKind::Directional)
   {
     const double toward[4] = { position[0] - focal[0], position[1] - focal[1],
       position[2] - focal[2], 0.0 };
@@ -198,8 +199,33 @@ void csmMapDrawing::MainView(vtkRenderer* renderer, vtkCamera* camera, double ke
   key[17] = -pixel * projection->GetElement(3, 2); // perspective: grows with depth
 }
 
-void csmMapDrawing::ClearTiles(
-  vtkOpenGLState* ostate, const LightMaps& maps, const int* renderCascade)
+csmDepthDrawingGuard::csmDepthDrawingGuard(vtkOpenGLState* ostate)
+  : State(ostate)
+  , Viewport(ostate)
+  , Scissor(ostate)
+  , ScissorTest(ostate, GL_SCISSOR_TEST)
+  , DepthMask(ostate)
+  , ColorMask(ostate)
+  , DepthFunc(ostate)
+  , DepthTest(ostate, GL_DEPTH_TEST)
+  , DepthClamp(ostate, GL_DEPTH_CLAMP)
+  , OffsetFill(ostate, GL_POLYGON_OFFSET_FILL)
+  , OffsetLine(ostate, GL_POLYGON_OFFSET_LINE)
+  , OffsetPoint(ostate, GL_POLYGON_OFFSET_POINT)
+  , Culling(ostate, GL_CULL_FACE)
+  , CullFace(GL_BACK)
+{
+  glGetIntegerv(GL_CULL_FACE_MODE, &this->CullFace);
+  ostate->PushFramebufferBindings();
+}
+
+csmDepthDrawingGuard::~csmDepthDrawingGuard()
+{
+  this->State->PopFramebufferBindings();
+  this->State->vtkglCullFace(static_cast<unsigned int>(this->CullFace));
+}
+
+void csmMapDrawing::ClearTiles(vtkOpenGLState* ostate, const LightMaps& maps)
 {
   // Far depth where nothing casts, all before the first draw: a clear between two cascades'
   // draws would wait for the one drawn before it (a software rasterizer maps the texture).
@@ -207,7 +233,7 @@ void csmMapDrawing::ClearTiles(
   bool all = true;
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
-    all = all && renderCascade[c] && !maps.Cascades[c].IsMoved();
+    all = all && maps.Cascades[c].Action == vtkCascadedShadows::MapAction::Draw;
   }
   if (all)
   {
@@ -219,7 +245,7 @@ void csmMapDrawing::ClearTiles(
   // Some maps kept: only the others' tiles.
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
-    if (renderCascade[c] && !maps.Cascades[c].IsMoved())
+    if (maps.Cascades[c].Action == vtkCascadedShadows::MapAction::Draw)
     {
       csmMapDrawing::ClearMap(ostate, maps, c, nullptr);
     }
@@ -229,7 +255,7 @@ void csmMapDrawing::ClearTiles(
 void csmMapDrawing::ClearMap(vtkOpenGLState* ostate, const LightMaps& maps, int c, const int* rect)
 {
   // (The map fills the lower left of its tile.)
-  const vtkCascadedShadowMapBakerPass::CascadeMap& map = maps.Cascades[c];
+  const vtkCascadedShadows::CascadeMap& map = maps.Cascades[c];
   const int area[4] = { map.Tile[0] + (rect ? rect[0] : 0), map.Tile[1] + (rect ? rect[1] : 0),
     rect ? rect[2] : map.Resolution[0], rect ? rect[3] : map.Resolution[1] };
   if (area[2] <= 0 || area[3] <= 0)
@@ -252,8 +278,7 @@ void csmMapDrawing::ClearMap(vtkOpenGLState* ostate, const LightMaps& maps, int 
   }
 }
 
-std::vector<csm::TexelRect> csmMapDrawing::MovedStrips(
-  const vtkCascadedShadowMapBakerPass::CascadeMap& map)
+std::vector<csm::TexelRect> csmMapDrawing::MovedStrips(const vtkCascadedShadows::CascadeMap& map)
 {
   csm::MapPan pan;
   pan.s = map.Moved[0];
@@ -265,7 +290,7 @@ std::vector<csm::TexelRect> csmMapDrawing::MovedStrips(
 bool csmMapDrawing::MoveMap(
   vtkOpenGLRenderWindow* window, vtkTextureObject* buffer, const LightMaps& maps, int c)
 {
-  const vtkCascadedShadowMapBakerPass::CascadeMap& map = maps.Cascades[c];
+  const vtkCascadedShadows::CascadeMap& map = maps.Cascades[c];
   const int s = map.Moved[0], t = map.Moved[1];
   const int width = map.Resolution[0] - std::abs(s), height = map.Resolution[1] - std::abs(t);
   if (width <= 0 || height <= 0 || !(GLEW_VERSION_4_3 || GLEW_ARB_copy_image) ||
@@ -319,7 +344,7 @@ int csmMapDrawing::DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebuffer
   vtkOpenGLState* ostate =
     static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow())->GetState();
   // The map fills the lower left of its tile.
-  const vtkCascadedShadowMapBakerPass::CascadeMap& map = maps.Cascades[c];
+  const vtkCascadedShadows::CascadeMap& map = maps.Cascades[c];
   const int x = map.Tile[0], y = map.Tile[1], w = map.Resolution[0], h = map.Resolution[1];
   const csm::TexelRect area =
     strip ? csm::TexelRect{ strip[0], strip[1], strip[2], strip[3] } : csm::TexelRect{ 0, 0, w, h };
@@ -342,8 +367,7 @@ int csmMapDrawing::DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebuffer
   std::vector<vtkProp*> drawn;
   for (const csmFrameCasters::Caster& caster : props.Casters)
   {
-    if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
-          cullToClip, caster.Bounds.data(), depthClamp))
+    if (!csmCascadeReachesBox(cullToClip, caster.Bounds.data(), depthClamp))
     {
       continue;
     }
@@ -356,8 +380,7 @@ int csmMapDrawing::DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebuffer
       for (size_t k = 0; k < compact.Bounds.size(); ++k)
       {
         block.Bounds = compact.Bounds[k];
-        if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
-              cullToClip, block.Bounds.data(), depthClamp))
+        if (!csmCascadeReachesBox(cullToClip, block.Bounds.data(), depthClamp))
         {
           continue;
         }
@@ -439,6 +462,85 @@ void csmMapDrawing::SetUpLightCamera(const LightMaps& maps, int c)
   this->LightCamera->Modified();
 }
 
+namespace
+{
+/// What the view's depth pass draws: the casters (or their blocks) the view can see, each
+/// closed one seen from outside with its faces turned away culled, and the boxes that stand in
+/// for casters small on the image.
+struct ViewCasters
+{
+  std::map<vtkProp*, unsigned int> CullFaces;
+  std::vector<vtkProp*> Drawn;
+  std::vector<csm::BoxStandIn> StandIns;
+};
+
+ViewCasters viewCasters(
+  vtkCamera* camera, double aspect, const csmFrameCasters& props, int width, int height)
+{
+  vtkMatrix4x4* worldToClip = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
+  // A closed caster seen from outside only (the near plane reaches no point of its box) shows
+  // only the faces turned toward the eye: the faces turned away are culled (the depth is the
+  // same, and a software rasterizer pays for every face it draws).
+  const double viewDeterminant = worldToClip->Determinant();
+  ViewCasters chosen;
+  // A caster (or block) small on the image for its triangles stands in by its box, which the
+  // footprint holds instead of its samples (csm::boxStandIn): drawing it would cost more than
+  // the lookups its depth spares. Screen-sized casters are drawn: their boxes do not hold them.
+  const glm::dmat4 wsToClip = glm::transpose(glm::make_mat4(worldToClip->GetData()));
+  auto standsIn = [&](const std::array<double, 6>& bounds, double cells, bool screenSized)
+  {
+    csm::BoxStandIn standIn;
+    if (screenSized ||
+      !csm::boxStandIn(
+        wsToClip, csm::Bounds::fromMinMaxPairs(bounds.data()), cells, width, height, standIn))
+    {
+      return false;
+    }
+    chosen.StandIns.push_back(standIn);
+    return true;
+  };
+  for (const csmFrameCasters::Caster& caster : props.Casters)
+  {
+    if (!csmCascadeReachesBox(worldToClip->GetData(), caster.Bounds.data(), false))
+    {
+      continue;
+    }
+    float screenSizes[2];
+    csmScreenSizes(caster.Prop, screenSizes);
+    const bool screenSized = screenSizes[0] > 1.0f || screenSizes[1] > 1.0f;
+    if (caster.Compact < 0 && standsIn(caster.Bounds, caster.Cells, screenSized))
+    {
+      continue;
+    }
+    const int towardEye = closedFaceTowardViewer(caster.Closure, viewDeterminant);
+    if (towardEye != 0 && csmViewSeesOnlyOutsideOf(camera, aspect, caster.Bounds.data()))
+    {
+      chosen.CullFaces[caster.Prop] = towardEye > 0 ? GL_BACK : GL_FRONT;
+    }
+    if (caster.Compact >= 0)
+    {
+      const csmFrameCasters::Compact& compact = props.Compacts[static_cast<size_t>(caster.Compact)];
+      std::vector<size_t> blocks;
+      for (size_t k = 0; k < compact.Bounds.size(); ++k)
+      {
+        if (csmCascadeReachesBox(worldToClip->GetData(), compact.Bounds[k].data(), false) &&
+          !standsIn(compact.Bounds[k], compact.Cells[k], screenSized))
+        {
+          blocks.push_back(k);
+        }
+      }
+      if (blocks.empty())
+      {
+        continue;
+      }
+      compact.Mapper->SetDrawnBlocks(blocks);
+    }
+    chosen.Drawn.push_back(caster.Prop);
+  }
+  return chosen;
+}
+} // namespace
+
 bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
   const csmFrameCasters& props, double depths[2], csm::WindowFootprint& footprint,
   int& standInCount)
@@ -451,81 +553,9 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   // camera pass set its viewport and scissor and cleared it).
   int width = 0, height = 0, x = 0, y = 0;
   renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
-  vtkMatrix4x4* worldToClip = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
-  // A closed caster seen from outside only (the near plane reaches no point of its box) shows
-  // only the faces turned toward the eye: the faces turned away are culled (the depth is the
-  // same, and a software rasterizer pays for every face it draws).
-  const double viewDeterminant = worldToClip->Determinant();
-  std::map<vtkProp*, unsigned int> cullFaces;
-  std::vector<vtkProp*> drawn;
-  // A caster (or block) small on the image for its triangles stands in by its box, which the
-  // footprint holds instead of its samples (csm::boxStandIn): drawing it would cost more than
-  // the lookups its depth spares. Screen-sized casters are drawn: their boxes do not hold them.
-  const glm::dmat4 wsToClip = glm::transpose(glm::make_mat4(worldToClip->GetData()));
-  std::vector<csm::BoxStandIn> standIns;
-  auto standsIn = [&](const std::array<double, 6>& bounds, double cells, bool screenSized)
-  {
-    csm::BoxStandIn standIn;
-    if (screenSized ||
-      !csm::boxStandIn(
-        wsToClip, csm::Bounds::fromMinMaxPairs(bounds.data()), cells, width, height, standIn))
-    {
-      return false;
-    }
-    standIns.push_back(standIn);
-    return true;
-  };
-  for (const csmFrameCasters::Caster& caster : props.Casters)
-  {
-    if (!vtkCascadedShadowMapPlanner::CascadeReachesBox(
-          worldToClip->GetData(), caster.Bounds.data(), false))
-    {
-      continue;
-    }
-    float screenSizes[2];
-    vtkCascadedShadowMapBakerPass::GetScreenSizes(caster.Prop, screenSizes);
-    const bool screenSized = screenSizes[0] > 1.0f || screenSizes[1] > 1.0f;
-    if (caster.Compact < 0 && standsIn(caster.Bounds, caster.Cells, screenSized))
-    {
-      continue;
-    }
-    const int towardEye = closedFaceTowardViewer(caster.Closure, viewDeterminant);
-    if (towardEye != 0 &&
-      vtkCascadedShadowMapPlanner::ViewSeesOnlyOutsideOf(camera, aspect, caster.Bounds.data()))
-    {
-      cullFaces[caster.Prop] = towardEye > 0 ? GL_BACK : GL_FRONT;
-    }
-    if (caster.Compact >= 0)
-    {
-      const csmFrameCasters::Compact& compact = props.Compacts[static_cast<size_t>(caster.Compact)];
-      std::vector<size_t> blocks;
-      for (size_t k = 0; k < compact.Bounds.size(); ++k)
-      {
-        if (vtkCascadedShadowMapPlanner::CascadeReachesBox(
-              worldToClip->GetData(), compact.Bounds[k].data(), false) &&
-          !standsIn(compact.Bounds[k], compact.Cells[k], screenSized))
-        {
-          blocks.push_back(k);
-        }
-      }
-      if (blocks.empty())
-      {
-        continue;
-      }
-      compact.Mapper->SetDrawnBlocks(blocks);
-    }
-    drawn.push_back(caster.Prop);
-  }
+  ViewCasters casters = viewCasters(camera, aspect, props, width, height);
   vtkOpenGLState* ostate = window->GetState();
-  vtkOpenGLState::ScopedglDepthMask savedDepthMask(ostate);
-  vtkOpenGLState::ScopedglColorMask savedColorMask(ostate);
-  vtkOpenGLState::ScopedglEnableDisable savedDepthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable savedOffsetFill(ostate, GL_POLYGON_OFFSET_FILL);
-  vtkOpenGLState::ScopedglEnableDisable savedOffsetLine(ostate, GL_POLYGON_OFFSET_LINE);
-  vtkOpenGLState::ScopedglEnableDisable savedOffsetPoint(ostate, GL_POLYGON_OFFSET_POINT);
-  vtkOpenGLState::ScopedglEnableDisable savedCulling(ostate, GL_CULL_FACE);
-  GLint savedCullFace = GL_BACK;
-  glGetIntegerv(GL_CULL_FACE_MODE, &savedCullFace);
+  csmDepthDrawingGuard guard(ostate);
   ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglEnable(GL_DEPTH_TEST);
@@ -554,10 +584,9 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   u.Viewport[1] = static_cast<float>(y);
   u.Viewport[2] = static_cast<float>(width);
   u.Viewport[3] = static_cast<float>(height);
-  this->CasterPass->BeginCascade(ostate, u, std::move(cullFaces), true);
-  this->CasterPass->DrawCasters(renderer, s->GetFrameBuffer(), drawn);
+  this->CasterPass->BeginCascade(ostate, u, std::move(casters.CullFaces), true);
+  this->CasterPass->DrawCasters(renderer, s->GetFrameBuffer(), casters.Drawn);
   this->CasterPass->EndCascade();
-  ostate->vtkglCullFace(static_cast<unsigned int>(savedCullFace));
-  standInCount = static_cast<int>(standIns.size());
-  return readWindowDepths(renderer, standIns, depths, footprint);
+  standInCount = static_cast<int>(casters.StandIns.size());
+  return readWindowDepths(renderer, casters.StandIns, depths, footprint);
 }

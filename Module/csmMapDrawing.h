@@ -6,9 +6,10 @@
 #ifndef csmMapDrawing_h
 #define csmMapDrawing_h
 
-#include "csmReuse.h"        // for csm::TexelRect
-#include "csmVisibleDepth.h" // for csm::WindowFootprint
-#include "vtkCascadedShadowMapBakerPass.h"
+#include "csmReuse.h"                  // for csm::TexelRect
+#include "csmVisibleDepth.h"           // for csm::WindowFootprint
+#include "vtkCascadedShadowMapTypes.h" // for LightMaps, FrameStatistics
+#include "vtkOpenGLState.h"            // for the guard's scoped state
 #include "vtkSmartPointer.h"
 
 #include <vector>
@@ -19,17 +20,44 @@ class vtkMatrix4x4;
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
 class vtkOpenGLRenderer;
-class vtkOpenGLState;
 class vtkRenderState;
 class vtkRenderer;
 class vtkTextureObject;
 struct csmFrameCasters;
 
+/// The GL state that drawing depth changes (viewport, scissor, masks, depth test, function and
+/// clamp, polygon offset, face culling, framebuffer bindings), restored when the guard goes: the
+/// maps' passes and the view's depth pass share it.
+class csmDepthDrawingGuard
+{
+public:
+  explicit csmDepthDrawingGuard(vtkOpenGLState* ostate);
+  ~csmDepthDrawingGuard();
+  csmDepthDrawingGuard(const csmDepthDrawingGuard&) = delete;
+  csmDepthDrawingGuard& operator=(const csmDepthDrawingGuard&) = delete;
+
+private:
+  vtkOpenGLState* State;
+  vtkOpenGLState::ScopedglViewport Viewport;
+  vtkOpenGLState::ScopedglScissor Scissor;
+  vtkOpenGLState::ScopedglEnableDisable ScissorTest;
+  vtkOpenGLState::ScopedglDepthMask DepthMask;
+  vtkOpenGLState::ScopedglColorMask ColorMask;
+  vtkOpenGLState::ScopedglDepthFunc DepthFunc;
+  vtkOpenGLState::ScopedglEnableDisable DepthTest;
+  vtkOpenGLState::ScopedglEnableDisable DepthClamp;
+  vtkOpenGLState::ScopedglEnableDisable OffsetFill;
+  vtkOpenGLState::ScopedglEnableDisable OffsetLine;
+  vtkOpenGLState::ScopedglEnableDisable OffsetPoint;
+  vtkOpenGLState::ScopedglEnableDisable Culling;
+  int CullFace;
+};
+
 class csmMapDrawing
 {
 public:
-  using LightMaps = vtkCascadedShadowMapBakerPass::LightMaps;
-  using FrameStatistics = vtkCascadedShadowMapBakerPass::FrameStatistics;
+  using LightMaps = vtkCascadedShadows::LightMaps;
+  using FrameStatistics = vtkCascadedShadows::FrameStatistics;
 
   csmMapDrawing();
   ~csmMapDrawing();
@@ -41,9 +69,9 @@ public:
   /// of one pixel at view depth d, [16] + [17] d, from the camera's projection.
   static void MainView(vtkRenderer* renderer, vtkCamera* camera, double key[18]);
 
-  /// Gives the maps of the cascades to render (renderCascade[c]) far depth, all before the
-  /// first draw (the framebuffer holds the light's atlas).
-  static void ClearTiles(vtkOpenGLState* ostate, const LightMaps& maps, const int* renderCascade);
+  /// Gives the maps drawn whole this frame (MapAction::Draw) far depth, all before the first
+  /// draw (the framebuffer holds the light's atlas).
+  static void ClearTiles(vtkOpenGLState* ostate, const LightMaps& maps);
 
   /// Gives cascade c's map far depth: all of it, or a rect of it (x, y, width, height in texels
   /// from the map's lower left).
@@ -57,8 +85,7 @@ public:
     vtkOpenGLRenderWindow* window, vtkTextureObject* buffer, const LightMaps& maps, int c);
 
   /// The strips a moved map draws (csm::panStrips), in texels of the map.
-  static std::vector<csm::TexelRect> MovedStrips(
-    const vtkCascadedShadowMapBakerPass::CascadeMap& map);
+  static std::vector<csm::TexelRect> MovedStrips(const vtkCascadedShadows::CascadeMap& map);
 
   /// Draws the depth of the casters that reach cascade c (and may shadow something in it) into
   /// its map; sets its CasterView to this view. distributed: several processes share the maps

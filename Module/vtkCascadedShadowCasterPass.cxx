@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowCasterPass.h"
 
+#include "csmProps.h"
 #include "csmReportOnce.h"
 
 #include "csmCaster.h"       // the GLSL of Module/glsl/csmCaster.glsl
 #include "csmCasterLineGS.h" // the GLSL of Module/glsl/csmCasterLineGS.glsl
 
 #include "vtkActor.h"
-#include "vtkCascadedShadowMapBakerPass.h" // GetScreenSizes
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLState.h"
 #include "vtkPolyData.h"
@@ -75,7 +75,7 @@ bool drawsOnlyWideLines(vtkAbstractMapper* mapper, vtkProp* prop)
   vtkPolyDataMapper* polyMapper = vtkPolyDataMapper::SafeDownCast(mapper);
   vtkPolyData* data = polyMapper ? polyMapper->GetInput() : nullptr;
   float sizes[2];
-  vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, sizes);
+  csmScreenSizes(prop, sizes);
   if (!property || !data || sizes[0] <= 1.0f || property->GetRepresentation() == VTK_POINTS ||
     property->GetVertexVisibility() || data->GetNumberOfVerts() > 0)
   {
@@ -132,7 +132,7 @@ bool vtkCascadedShadowCasterPass::PostReplaceShaderValues(std::string& vertexSha
   // rasterizer runs both sides of its branch for every vertex (a changed point size changes
   // the property, and VTK then builds the shaders again).
   float sizes[2];
-  vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, sizes);
+  csmScreenSizes(prop, sizes);
   vertexShader.insert(vertexEnd,
     sizes[1] > 1.0f ? "  csmSizePoint(gl_Position);\n" : "  csmSphereView = vec4(0.0);\n");
   vertexShader.insert(vertexMain, std::string("#define CSM_CASTER_VERTEX\n") + csmCaster + "\n");
@@ -181,7 +181,7 @@ bool vtkCascadedShadowCasterPass::SetShaderParameters(
     return true;
   }
   float width[2];
-  vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, width);
+  csmScreenSizes(prop, width);
   CasterUniforms& u = this->Uniforms;
   program->SetUniform2f("csmCasterWidth", width);
   program->SetUniformMatrix4x4("csmMapToView", u.MapToView);

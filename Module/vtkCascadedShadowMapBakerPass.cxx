@@ -4,9 +4,12 @@
 #include "csmAtlas.h" // csm::kAtlasFullMaps
 #include "csmBakerState.h"
 #include "csmCasterCollection.h"
+#include "csmLightPlanning.h"
 #include "csmMapDrawing.h"
+#include "csmProps.h"
 #include "csmReportOnce.h"
 #include "csmReuse.h"
+#include "csmVTKMath.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
@@ -45,12 +48,6 @@ vtkCxxSetObjectMacro(vtkCascadedShadowMapBakerPass, Controller, vtkMultiProcessC
 namespace
 {
 constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES;
-// Frames per second from which the window's desired update rate means "interacting" (the
-// interactor's default is 15, its still rate 0.0001).
-constexpr double kInteractiveUpdateRate = 1.0;
-// Border a kept map must have around the new body, in texels: none, as a freshly planned map,
-// fitted to the body, has none either (the lookup clamps its taps to the map).
-constexpr double kReuseMarginTexels = 0.0;
 // Texture units of the fragment shader left to the mapper's own textures (colour, normal,
 // ORM, emissive and anisotropy maps, and PBR's irradiance, prefiltered and BRDF maps).
 constexpr int kMapperTextureUnits = 8;
@@ -97,9 +94,7 @@ void vtkCascadedShadowMapBakerPass::CombineAcrossProcesses(vtkTextureObject* atl
 
 bool vtkCascadedShadowMapBakerPass::LightCastsShadows(vtkLight* light)
 {
-  return light && light->GetSwitch() && !light->LightTypeIsHeadlight() &&
-    (!light->GetPositional() || light->GetConeAngle() < 90.0) &&
-    light->GetShadowAttenuation() > 0.0f; // a shadow of attenuation 0 is invisible: no maps
+  return csmLightCastsShadows(light);
 }
 
 csmRendererMaps& vtkCascadedShadowMapBakerPass::MapsOf(
@@ -287,8 +282,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   this->MeasureVisibleDepths(renderer, s, state, props);
   // 2. Plan every shadowed light, and choose the cascades to re-render.
   std::vector<LightMaps> planned;
-  std::vector<int> render; // per light slot and cascade: 1 render, 0 keep
-  this->PlanLights(renderer, window, state, props, planned, render);
+  this->PlanLights(renderer, window, state, props, planned);
   if (this->MeasureTimes)
   {
     this->Statistics.PlanSeconds = std::chrono::duration<double>(Clock::now() - planStart).count();
@@ -304,7 +298,7 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   {
     glFinish();
   }
-  this->RenderAtlases(renderer, window, state, props, planned, render);
+  this->RenderAtlases(renderer, window, state, props, planned);
   if (this->MeasureTimes)
   {
     glFinish();
@@ -378,351 +372,42 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
   this->Statistics.CompactCasters = counts.CompactCasters;
 }
 
-int vtkCascadedShadowMapBakerPass::ClosureOf(vtkProp* prop)
-{
-  return this->Casters->ClosureOf(prop, this->CullClosedCasters);
-}
-
 void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
-  csmRendererMaps& state, const csmFrameCasters& props, std::vector<LightMaps>& planned,
-  std::vector<int>& render)
+  csmRendererMaps& state, const csmFrameCasters& props, std::vector<LightMaps>& planned)
 {
-  props.FeedPlanner(this->Planner);
-  // Plan every shadowed light for this frame, and decide per cascade whether the map kept from
-  // an earlier frame still serves (only the camera moved, it covers, its error is bounded).
-  // While the user interacts (VTK's convention: the interactor raises the window's desired
-  // update rate), maps get a border and may be kept within MapReuseTolerance; a still frame
-  // keeps a map while its error at this view meets what a fresh map would (MapSlack).
-  csmFramePlan frame;
-  frame.Interacting = vtkCascadedShadowMapBakerPass::IsInteracting(window);
-  frame.Border = frame.Interacting ? this->InteractiveMapBorder : 0.0;
-  // (The tolerance is against a fresh map with the same border, whose error is 1 + 2 border
-  // times a tight one's.)
-  frame.Tolerance = this->MapReuseTolerance * (1.0 + 2.0 * frame.Border);
-  // Tubes, spheres, wide lines and big points are drawn into the maps as wide as the main view
-  // draws them: a still frame keeps such a map only for the view it was sized for.
-  frame.ScreenSized = props.ScreenSized;
-  // Kept maps move with the view where the GL copies between images (GL 4.3) and one process
-  // draws the maps (each would move its own).
-  frame.MoveMaps =
-    this->MoveKeptMaps && (GLEW_VERSION_4_3 || GLEW_ARB_copy_image) && !this->Distributed();
-  // Resolution from need (ErrorTarget), up to the ceiling of this kind of frame; more cascades
-  // than fill the atlas with full maps only in a still frame (each is a caster pass; they
-  // refine the error where four full maps cannot reach ErrorTarget).
-  frame.Ceiling =
-    frame.Interacting ? std::min(this->InteractiveResolution, this->Resolution) : this->Resolution;
-  frame.MostCascades = frame.Interacting ? csm::kAtlasFullMaps : 0;
-  frame.ImageHeight = renderer->GetSize()[1];
-  frame.Aspect = renderer->GetTiledAspectRatio();
-  frame.Changed = props.Changed;
-  csmMapDrawing::MainView(renderer, renderer->GetActiveCamera(), frame.ViewKey);
-  // The visible depths of this view (VisibleDepthFit; MeasureVisibleDepths).
-  if (this->VisibleDepthFit && !this->Distributed() && state.VisibleCamera)
-  {
-    this->Planner->SetVisibleDepths(
-      state.VisibleCamera, state.VisibleAspect, state.VisibleWindow[0], state.VisibleWindow[1]);
-    // Where on the image (VisibleFootprintFit): the depth pass draws the casters, so not where
-    // a receiver without opaque geometry may lie outside it; and its pixels are the camera's
-    // whole image only for an on-axis camera drawn in one tile (not a magnified screenshot's
-    // tiles, not an off-axis or shifted projection).
-    vtkCamera* camera = renderer->GetActiveCamera();
-    const double* tile = window->GetTileViewport();
-    const double* centre = camera->GetWindowCenter();
-    const bool wholeImage = window->GetTileScale()[0] == 1 && window->GetTileScale()[1] == 1 &&
-      tile[0] == 0.0 && tile[1] == 0.0 && tile[2] == 1.0 && tile[3] == 1.0 && centre[0] == 0.0 &&
-      centre[1] == 0.0 && !camera->GetUseOffAxisProjection() &&
-      !camera->GetUseExplicitProjectionTransformMatrix();
-    this->Planner->SetVisibleFootprint(
-      this->VisibleFootprintFit && !props.TranslucentReceivers && wholeImage
-        ? &state.VisibleFootprint
-        : nullptr);
-  }
-  else
-  {
-    this->Planner->ClearVisibleDepths();
-  }
+  csmLightPlanning::BakerOptions options;
+  options.Resolution = this->Resolution;
+  options.InteractiveResolution = this->InteractiveResolution;
+  options.MapReuseTolerance = this->MapReuseTolerance;
+  options.InteractiveMapBorder = this->InteractiveMapBorder;
+  options.MapSlack = this->MapSlack;
+  options.MoveKeptMaps = this->MoveKeptMaps;
+  options.VisibleDepthFit = this->VisibleDepthFit;
+  options.VisibleFootprintFit = this->VisibleFootprintFit;
+  csmLightPlanning planning(this->Planner, options,
+    this->Distributed() ? this->Controller : nullptr, this->Statistics,
+    [this](bool error, const std::string& message) { this->ReportOnce(error, message); });
   const int maximumLights = this->MaximumShadowedLights(window);
-  int shadowingLights = 0;
-  int lightIndex = 0;
-  vtkCollectionSimpleIterator lit;
-  renderer->GetLights()->InitTraversal(lit);
-  while (vtkLight* light = renderer->GetLights()->GetNextLight(lit))
-  {
-    if (!light->GetSwitch())
-    {
-      continue; // the mapper numbers switched-on lights only
-    }
-    const int index = lightIndex++;
-    if (!vtkCascadedShadowMapBakerPass::LightCastsShadows(light) ||
-      ++shadowingLights > maximumLights)
-    {
-      continue;
-    }
-    this->PlanLight(renderer, state, props, frame, light, index, planned, render);
-  }
-  if (!state.LastCamera)
-  {
-    state.LastCamera = vtkSmartPointer<vtkCamera>::New();
-  }
-  state.LastCamera->DeepCopy(renderer->GetActiveCamera());
-  if (this->Distributed() && !render.empty())
-  {
-    // One process's "render" is every process's: the maps are combined across them.
-    std::vector<int> any(render.size(), 0);
-    this->Controller->AllReduce(
-      render.data(), any.data(), static_cast<vtkIdType>(render.size()), vtkCommunicator::MAX_OP);
-    render = any;
-  }
+  const int shadowingLights =
+    planning.PlanLights(renderer, window, state, props, maximumLights, planned);
   if (shadowingLights > maximumLights && shadowingLights != this->WarnedShadowingLights)
   {
     vtkWarningMacro(<< shadowingLights << " lights cast shadows but this GL context has texture "
                     << "units for " << maximumLights << "; the others are lit without shadows");
   }
   this->WarnedShadowingLights = shadowingLights > maximumLights ? shadowingLights : 0;
-  // Textures only for the lights that cast shadows now.
-  for (size_t i = planned.size(); i < state.AtlasPool.size(); ++i)
-  {
-    state.AtlasPool[i]->ReleaseGraphicsResources(window);
-  }
-  state.AtlasPool.resize(planned.size());
 }
 
-void vtkCascadedShadowMapBakerPass::PlanLight(vtkRenderer* renderer, csmRendererMaps& state,
-  const csmFrameCasters& props, const csmFramePlan& frame, vtkLight* light, int index,
-  std::vector<LightMaps>& planned, std::vector<int>& render)
+int vtkCascadedShadowMapBakerPass::ClosureOf(vtkProp* prop)
 {
-  vtkCamera* camera = renderer->GetActiveCamera();
-  const size_t slot = planned.size();
-  LightMaps maps;
-  maps.Light = light;
-  maps.LightIndex = index;
-  maps.Kind = light->GetPositional() ? LightKind::Spot : LightKind::Directional;
-  light->GetTransformedPosition(maps.Position);
-  light->GetTransformedFocalPoint(maps.FocalPoint);
-  maps.ConeAngle = light->GetPositional() ? light->GetConeAngle() : 0.0;
-  const int count = std::min(kMaxCascades,
-    this->Planner->Plan(camera, frame.Aspect, light, props.SceneBounds, frame.ImageHeight,
-      frame.Ceiling, frame.MostCascades));
-  this->Statistics.VisibleDepthsUsed =
-    this->Statistics.VisibleDepthsUsed || this->Planner->GetVisibleDepthsUsed();
-  this->Statistics.VisibleFootprintUsed =
-    this->Statistics.VisibleFootprintUsed || this->Planner->GetVisibleFootprintUsed();
-  if (this->Planner->GetAtlasShrunk())
-  {
-    this->ReportOnce(false,
-      "Shadow map tiles of " + std::to_string(this->Resolution) +
-        " texels exceed the GL's texture size limit; the tiles are smaller");
-  }
-  this->Planner->GetAtlasSize(maps.AtlasSize);
-  maps.Cascades.resize(static_cast<size_t>(std::max(count, 0)));
-  const MapKind followKind = this->PlannedMapKind(light);
-  // The maps kept from the last frame (only the camera moved: the light, the scene, the options
-  // and the atlas are the same). (Face partitions and camera space maps are re-rendered every
-  // frame: their error is not measured along the cascades' map axes.)
-  const LightMaps* kept = !frame.Changed && this->Planner->GetDepthClamp() &&
-      followKind == MapKind::FollowsView && slot < state.Maps.size() &&
-      state.Maps[slot].Light == light && sameLightGeometry(state.Maps[slot], maps) &&
-      std::equal(state.Maps[slot].AtlasSize, state.Maps[slot].AtlasSize + 2, maps.AtlasSize)
-    ? &state.Maps[slot]
-    : nullptr;
-  // Slack pays only where the next frames can keep the map: a still frame of a camera on a
-  // smooth path, the light and scene unchanged (a camera light moves with the camera).
-  const bool smoothPath = !frame.Interacting && kept && count > 0;
-  std::vector<csm::TexelRect> tiles(static_cast<size_t>(std::max(count, 0)));
-  std::vector<csmCascadeNeed> needs(tiles.size());
-  std::vector<int> order; // the scene-fitted cascades first: they cost most to draw again
-  for (int c = 0; c < count; ++c)
-  {
-    CascadeMap& map = maps.Cascades[c];
-    map.Kind = this->Planner->GetCascadeSceneFitted(c) ? MapKind::SceneFitted : followKind;
-    this->PlanCascade(frame, camera, state, c, smoothPath, map, needs[c]);
-    std::copy(map.Tile, map.Tile + 4, tiles[c].begin());
-    order.insert(map.IsSceneFitted() ? order.begin() : order.end(), c);
-  }
-  // The kept maps where they serve, also across a change of the count (then in the tile they
-  // are in), except with several processes (each would choose its own tiles).
-  std::vector<csm::TexelRect> keptTiles;
-  for (int k = 0; kept && k < kept->GetNumberOfCascades(); ++k)
-  {
-    const int* tile = kept->Cascades[k].Tile;
-    keptTiles.push_back({ tile[0], tile[1], tile[2], tile[3] });
-  }
-  // (What serves for cascade c: kept map k as it was, or moved with the view.)
-  std::map<std::pair<int, int>, CascadeMap> serving;
-  const csm::TileAssignment assigned = csm::assignTiles(
-    tiles, keptTiles,
-    [&](int c, int k)
-    {
-      CascadeMap candidate;
-      if (!this->KeptMapServes(frame, c, needs[c], maps.Cascades[c], kept->Cascades[k], candidate))
-      {
-        return false;
-      }
-      serving[{ c, k }] = candidate;
-      return true;
-    },
-    order, !this->Distributed());
-  for (int c = 0; c < count; ++c)
-  {
-    CascadeMap& map = maps.Cascades[c];
-    std::copy(assigned.tile[c].begin(), assigned.tile[c].end(), map.Tile);
-    bool moved = false;
-    if (assigned.kept[c] >= 0)
-    {
-      const CascadeMap& old = serving.at({ c, assigned.kept[c] });
-      std::copy(old.WorldToMap, old.WorldToMap + 16, map.WorldToMap);
-      std::copy(old.CasterView, old.CasterView + 18, map.CasterView);
-      std::copy(old.Resolution, old.Resolution + 2, map.Resolution);
-      std::copy(old.Moved, old.Moved + 2, map.Moved);
-      moved = map.IsMoved();
-    }
-    // (A moved map is drawn too: its strips.)
-    render.push_back(assigned.kept[c] < 0 || moved ? 1 : 0);
-  }
-  render.resize(kMaxCascades * (slot + 1), 0);
-  if (count > 0)
-  {
-    maps.SplitNear = this->Planner->GetCascadeNear(0);
-  }
-  if (state.AtlasPool.size() <= slot)
-  {
-    state.AtlasPool.push_back(vtkSmartPointer<vtkTextureObject>::New());
-  }
-  maps.Atlas = state.AtlasPool[slot];
-  planned.push_back(std::move(maps));
-}
-
-vtkCascadedShadowMapBakerPass::MapKind vtkCascadedShadowMapBakerPass::PlannedMapKind(
-  vtkLight* light) const
-{
-#if CSM_COMPARISON_TECHNIQUES
-  if (!light->GetPositional() && this->Planner->GetCascadesSelectedByPlanes())
-  {
-    return MapKind::FacePartition;
-  }
-  return this->Planner->GetCameraSpace() ? MapKind::CameraSpace : MapKind::FollowsView;
-#else
-  (void)light;
-  return MapKind::FollowsView;
-#endif
-}
-
-void vtkCascadedShadowMapBakerPass::PlanCascade(const csmFramePlan& frame, vtkCamera* camera,
-  const csmRendererMaps& state, int c, bool smoothPath, CascadeMap& map, csmCascadeNeed& need)
-{
-  // The map this cascade needs (ErrorTarget) in its tile of the planned atlas.
-  this->Planner->GetCascadeTile(c, map.Tile);
-  int ceiling[2];
-  this->Planner->GetCascadeResolutionCeiling(c, ceiling);
-  this->Planner->GetCascadeResolution(
-    c, frame.ImageHeight, RESOLUTION_STEP, ceiling, map.Resolution);
-  need.Texels[0] = map.Resolution[0];
-  need.Texels[1] = map.Resolution[1];
-  this->Planner->GetCascadeResolution(c, frame.ImageHeight, 1, ceiling, need.TargetTexels);
-  need.TargetOutOfReach =
-    this->Planner->GetCascadeErrorTargetOutOfReach(c, frame.ImageHeight, ceiling);
-  const csm::MapSize most(ceiling[0], ceiling[1]);
-  // A still frame's map that follows the view gets slack (a border and more texels), so that
-  // the next frames of a camera that moves a little keep it while it meets what a fresh map
-  // would (csm::slackedMap, csm::keptMapServes). Not for screen-sized casters, whose maps serve
-  // only the view they were sized for. (Judged per cascade: a step that moves a near cascade's
-  // small body out of any border may leave a far one's well inside.)
-  double border = frame.Border;
-  if (smoothPath && !frame.ScreenSized && map.Kind == MapKind::FollowsView &&
-    vtkCascadedShadowMapPlanner::IsSmallCameraStep(
-      state.LastCamera, camera, frame.Aspect, this->Planner->GetCascadeFar(c)))
-  {
-    const csm::SlackedMap slacked =
-      csm::slackedMap(csm::MapSize(need.Texels[0], need.Texels[1]), most, this->MapSlack);
-    border = slacked.border;
-    map.Resolution[0] = slacked.size.width;
-    map.Resolution[1] = slacked.size.height;
-  }
-  for (int axis = 0; axis < 2; ++axis)
-  {
-    map.Resolution[axis] = std::max(1, std::min(map.Resolution[axis], map.Tile[2 + axis]));
-  }
-  map.Turned = this->Planner->GetCascadeMapTurned(c);
-  vtkNew<vtkMatrix4x4> m;
-  this->Planner->GetCascadeMatrix(c, m, border, map.Resolution);
-  std::copy(m->GetData(), m->GetData() + 16, map.WorldToMap);
-  map.SplitFar = this->Planner->GetCascadeFar(c);
-#if CSM_COMPARISON_TECHNIQUES
-  this->Planner->GetCascadePlanes(c, map.Planes);
-  map.DepthW = this->Planner->GetCascadeDepthW(c);
-#endif
-}
-
-bool vtkCascadedShadowMapBakerPass::KeptMapServes(const csmFramePlan& frame, int c,
-  const csmCascadeNeed& need, const CascadeMap& map, const CascadeMap& old, CascadeMap& moved)
-{
-  // A kept map serves if it has the texels this view needs (or all its tile holds, where the
-  // GL's texture size limit made the tiles smaller than Resolution): while the user interacts,
-  // within MapReuseTolerance of a fresh map with the same border; in a still frame, where its
-  // error at this view meets ErrorTarget (what a fresh map of the fewest texels that meet it
-  // meets; fresh maps get whole RESOLUTION_STEPs more), or comes within the cascade count's
-  // hysteresis of a fresh map where no map meets ErrorTarget (csm::keptMapServes). (Turned the
-  // same way: the error ratio compares the maps at equal resolution.)
-  // (Of the same kind; its tile is assignTiles' to choose.)
-  if ((!frame.Interacting && frame.ScreenSized &&
-        !std::equal(frame.ViewKey, frame.ViewKey + 18, old.CasterView)) ||
-    old.Turned != map.Turned || old.Kind != map.Kind)
-  {
-    return false;
-  }
-  auto serves = [&](const double* worldToMap)
-  {
-    const double ratio = this->Planner->CompareKeptMap(
-      c, worldToMap, kReuseMarginTexels, std::min(old.Resolution[0], old.Resolution[1]));
-    if (frame.Interacting)
-    {
-      return old.Resolution[0] >= std::min(map.Resolution[0], map.Tile[2]) &&
-        old.Resolution[1] >= std::min(map.Resolution[1], map.Tile[3]) && ratio <= frame.Tolerance;
-    }
-    const csm::MapSize keptSize(old.Resolution[0], old.Resolution[1]);
-    const csm::MapSize tight(
-      std::min(need.TargetTexels[0], map.Tile[2]), std::min(need.TargetTexels[1], map.Tile[3]));
-    if (c >= 0 && c < kMaxCascades)
-    {
-      double& least = this->Statistics.KeptError[c];
-      const double error = csm::keptMapError(ratio, keptSize, tight);
-      least = least == 0.0 ? error : std::min(least, error);
-    }
-    return csm::keptMapServes(ratio, keptSize, tight, need.TargetOutOfReach);
-  };
-  moved = old;
-  moved.Moved[0] = moved.Moved[1] = 0;
-  if (serves(old.WorldToMap))
-  {
-    return true;
-  }
-  // Where it no longer serves as it is, the map moved with the view by whole texels (its
-  // content shifted, the strips that came in drawn): judged at this view like any kept map.
-  // (Not a map of screen-sized casters, sized for one view only.)
-  return frame.MoveMaps && !frame.ScreenSized && old.Kind == MapKind::FollowsView &&
-    this->Planner->PanKeptMap(c, old.WorldToMap, old.Resolution, moved.WorldToMap, moved.Moved) &&
-    serves(moved.WorldToMap);
+  return this->Casters->ClosureOf(prop, this->CullClosedCasters);
 }
 
 void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
   vtkOpenGLRenderWindow* window, csmRendererMaps& state, const csmFrameCasters& props,
-  std::vector<LightMaps>& planned, std::vector<int>& render)
+  std::vector<LightMaps>& planned)
 {
-  vtkOpenGLState* ostate = window->GetState();
-  vtkOpenGLState::ScopedglViewport savedViewport(ostate);
-  vtkOpenGLState::ScopedglScissor savedScissor(ostate);
-  vtkOpenGLState::ScopedglEnableDisable savedScissorTest(ostate, GL_SCISSOR_TEST);
-  vtkOpenGLState::ScopedglDepthMask savedDepthMask(ostate);
-  vtkOpenGLState::ScopedglColorMask savedColorMask(ostate);
-  vtkOpenGLState::ScopedglDepthFunc savedDepthFunc(ostate);
-  vtkOpenGLState::ScopedglEnableDisable savedDepthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable savedDepthClamp(ostate, GL_DEPTH_CLAMP);
-  vtkOpenGLState::ScopedglEnableDisable savedOffset(ostate, GL_POLYGON_OFFSET_FILL);
-  vtkOpenGLState::ScopedglEnableDisable savedCulling(ostate, GL_CULL_FACE);
-  GLint savedCullFace = GL_BACK;
-  glGetIntegerv(GL_CULL_FACE_MODE, &savedCullFace);
-  ostate->PushFramebufferBindings();
-
+  csmDepthDrawingGuard guard(window->GetState());
   const bool automaticLights = renderer->GetAutomaticLightCreation() != 0;
   renderer->SetAutomaticLightCreation(false);
   if (!state.FrameBuffer)
@@ -732,41 +417,37 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
   state.FrameBuffer->SetContext(window);
   for (size_t slot = 0; slot < planned.size(); ++slot)
   {
-    this->RenderAtlas(renderer, window, state, props, planned[slot],
-      render.data() + kMaxCascades * slot, slot == 0);
+    this->RenderAtlas(renderer, window, state, props, planned[slot], slot == 0);
   }
-  ostate->PopFramebufferBindings();
-  ostate->vtkglCullFace(static_cast<unsigned int>(savedCullFace));
   renderer->SetAutomaticLightCreation(automaticLights);
 }
 
-void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
-  vtkOpenGLRenderWindow* window, csmRendererMaps& state, const csmFrameCasters& props,
-  LightMaps& maps, int* renderCascade, bool timed)
+bool vtkCascadedShadowMapBakerPass::BindAtlas(
+  vtkOpenGLRenderWindow* window, csmRendererMaps& state, LightMaps& maps)
 {
   // The atlas the planner laid out, the same for every count of cascades (a new texture would
   // cost its allocation and every map's render); each cascade's map fills the lower left of
-  // its tile with the resolution PlanLights chose.
+  // its tile with the resolution PlanLights chose. False: nothing to draw.
   bool reallocated = false;
   if (!this->PrepareAtlas(window, maps, reallocated))
   {
     maps.Cascades.clear();
-    return;
+    return false;
   }
   bool any = false;
-  for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
+  for (CascadeMap& map : maps.Cascades)
   {
-    if (reallocated) // (nothing kept to move: drawn whole)
+    if (reallocated) // (nothing kept: drawn whole)
     {
-      maps.Cascades[c].Moved[0] = maps.Cascades[c].Moved[1] = 0;
+      map.Moved[0] = map.Moved[1] = 0;
+      map.Action = MapAction::Draw;
     }
-    renderCascade[c] = renderCascade[c] || reallocated;
-    any = any || renderCascade[c];
+    any = any || map.Action != MapAction::Keep;
   }
   this->Statistics.CascadesKept += maps.GetNumberOfCascades();
   if (!any)
   {
-    return;
+    return false;
   }
   state.FrameBuffer->Bind();
   state.FrameBuffer->AddDepthAttachment(maps.Atlas);
@@ -776,16 +457,15 @@ void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
   {
     this->ReportOnce(true, "The shadow map framebuffer is incomplete; no shadows");
     maps.Cascades.clear();
-    return;
+    return false;
   }
   vtkOpenGLState* ostate = window->GetState();
-  const bool depthClamp = this->Planner->GetDepthClamp();
   ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglClearDepth(1.0);
   ostate->vtkglEnable(GL_DEPTH_TEST);
   ostate->vtkglDepthFunc(GL_LEQUAL);
-  if (depthClamp)
+  if (this->Planner->GetDepthClamp())
   {
     ostate->vtkglEnable(GL_DEPTH_CLAMP);
   }
@@ -796,46 +476,67 @@ void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
   ostate->vtkglEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(
     static_cast<GLfloat>(this->PolygonOffset[0]), static_cast<GLfloat>(this->PolygonOffset[1]));
+  return true;
+}
+
+void vtkCascadedShadowMapBakerPass::ClearAndMoveMaps(
+  vtkOpenGLRenderWindow* window, csmRendererMaps& state, LightMaps& maps)
+{
+  vtkOpenGLState* ostate = window->GetState();
+  csmMapDrawing::ClearTiles(ostate, maps);
+  // The maps that move with the view: their kept texels shifted, the strips that came in
+  // cleared (drawn whole where the move fails).
+  for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
+  {
+    CascadeMap& map = maps.Cascades[c];
+    if (map.Action != MapAction::Move)
+    {
+      continue;
+    }
+    if (!state.MoveBuffer)
+    {
+      state.MoveBuffer = vtkSmartPointer<vtkTextureObject>::New();
+    }
+    if (!csmMapDrawing::MoveMap(window, state.MoveBuffer, maps, c))
+    {
+      map.Moved[0] = map.Moved[1] = 0;
+      map.Action = MapAction::Draw;
+      csmMapDrawing::ClearMap(ostate, maps, c, nullptr);
+    }
+  }
+}
+
+void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
+  vtkOpenGLRenderWindow* window, csmRendererMaps& state, const csmFrameCasters& props,
+  LightMaps& maps, bool timed)
+{
+  if (!this->BindAtlas(window, state, maps))
+  {
+    return;
+  }
   using Clock = std::chrono::steady_clock;
   auto since = Clock::now();
   // (MeasureTimes: each step's time up to its glFinish.)
   const bool measure = this->MeasureTimes && timed;
   auto lap = [&](double& seconds)
   {
-    glFinish();
-    const auto now = Clock::now();
-    seconds = std::chrono::duration<double>(now - since).count();
-    since = now;
-  };
-  csmMapDrawing::ClearTiles(ostate, maps, renderCascade);
-  // The maps that move with the view: their kept texels shifted, the strips that came in
-  // cleared (drawn whole where the move fails).
-  for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
-  {
-    CascadeMap& map = maps.Cascades[c];
-    if (renderCascade[c] && map.IsMoved())
+    if (measure)
     {
-      if (!state.MoveBuffer)
-      {
-        state.MoveBuffer = vtkSmartPointer<vtkTextureObject>::New();
-      }
-      if (!csmMapDrawing::MoveMap(window, state.MoveBuffer, maps, c))
-      {
-        map.Moved[0] = map.Moved[1] = 0;
-        csmMapDrawing::ClearMap(ostate, maps, c, nullptr);
-      }
+      glFinish();
+      const auto now = Clock::now();
+      seconds = std::chrono::duration<double>(now - since).count();
+      since = now;
     }
-  }
-  if (measure)
-  {
-    lap(this->Statistics.ClearSeconds);
-  }
-  ostate->vtkglEnable(GL_SCISSOR_TEST);
+  };
+  this->ClearAndMoveMaps(window, state, maps);
+  lap(this->Statistics.ClearSeconds);
+  window->GetState()->vtkglEnable(GL_SCISSOR_TEST);
   glEnable(GL_PROGRAM_POINT_SIZE); // points sized as the main view draws them
+  const bool depthClamp = this->Planner->GetDepthClamp();
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
     const CascadeMap& map = maps.Cascades[c];
-    if (renderCascade[c] && map.IsMoved())
+    if (map.Action == MapAction::Move)
     {
       ++this->Statistics.CascadesMoved; // (kept in part: its strips drawn)
       for (const csm::TexelRect& strip : csmMapDrawing::MovedStrips(map))
@@ -843,24 +544,19 @@ void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
         this->NumberOfRenderedProps += this->Drawing->DrawCascade(renderer, state.FrameBuffer, maps,
           c, props, depthClamp, this->Distributed(), this->Statistics, strip.data());
       }
-      glFlush();
-      if (measure)
-      {
-        lap(this->Statistics.CascadeSeconds[c]);
-      }
     }
-    else if (renderCascade[c])
+    else if (map.Action == MapAction::Draw)
     {
       --this->Statistics.CascadesKept;
       this->NumberOfRenderedProps += this->Drawing->DrawCascade(renderer, state.FrameBuffer, maps,
         c, props, depthClamp, this->Distributed(), this->Statistics);
-      // Hand the map to the GL while the next one is set up: a software rasterizer fills
-      // this one on its threads while this thread transforms and bins the next one's casters.
+    }
+    if (map.Action != MapAction::Keep)
+    {
+      // Hand the map to the GL while the next one is set up: a software rasterizer fills this
+      // one on its threads while this thread transforms and bins the next one's casters.
       glFlush();
-      if (measure)
-      {
-        lap(this->Statistics.CascadeSeconds[c]);
-      }
+      lap(this->Statistics.CascadeSeconds[c]);
     }
   }
   glDisable(GL_PROGRAM_POINT_SIZE);
@@ -868,24 +564,6 @@ void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
   if (this->Distributed())
   {
     this->CombineAcrossProcesses(maps.Atlas);
-  }
-}
-
-bool vtkCascadedShadowMapBakerPass::IsInteracting(vtkRenderWindow* window)
-{
-  return window && window->GetDesiredUpdateRate() >= kInteractiveUpdateRate;
-}
-
-void vtkCascadedShadowMapBakerPass::GetScreenSizes(vtkProp* prop, float sizes[2])
-{
-  vtkActor* actor = vtkActor::SafeDownCast(prop);
-  vtkProperty* property = actor ? actor->GetProperty() : nullptr;
-  sizes[0] = property ? property->GetLineWidth() : 1.0f;
-  sizes[1] = property ? property->GetPointSize() : 1.0f;
-  for (int i = 0; i < 2; ++i)
-  {
-    // vtkProperty's clamped setters let NaN through: such a prop is drawn one pixel wide here.
-    sizes[i] = std::isfinite(sizes[i]) && sizes[i] >= 1.0f ? sizes[i] : 1.0f;
   }
 }
 

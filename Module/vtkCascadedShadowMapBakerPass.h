@@ -18,8 +18,9 @@
 #ifndef vtkCascadedShadowMapBakerPass_h
 #define vtkCascadedShadowMapBakerPass_h
 
-#include "vtkCascadedShadowMapPlanner.h" // for MAXIMUM_NUMBER_OF_CASCADES
-#include "vtkCascadedShadowsSetMacro.h"  // for vtkSetFiniteClampMacro
+#include "vtkCascadedShadowMapPlanner.h" // for GetPlanner()
+#include "vtkCascadedShadowMapTypes.h"   // for LightMaps, FrameStatistics
+#include "vtkCascadedShadowsSetMacro.h" // for vtkSetFiniteClampMacro, vtkCascadedShadowsStatisticMacro
 #include "vtkOpenGLRenderPass.h"
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 #include "vtkSmartPointer.h"                   // for members
@@ -32,8 +33,6 @@
 
 class csmCasterCollection;
 class csmMapDrawing;
-struct csmCascadeNeed;
-struct csmFramePlan;
 struct csmFrameCasters;
 struct csmRendererMaps;
 class vtkCamera;
@@ -42,7 +41,6 @@ class vtkMultiProcessController;
 class vtkOpenGLRenderWindow;
 class vtkOpenGLRenderer;
 class vtkProp;
-class vtkRenderWindow;
 class vtkRenderer;
 class vtkTextureObject;
 class vtkWindow;
@@ -71,7 +69,8 @@ public:
   /// The same while the user drags (at most Resolution). 64..8192, 1024.
   vtkSetClampMacro(InteractiveResolution, int, 64, 8192);
   vtkGetMacro(InteractiveResolution, int);
-  static constexpr int RESOLUTION_STEP = 64; ///< map sizes from ErrorTarget are multiples of it
+  static constexpr int RESOLUTION_STEP =
+    vtkCascadedShadows::ResolutionStep; ///< map sizes from ErrorTarget are multiples of it
 
   /// While the user drags (the window's desired update rate at least 1, VTK's interactor
   /// convention), maps get a border of InteractiveMapBorder of their width each side (0..0.5,
@@ -120,10 +119,11 @@ public:
   vtkSetMacro(CompactCasters, bool);
   vtkGetMacro(CompactCasters, bool);
   vtkBooleanMacro(CompactCasters, bool);
-  static constexpr int MINIMUM_BLOCK_TRIANGLES = 16384;
-  static constexpr int MAXIMUM_BLOCKS = 64;
-  static constexpr int SYNCHRONOUS_PREPARATION_TRIANGLES = 262144;
-  static constexpr int MOST_CLASSIFIED_TRIANGLES = 4194304;
+  static constexpr int MINIMUM_BLOCK_TRIANGLES = vtkCascadedShadows::MinimumBlockTriangles;
+  static constexpr int MAXIMUM_BLOCKS = vtkCascadedShadows::MaximumBlocks;
+  static constexpr int SYNCHRONOUS_PREPARATION_TRIANGLES =
+    vtkCascadedShadows::SynchronousPreparationTriangles;
+  static constexpr int MOST_CLASSIFIED_TRIANGLES = vtkCascadedShadows::MostClassifiedTriangles;
 
   /// A directional light's cascades begin at the nearest sample the view has, measured in the
   /// frame it serves by a depth-only pass of the visible casters, whose depth the frame's own
@@ -141,7 +141,7 @@ public:
   vtkBooleanMacro(VisibleFootprintFit, bool);
 
   /// glPolygonOffset factor and units while rendering the maps, finite (not on closed casters'
-  /// exit layer: Results.md, "Closed casters"). 1.1, 2.
+  /// exit layer: Tried.md, "Closed casters"). 1.1, 2.
   void SetPolygonOffset(double factor, double units);
   vtkGetVector2Macro(PolygonOffset, double);
 
@@ -160,118 +160,49 @@ public:
   /// cone angle < 90 degrees (vtkShadowMapBakerPass's rule), with ShadowAttenuation above 0.
   static bool LightCastsShadows(vtkLight* light);
 
-  enum class LightKind
-  {
-    Directional, ///< cascades along the view (z-partitions), or a scene-fitted map
-    Spot         ///< one perspective map fitted to the lit part of the visible scene
-  };
-  enum class MapKind
-  {
-    FollowsView, ///< planned for the view: rendered again when it does not serve the view
-    SceneFitted, ///< fixed in the world: kept while the scene and the light stay
-#if CSM_COMPARISON_TECHNIQUES
-    FacePartition, ///< a face partition, selected by its planes (comparison technique)
-    CameraSpace    ///< a camera space map (comparison technique)
-#endif
-  };
-
-  /// One cascade's map, as the shadow pass reads it.
-  struct CascadeMap
-  {
-    MapKind Kind = MapKind::FollowsView;
-    double WorldToMap[16] = {}; ///< world -> light clip, row-major
-    double SplitFar = 0.0;      ///< view depth where the cascade ends
-    int Tile[4] = {};           ///< its tile in the atlas, texels: x, y, width, height
-    int Resolution[2] = {};     ///< texels of its map, in the lower left of its tile
-    bool Turned = false;        ///< turned a quarter to its tile (csm::orientToTile)
-    double CasterView[18] = {}; ///< the view its screen-sized casters were sized for
-    /// Texels its window moved along s and t in this frame's render, the rest of the earlier
-    /// map kept (a map that follows the view, moved with it: csm::panKeptMap); 0, 0: drawn whole
-    /// or kept as it was.
-    int Moved[2] = {};
-#if CSM_COMPARISON_TECHNIQUES
-    double Planes[16] = {}; ///< a face partition's 4 world half-spaces
-    double DepthW = 0.0;    ///< a camera space map's smallest w (0: none)
-#endif
-    bool IsSceneFitted() const
-    {
-      return this->Kind == MapKind::SceneFitted;
-    }
-    bool IsMoved() const
-    {
-      return this->Moved[0] != 0 || this->Moved[1] != 0;
-    }
-  };
-
-  /// The maps of one shadowed light, as the shadow pass reads them.
-  struct LightMaps
-  {
-    vtkLight* Light = nullptr;
-    int LightIndex = -1; ///< index among the renderer's switched-on lights
-    LightKind Kind = LightKind::Directional;
-    double Position[3] = { 0, 0, 0 };   ///< transformed, as the maps were rendered for
-    double FocalPoint[3] = { 0, 0, 0 }; ///< transformed, likewise
-    double ConeAngle = 0.0;             ///< a spot light's (0 for a directional light)
-    double SplitNear = 0.0;             ///< view depth where the first cascade begins
-    std::vector<CascadeMap> Cascades;   ///< none: nothing to shadow this frame
-    int AtlasSize[2] = { 0, 0 };        ///< texels of the atlas texture
-    vtkSmartPointer<vtkTextureObject> Atlas;
-
-    int GetNumberOfCascades() const { return static_cast<int>(this->Cascades.size()); }
-#if CSM_COMPARISON_TECHNIQUES
-    bool SelectedByPlanes() const
-    {
-      return !this->Cascades.empty() && this->Cascades[0].Kind == MapKind::FacePartition;
-    }
-#endif
-  };
+  /// The maps of a frame and what it did (vtkCascadedShadowMapTypes.h).
+  using LightKind = vtkCascadedShadows::LightKind;
+  using MapKind = vtkCascadedShadows::MapKind;
+  using MapAction = vtkCascadedShadows::MapAction;
+  using CascadeMap = vtkCascadedShadows::CascadeMap;
+  using LightMaps = vtkCascadedShadows::LightMaps;
+  using FrameStatistics = vtkCascadedShadows::FrameStatistics;
 
   /// The shadowed lights of a renderer as of its last Render() (null: the last renderer).
   const std::vector<LightMaps>& GetLightMaps(vtkRenderer* renderer = nullptr) const;
 
-  /// Is the user dragging? (The window's desired update rate is at least 1 a second.)
-  static bool IsInteracting(vtkRenderWindow* window);
-  /// The line width and point size VTK draws a prop with, in pixels (1 where not finite).
-  static void GetScreenSizes(vtkProp* prop, float sizes[2]);
   /// Is the prop's lit side out of the maps (a closed surface drawn from behind)?
-  bool DrawsFromBehind(vtkProp* prop)
-  {
-    return this->ClosureOf(prop) != 0;
-  }
+  bool DrawsFromBehind(vtkProp* prop) { return this->ClosureOf(prop) != 0; }
 
   /// What the last Render() did, for tests and benchmarks (seconds only with MeasureTimes).
-  struct FrameStatistics
+  const FrameStatistics& GetLastFrameStatistics() const { return this->Statistics; }
+  ///@{
+  /// The same one by one (the struct is C++ only): maps drawn (moved ones counted as kept),
+  /// kept and moved; texels and cells drawn into maps; casters; the visible-depth pass; seconds.
+  vtkCascadedShadowsStatisticMacro(CascadesRendered, int);
+  vtkCascadedShadowsStatisticMacro(CascadesKept, int);
+  vtkCascadedShadowsStatisticMacro(CascadesMoved, int);
+  vtkCascadedShadowsStatisticMacro(PropsDrawn, int);
+  vtkCascadedShadowsStatisticMacro(TexelsRendered, double);
+  vtkCascadedShadowsStatisticMacro(CellsDrawn, double);
+  vtkCascadedShadowsStatisticMacro(ClosedCasters, int);
+  vtkCascadedShadowsStatisticMacro(CompactCasters, int);
+  vtkCascadedShadowsStatisticMacro(BlocksDrawn, int);
+  vtkCascadedShadowsStatisticMacro(CastersWithoutReceivers, int);
+  vtkCascadedShadowsStatisticMacro(VisibleDepthsUsed, bool);
+  vtkCascadedShadowsStatisticMacro(VisibleDepthsMeasured, bool);
+  vtkCascadedShadowsStatisticMacro(VisibleFootprintUsed, bool);
+  vtkCascadedShadowsStatisticMacro(DepthPassStandIns, int);
+  vtkCascadedShadowsStatisticMacro(PlanSeconds, double);
+  vtkCascadedShadowsStatisticMacro(MapSeconds, double);
+  vtkCascadedShadowsStatisticMacro(ClearSeconds, double);
+  vtkCascadedShadowsStatisticMacro(CombineSeconds, double);
+  double GetLastFrameCascadeSeconds(int c) const { return this->Statistics.GetCascadeSeconds(c); }
+  double GetLastFrameKeptError(int c) const
   {
-    int CascadesRendered = 0, CascadesKept = 0;
-    int CascadesMoved = 0; ///< kept maps moved with the view (counted as kept; their strips drawn)
-    int PropsDrawn = 0;    ///< props (or block actors) drawn into maps
-    double TexelsRendered = 0.0, CellsDrawn = 0.0; ///< of the rendered maps
-    int ClosedCasters = 0;                         ///< drawn with their exit layer only
-    int CompactCasters = 0, BlocksDrawn = 0;       ///< casters from compact blocks, blocks drawn
-    int CastersWithoutReceivers = 0;               ///< casters (or blocks) left out of a map
-    bool VisibleDepthsUsed = false, VisibleDepthsMeasured = false; ///< measured in this frame
-    bool VisibleFootprintUsed = false; ///< a light's cascades were fitted to the footprint
-    /// Casters (or blocks) the visible-depth pass left out, small on the image for their
-    /// triangles: their boxes stand in for their samples (csm::boxStandIn).
-    int DepthPassStandIns = 0;
-    double PlanSeconds = 0.0, MapSeconds = 0.0, ClearSeconds = 0.0, CombineSeconds = 0.0;
-    double CascadeSeconds[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
-    /// Per cascade, in a frame that is not interactive: the least error of a map kept from the
-    /// last frame (as it was or moved) over the fresh map's that meets ErrorTarget
-    /// (csm::keptMapError; at most 1 serves, or 1 / csm::kCountHysteresis where no map meets the
-    /// target); 0 where no kept map was judged, +infinity where none covers the cascade.
-    double KeptError[vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES] = {};
-    double GetCascadeSeconds(int c) const
-    {
-      return c >= 0 && c < vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES
-        ? this->CascadeSeconds[c]
-        : 0.0;
-    }
-  };
-  const FrameStatistics& GetLastFrameStatistics() const
-  {
-    return this->Statistics;
+    return c >= 0 && c < vtkCascadedShadows::MaximumCascades ? this->Statistics.KeptError[c] : 0.0;
   }
+  ///@}
 
 protected:
   vtkCascadedShadowMapBakerPass();
@@ -282,21 +213,13 @@ protected:
   void MeasureVisibleDepths(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
     csmRendererMaps& state, const csmFrameCasters& props);
   void PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window, csmRendererMaps& state,
-    const csmFrameCasters& props, std::vector<LightMaps>& planned, std::vector<int>& render);
-  void PlanLight(vtkRenderer* renderer, csmRendererMaps& state, const csmFrameCasters& props,
-    const csmFramePlan& frame, vtkLight* light, int index, std::vector<LightMaps>& planned,
-    std::vector<int>& render);
-  MapKind PlannedMapKind(vtkLight* light) const;
-  void PlanCascade(const csmFramePlan& frame, vtkCamera* camera, const csmRendererMaps& state,
-    int c, bool smoothPath, CascadeMap& map, csmCascadeNeed& need);
-  bool KeptMapServes(const csmFramePlan& frame, int c, const csmCascadeNeed& need,
-    const CascadeMap& map, const CascadeMap& old, CascadeMap& moved);
+    const csmFrameCasters& props, std::vector<LightMaps>& planned);
   void RenderAtlases(vtkOpenGLRenderer* renderer, vtkOpenGLRenderWindow* window,
-    csmRendererMaps& state, const csmFrameCasters& props, std::vector<LightMaps>& planned,
-    std::vector<int>& render);
+    csmRendererMaps& state, const csmFrameCasters& props, std::vector<LightMaps>& planned);
+  bool BindAtlas(vtkOpenGLRenderWindow* window, csmRendererMaps& state, LightMaps& maps);
+  void ClearAndMoveMaps(vtkOpenGLRenderWindow* window, csmRendererMaps& state, LightMaps& maps);
   void RenderAtlas(vtkOpenGLRenderer* renderer, vtkOpenGLRenderWindow* window,
-    csmRendererMaps& state, const csmFrameCasters& props, LightMaps& maps, int* renderCascade,
-    bool timed);
+    csmRendererMaps& state, const csmFrameCasters& props, LightMaps& maps, bool timed);
 
   csmRendererMaps& MapsOf(vtkRenderer* renderer, vtkOpenGLRenderWindow* window);
   bool InputsChanged(vtkRenderer* renderer, csmRendererMaps& state);

@@ -2,6 +2,7 @@
 #include "vtkCascadedShadowMapPass.h"
 
 #include "csmAtlas.h" // csm::kAtlasFullMaps
+#include "csmProps.h" // csmScreenSizes
 
 #include "vtkAbstractMapper.h"
 #include "vtkActor.h"
@@ -92,15 +93,13 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
   this->DrawShadowed(s);
 }
 
-void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
+namespace
 {
-  vtkRenderer* renderer = s->GetRenderer();
-  vtkCascadedShadowMapBakerPass* baker = this->ShadowMapBakerPass;
-  // View space -> map coordinates in [0,1]^3, composed in double, uploaded as float. View space
-  // as the mappers' shaders see it (their vertexVC): VTK's key matrices of this camera, which it
-  // refreshes on the camera's modification time (a camera copied back onto the active one keeps
-  // the last frame's until it is modified), not the camera's own transform.
-  vtkNew<vtkMatrix4x4> viewToWorld;
+/// View space as the mappers' shaders see it (their vertexVC) -> world: VTK's key matrices of
+/// the camera, which it refreshes on the camera's modification time (a camera copied back onto
+/// the active one keeps the last frame's until it is modified), not the camera's own transform.
+void mappersViewToWorld(vtkRenderer* renderer, vtkMatrix4x4* viewToWorld)
+{
   vtkOpenGLCamera* glCamera = vtkOpenGLCamera::SafeDownCast(renderer->GetActiveCamera());
   if (glCamera)
   {
@@ -114,6 +113,16 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   {
     vtkMatrix4x4::Invert(renderer->GetActiveCamera()->GetModelViewTransformMatrix(), viewToWorld);
   }
+}
+} // namespace
+
+void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
+{
+  vtkRenderer* renderer = s->GetRenderer();
+  vtkCascadedShadowMapBakerPass* baker = this->ShadowMapBakerPass;
+  // View space -> map coordinates in [0,1]^3, composed in double, uploaded as float.
+  vtkNew<vtkMatrix4x4> viewToWorld;
+  mappersViewToWorld(renderer, viewToWorld);
   const double toUnit[16] = { 0.5, 0, 0, 0.5, 0, 0.5, 0, 0.5, 0, 0, 0.5, 0.5, 0, 0, 0, 1 };
   std::string signature;
   ShaderUniforms& u = this->Uniforms;
@@ -407,7 +416,7 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   if (program->IsUniformUsed("csmImpostorPixels"))
   {
     float pixels[2];
-    vtkCascadedShadowMapBakerPass::GetScreenSizes(prop, pixels);
+    csmScreenSizes(prop, pixels);
     program->SetUniform2f("csmImpostorPixels", pixels);
   }
   if (program->IsUniformUsed("csmPCFRadius"))

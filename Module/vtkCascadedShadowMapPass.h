@@ -35,6 +35,7 @@
 #include <vector> // for members
 
 #include "vtkCascadedShadowMapBakerPass.h" // for GetShadowMapBakerPass() options
+class vtkMatrix4x4;
 class vtkRenderer;
 
 class VTKRENDERINGCASCADEDSHADOWS_EXPORT vtkCascadedShadowMapPass : public vtkOpenGLRenderPass
@@ -57,7 +58,7 @@ public:
   /// PCF kernel width in texels of the cascade: 1, 3, 5 or 7 (even values round up). Default 3
   /// (Barroso & Celes 2007, §4 use 3x3 to 5x5; 3x3 takes 4 bilinear taps where 5x5 takes 9, and
   /// misclassifies fewer pixels than 5x5 on the bench scenes; 1 hardens the edges:
-  /// Documentation/Results.md, "Lookup cost and PCF").
+  /// Documentation/Tried.md, "Lookup cost and PCF").
   virtual void SetPCFSize(int size);
   vtkGetMacro(PCFSize, int);
   ///@}
@@ -107,7 +108,7 @@ public:
    * fillet's facets, a bar joint, a part on a floor). The lookup tells the way each face turns;
    * the faces turned away (lit at the terminator by an interpolated normal) meet their own depth
    * and take the full bias. 1: the same bias for every face. Default 0.25
-   * (Documentation/Results.md, "Closed casters").
+   * (Documentation/Tried.md, "Closed casters").
    */
   vtkSetFiniteClampMacro(ClosedSurfaceBiasFactor, double, 0.0, 1.0);
   vtkGetMacro(ClosedSurfaceBiasFactor, double);

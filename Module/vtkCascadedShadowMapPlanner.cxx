@@ -9,6 +9,7 @@
 #include "csmReuse.h"
 #include "csmSetup.h"
 #include "csmSpotSetup.h"
+#include "csmVTKMath.h"
 #include "csmVisibleDepth.h"
 
 #include "vtkCamera.h"
@@ -41,68 +42,11 @@ static_assert(vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES <= csm::kM
 vtkStandardNewMacro(vtkCascadedShadowMapPlanner);
 
 vtkCascadedShadowMapPlanner::vtkCascadedShadowMapPlanner()
-  : Internal(new Internals)
+  : Internal(new vtkCascadedShadowMapPlannerInternals)
 {
 }
 
 vtkCascadedShadowMapPlanner::~vtkCascadedShadowMapPlanner() = default;
-
-namespace
-{
-/// VTK's row-major double[16] as GLM's column-major matrix, and back.
-glm::dmat4 fromRowMajor(const double m[16])
-{
-  glm::dmat4 matrix;
-  for (int row = 0; row < 4; ++row)
-  {
-    for (int column = 0; column < 4; ++column)
-    {
-      matrix[column][row] = m[4 * row + column];
-    }
-  }
-  return matrix;
-}
-
-void toRowMajor(const glm::dmat4& m, double out[16])
-{
-  for (int row = 0; row < 4; ++row)
-  {
-    for (int column = 0; column < 4; ++column)
-    {
-      out[4 * row + column] = m[column][row]; // glm is column-major
-    }
-  }
-}
-
-bool toCamera(vtkCamera* camera, double aspect, csm::Camera& cam)
-{
-  if (!camera)
-  {
-    return false;
-  }
-  double v[3];
-  camera->GetPosition(v);
-  cam.wsPosition = { v[0], v[1], v[2] };
-  camera->GetDirectionOfProjection(v);
-  cam.wsDirection = { v[0], v[1], v[2] };
-  camera->GetViewUp(v);
-  cam.wsViewUp = { v[0], v[1], v[2] };
-  camera->GetClippingRange(v);
-  cam.vsNear = v[0];
-  cam.vsFar = v[1];
-  cam.aspect = aspect;
-  cam.parallel = camera->GetParallelProjection() != 0;
-  cam.parallelScale = camera->GetParallelScale();
-  cam.fovyDeg = camera->GetViewAngle();
-  if (camera->GetUseHorizontalViewAngle() && aspect > 0.0)
-  {
-    const double halfX = vtkMath::RadiansFromDegrees(0.5 * camera->GetViewAngle());
-    cam.fovyDeg = vtkMath::DegreesFromRadians(2.0 * std::atan(std::tan(halfX) / aspect));
-  }
-  return true;
-}
-
-}
 
 namespace
 {
@@ -129,7 +73,7 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   int maximumResolution, int mostCascades)
 {
   csm::Camera cam;
-  if (!toCamera(camera, aspect, cam) || !lightDirection)
+  if (!csmToCamera(camera, aspect, cam) || !lightDirection)
   {
     this->Internal->Setup = csm::ShadowSetup();
     this->Internal->Setup.message = "no camera or no light direction";
@@ -250,7 +194,7 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
   this->Internal->ClearComparison();
 #endif
   csm::Camera cam;
-  toCamera(camera, aspect, cam);
+  csmToCamera(camera, aspect, cam);
   const csm::Bounds scene = csm::Bounds::fromMinMaxPairs(bounds);
   if (!camera)
   {
@@ -285,7 +229,7 @@ void vtkCascadedShadowMapPlanner::SetVisibleDepths(
   window.min = windowMin;
   window.max = windowMax;
   this->Internal->Visible =
-    toCamera(measuredBy, aspect, cam) ? csm::viewDepthRange(window, cam) : csm::DepthRange();
+    csmToCamera(measuredBy, aspect, cam) ? csm::viewDepthRange(window, cam) : csm::DepthRange();
   this->Internal->VisibleCamera = cam;
 }
 
@@ -308,23 +252,6 @@ bool vtkCascadedShadowMapPlanner::GetVisibleFootprintUsed() const
 bool vtkCascadedShadowMapPlanner::GetVisibleDepthsUsed() const
 {
   return this->Internal->VisibleUsed;
-}
-
-bool vtkCascadedShadowMapPlanner::DepthsHeld(vtkCamera* camera, double aspect, double coveredNear,
-  double coveredFar, double windowMin, double windowMax)
-{
-  csm::Camera cam;
-  if (!toCamera(camera, aspect, cam))
-  {
-    return false;
-  }
-  csm::DepthRange covered;
-  covered.vsNear = coveredNear;
-  covered.vsFar = coveredFar;
-  csm::WindowDepthRange window;
-  window.min = windowMin;
-  window.max = windowMax;
-  return csm::depthRangeHolds(covered, window, cam);
 }
 
 void vtkCascadedShadowMapPlanner::ClearReceiverBounds()
@@ -420,7 +347,7 @@ void vtkCascadedShadowMapPlanner::GetCascadeMatrix(
   {
     m = csm::snapToTexels(m, csm::MapSize(resolution[0], resolution[1]));
   }
-  toRowMajor(m, matrix->GetData());
+  csmToRowMajor(m, matrix->GetData());
   matrix->Modified();
 }
 
@@ -434,12 +361,6 @@ double vtkCascadedShadowMapPlanner::GetCascadeFar(int i) const
 {
   const auto& c = this->Internal->Setup.cascades;
   return i >= 0 && i < static_cast<int>(c.size()) ? c[i].vsFar : 0.0;
-}
-
-double vtkCascadedShadowMapPlanner::GetCascadeNPrime(int i) const
-{
-  const auto& c = this->Internal->Setup.cascades;
-  return i >= 0 && i < static_cast<int>(c.size()) ? c[i].nPrime : 0.0;
 }
 
 double vtkCascadedShadowMapPlanner::GetCascadeMaximumAliasing(int i) const
@@ -537,11 +458,11 @@ void vtkCascadedShadowMapPlanner::ComputeAliasing(vtkCamera* camera, double aspe
 {
   m[0] = m[1] = 0.0;
   csm::Camera cam;
-  if (!toCamera(camera, aspect, cam) || !lightDirection || !worldToClip || !point)
+  if (!csmToCamera(camera, aspect, cam) || !lightDirection || !worldToClip || !point)
   {
     return;
   }
-  const glm::dmat4 matrix = fromRowMajor(worldToClip);
+  const glm::dmat4 matrix = csmFromRowMajor(worldToClip);
   const csm::Aliasing a = csm::aliasingAt(matrix, cam,
     glm::dvec3(lightDirection[0], lightDirection[1], lightDirection[2]),
     glm::dvec3(point[0], point[1], point[2]));
@@ -557,7 +478,7 @@ double vtkCascadedShadowMapPlanner::CompareKeptMap(
   {
     return std::numeric_limits<double>::infinity();
   }
-  const glm::dmat4 kept = fromRowMajor(keptWorldToClip);
+  const glm::dmat4 kept = csmFromRowMajor(keptWorldToClip);
   const csm::MapReuse reuse = csm::compareKeptMap(kept, cascades[i], this->Internal->Camera,
     this->Internal->wsLightDirection, this->Internal->Directional, 2.0 * marginTexels / resolution);
   return reuse.covers ? reuse.errorRatio : std::numeric_limits<double>::infinity();
@@ -572,55 +493,16 @@ bool vtkCascadedShadowMapPlanner::PanKeptMap(int i, const double keptWorldToClip
   {
     return false;
   }
-  const csm::MapPan pan = csm::panKeptMap(
-    fromRowMajor(keptWorldToClip), cascades[i].wsBody, csm::MapSize(resolution[0], resolution[1]));
+  const csm::MapPan pan = csm::panKeptMap(csmFromRowMajor(keptWorldToClip), cascades[i].wsBody,
+    csm::MapSize(resolution[0], resolution[1]));
   if (!pan.valid)
   {
     return false;
   }
-  toRowMajor(pan.wsToClip, movedWorldToClip);
+  csmToRowMajor(pan.wsToClip, movedWorldToClip);
   texels[0] = pan.s;
   texels[1] = pan.t;
   return true;
-}
-
-bool vtkCascadedShadowMapPlanner::IsSmallCameraStep(
-  vtkCamera* before, vtkCamera* now, double aspect, double depth)
-{
-  csm::Camera a, b;
-  return before && now && toCamera(before, aspect, a) && toCamera(now, aspect, b) &&
-    csm::smallCameraStep(a, b, depth);
-}
-
-bool vtkCascadedShadowMapPlanner::CascadeReachesBox(
-  const double worldToClip[16], const double bounds[6], bool depthClamp)
-{
-  if (!worldToClip || !bounds)
-  {
-    return false;
-  }
-  return !csm::boxOutsideClipVolume(
-    fromRowMajor(worldToClip), csm::Bounds::fromMinMaxPairs(bounds), depthClamp);
-}
-
-bool vtkCascadedShadowMapPlanner::ViewSeesOnlyOutsideOf(
-  vtkCamera* camera, double aspect, const double bounds[6])
-{
-  csm::Camera cam;
-  return bounds && toCamera(camera, aspect, cam) &&
-    csm::eyeSeesOnlyOutsideOf(cam, csm::Bounds::fromMinMaxPairs(bounds));
-}
-
-bool vtkCascadedShadowMapPlanner::CasterBoxReachesBox(const double lightDirection[3],
-  const double casterBounds[6], const double receiverBounds[6], double minimumDistance)
-{
-  if (!lightDirection || !casterBounds || !receiverBounds)
-  {
-    return true;
-  }
-  return csm::sweptBoxReachesBox(csm::Bounds::fromMinMaxPairs(casterBounds),
-    glm::dvec3(lightDirection[0], lightDirection[1], lightDirection[2]),
-    csm::Bounds::fromMinMaxPairs(receiverBounds), minimumDistance);
 }
 
 int vtkCascadedShadowMapPlanner::GetCascadeAtDepth(

@@ -16,6 +16,7 @@
 #ifndef vtkCascadedShadowMapPlanner_h
 #define vtkCascadedShadowMapPlanner_h
 
+#include "vtkCascadedShadowMapTypes.h"   // for vtkCascadedShadows::MaximumCascades
 #include "vtkCascadedShadowsConfigure.h" // for CSM_COMPARISON_TECHNIQUES
 #include "vtkCascadedShadowsSetMacro.h"  // for vtkSetFiniteClampMacro
 #include "vtkObject.h"
@@ -26,6 +27,7 @@
 class vtkCamera;
 class vtkLight;
 class vtkMatrix4x4;
+struct vtkCascadedShadowMapPlannerInternals; // the planner's state (private to the module)
 namespace csm
 {
 struct WindowFootprint;
@@ -55,7 +57,7 @@ public:
   };
 
   /// The most cascades a light gets (the shaders hold them in uniform arrays).
-  static constexpr int MAXIMUM_NUMBER_OF_CASCADES = 8;
+  static constexpr int MAXIMUM_NUMBER_OF_CASCADES = vtkCascadedShadows::MaximumCascades;
 
   ///@{
   /// Number of z-partitions (cascades), 1..MAXIMUM_NUMBER_OF_CASCADES; with AdaptiveCascades
@@ -99,7 +101,7 @@ public:
    * AdaptiveCascades the number of cascades is one that reaches it. 0: neither (every
    * map at the ceiling, NumberOfCascades cascades). 0..1e6. Default 0.7 (a texel at most 0.7 of
    * a pixel where the error is largest: against 1, the engine's worst error 0.87 -> 0.69 for at
-   * most 5 % more frame time; Documentation/Results.md, "Error target").
+   * most 5 % more frame time; Documentation/Tried.md, "Error target").
    */
   vtkSetFiniteClampMacro(ErrorTarget, double, 0.0, 1.0e6);
   vtkGetMacro(ErrorTarget, double);
@@ -117,7 +119,7 @@ public:
    * Eq. 19's splits or the log splits, whichever predicts the smaller worst error). Needs the
    * image height and the largest map
    * resolution (see Plan()). Default on: against two fixed cascades, the towers' worst error
-   * 1.27 instead of 31 (Documentation/Results.md, "Cascade count").
+   * 1.27 instead of 31 (Documentation/Tried.md, "Cascade count").
    */
   vtkSetMacro(AdaptiveCascades, bool);
   vtkGetMacro(AdaptiveCascades, bool);
@@ -283,8 +285,7 @@ public:
    * directional light's Plan() carries that range to the current camera (widened by how far
    * the camera moved and turned since: csm::carryDepthRange) and fits the cascades to that part
    * of the view only; not when the camera turned more than csm::kVisibleDepthMaximumTurnDeg.
-   * Points that were not visible then may lie outside: DepthsHeld() tells once the frame is
-   * drawn, and a frame that misses must be planned again without it. Kept until cleared.
+   * Kept until cleared.
    */
   void SetVisibleDepths(vtkCamera* measuredBy, double aspect, double windowMin, double windowMax);
   void ClearVisibleDepths();
@@ -302,10 +303,6 @@ public:
 #endif
   /// Did the last Plan() fit the cascades to the footprint (SetVisibleFootprint())?
   bool GetVisibleFootprintUsed() const;
-  /// Did every visible sample of a frame drawn by camera (window depths windowMin .. windowMax)
-  /// fall in the view depths coveredNear .. coveredFar (csm::depthRangeHolds)?
-  static bool DepthsHeld(vtkCamera* camera, double aspect, double coveredNear, double coveredFar,
-    double windowMin, double windowMax);
   ///@}
 
   /// Number of cascades of the last plan.
@@ -328,9 +325,6 @@ public:
   /// Split depths of cascade i along the view direction.
   double GetCascadeNear(int i) const;
   double GetCascadeFar(int i) const;
-
-  /// Warp parameter n' of cascade i; +infinity when orthographic.
-  double GetCascadeNPrime(int i) const;
 
   /// Predicted worst perspective aliasing of cascade i (Lloyd et al. 2006, Eq. 9-10: the maxima
   /// M_x, M_z over its receiver body) for a map of 1 texel and an image 1 pixel high: multiply by
@@ -411,25 +405,6 @@ public:
   bool PanKeptMap(int i, const double keptWorldToClip[16], const int resolution[2],
     double movedWorldToClip[16], int texels[2]) const;
 
-  /// Did the camera take a small step from `before` (a smooth path: csm::smallCameraStep),
-  /// measured against a view depth (the far end of a cascade)?
-  static bool IsSmallCameraStep(vtkCamera* before, vtkCamera* now, double aspect, double depth);
-
-  /// Does any part of a world box (xmin, xmax, ymin, ymax, zmin, zmax) reach the light volume of
-  /// a cascade (row-major world -> light clip)? With depthClamp, what is nearer than the near
-  /// plane counts (clamped onto it).
-  static bool CascadeReachesBox(
-    const double worldToClip[16], const double bounds[6], bool depthClamp);
-  /// Can a caster inside casterBounds shadow a point inside receiverBounds (world boxes) under a
-  /// directional light travelling along lightDirection (csm::sweptBoxReachesBox: the caster box
-  /// swept along the light by more than minimumDistance meets the receiver box)? True for bad
-  /// input (the safe answer).
-  static bool CasterBoxReachesBox(const double lightDirection[3], const double casterBounds[6],
-    const double receiverBounds[6], double minimumDistance);
-  /// Does the camera (of a viewport of the given aspect) see only the outside of every closed
-  /// surface inside a world box (csm::eyeSeesOnlyOutsideOf: its near plane reaches no point of
-  /// the box)? False for parallel cameras and bad input.
-  static bool ViewSeesOnlyOutsideOf(vtkCamera* camera, double aspect, const double bounds[6]);
   /// The cascade a view depth falls in, as the shadow lookup selects it (before it falls back to
   /// the next map covering a point a kept map misses), or -1 outside [splitNear,
   /// splitFar[count-1]].
@@ -475,8 +450,7 @@ private:
   void WarnFocusClamped();
 #endif
 
-  struct Internals;
-  std::unique_ptr<Internals> Internal;
+  std::unique_ptr<vtkCascadedShadowMapPlannerInternals> Internal;
 };
 
 #endif

@@ -18,14 +18,14 @@
 
 static_assert(CSM_COMPARISON_TECHNIQUES, "built with CSM_COMPARISON_TECHNIQUES only");
 
-void vtkCascadedShadowMapPlanner::Internals::ClearComparison()
+void vtkCascadedShadowMapPlannerInternals::ClearComparison()
 {
   this->Planes.clear();
   this->DepthW.clear();
   this->FocusClamped.clear();
 }
 
-bool vtkCascadedShadowMapPlanner::Internals::PlanComparison(int k, bool cameraSpace, double focus,
+bool vtkCascadedShadowMapPlannerInternals::PlanComparison(int k, bool cameraSpace, double focus,
   const csm::Camera& camera, const glm::dvec3& direction, const csm::Bounds* scene,
   const csm::Settings& settings, const std::vector<csm::Bounds>* parts)
 {
@@ -42,7 +42,7 @@ bool vtkCascadedShadowMapPlanner::Internals::PlanComparison(int k, bool cameraSp
   return cameraSpace && this->PlanCameraSpace(camera, direction, scene, settings, parts, focus);
 }
 
-void vtkCascadedShadowMapPlanner::Internals::PlanComparisonSpot(
+void vtkCascadedShadowMapPlannerInternals::PlanComparisonSpot(
   bool cameraSpace, double focus, const csm::Camera& cam, const glm::dvec3& wsPosition)
 {
   csm::ShadowSetup& setup = this->Setup;
@@ -63,7 +63,7 @@ void vtkCascadedShadowMapPlanner::Internals::PlanComparisonSpot(
   }
 }
 
-void vtkCascadedShadowMapPlanner::Internals::NoteFocus(
+void vtkCascadedShadowMapPlannerInternals::NoteFocus(
   const csm::CameraSpaceMap& map, double focus, const csm::Camera& fitted)
 {
   if (map.status != csm::Status::Ok || !map.focusClamped || !(focus > 0.0))
@@ -109,7 +109,7 @@ csm::ShadowSetup fitDepthRange(const csm::Camera& camera, const glm::dvec3& dire
 }
 }
 
-void vtkCascadedShadowMapPlanner::Internals::PlanFaces(const csm::Camera& camera,
+void vtkCascadedShadowMapPlannerInternals::PlanFaces(const csm::Camera& camera,
   const glm::dvec3& direction, const csm::Bounds* scene, const csm::Settings& settings,
   const std::vector<csm::Bounds>* parts, int k)
 {
@@ -145,7 +145,7 @@ void vtkCascadedShadowMapPlanner::Internals::PlanFaces(const csm::Camera& camera
   setup.storageOptimal = fp.storageOptimal;
 }
 
-bool vtkCascadedShadowMapPlanner::Internals::PlanCameraSpace(const csm::Camera& camera,
+bool vtkCascadedShadowMapPlannerInternals::PlanCameraSpace(const csm::Camera& camera,
   const glm::dvec3& direction, const csm::Bounds* scene, const csm::Settings& settings,
   const std::vector<csm::Bounds>* parts, double focus)
 {

@@ -4,7 +4,8 @@
 #ifndef vtkCascadedShadowMapPlannerInternals_h
 #define vtkCascadedShadowMapPlannerInternals_h
 
-#include "vtkCascadedShadowMapPlanner.h"
+#include "vtkCascadedShadowsConfigure.h" // for CSM_COMPARISON_TECHNIQUES
+#include "vtkType.h"                     // for vtkMTimeType
 
 #include "csmAtlas.h"
 #include "csmTypes.h"
@@ -25,7 +26,7 @@ struct CameraSpaceMap;
 }
 #endif
 
-struct vtkCascadedShadowMapPlanner::Internals
+struct vtkCascadedShadowMapPlannerInternals
 {
   csm::ShadowSetup Setup;
   /// The atlas of the last plan, and the largest map that follows the view it was planned for.

@@ -28,4 +28,12 @@
     }                                                                                              \
   }
 
+/// GetLastFrame<name>(): one field of the last frame's statistics (this->Statistics), for
+/// Python, which cannot read the struct.
+#define vtkCascadedShadowsStatisticMacro(name, type)                                               \
+  virtual type GetLastFrame##name() const                                                          \
+  {                                                                                                \
+    return this->Statistics.name;                                                                  \
+  }
+
 #endif

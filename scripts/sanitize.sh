@@ -18,7 +18,9 @@ install_missing_packages
 # The tests run: the math, the planner, the passes (the worker threads' preparations of big
 # meshes among them, with the in-place edits of a mesh under preparation).
 TARGETS=(csmMathTests csmModuleTests csmPassTests)
-FILTER="${CSM_SANITIZE_FILTER:-*}"
+# (Not the test of resident memory across on/off cycles: a sanitizer's shadow memory is what it
+# would measure.)
+FILTER="${CSM_SANITIZE_FILTER:-*-Frames.SwitchingShadowsOnAndOffKeepsMemoryFlat}"
 
 run_one() {
   local kind="$1" flags build
@@ -48,7 +50,9 @@ run_one() {
   for t in "${TARGETS[@]}"; do
     echo "== $kind: $t"
     # (Through OSMesa, with no X server, as the test command runs them.)
-    env -u DISPLAY \
+    # (VTK's own SMP threads are TBB's, which the sanitizer cannot see synchronize: VTK runs
+    # its loops on this thread instead. The project's worker threads are std::async's.)
+    env -u DISPLAY VTK_SMP_BACKEND_IN_USE=Sequential \
       TSAN_OPTIONS="halt_on_error=0 exitcode=66 second_deadlock_stack=1 suppressions=$supp/tsan.supp" \
       ASAN_OPTIONS="detect_leaks=1 exitcode=66" \
       LSAN_OPTIONS="suppressions=$supp/lsan.supp print_suppressions=0" \

@@ -621,7 +621,9 @@ Options Parse(int argc, char** argv)
         "--labels a,b,...: only these techniques (their labels as in the CSV; the comparison\n"
         "techniques fp-w, fp-zp-w and cssm in a build with -DCSM_COMPARISON_TECHNIQUES=ON).\n"
         "--error-images DIR: per measured view and technique, DIR/scene-label-view.png:\n"
-        "false shadow red, false light blue, right light / dark grey, not compared dark.\n");
+        "false shadow red, false light blue, right light / dark grey, not compared dark.\n"
+        "\nThe other mode:\n\n%s",
+        csmWalk::Usage().c_str());
       std::exit(0);
     }
     else if (f == "--quick")

@@ -221,6 +221,11 @@ WalkOptions ParseWalk(int argc, char** argv)
     const bool hasValue = i + 1 < argc;
     if (f == "--walk")
       continue;
+    else if (f == "--help" || f == "-h")
+    {
+      std::printf("%s", csmWalk::Usage().c_str());
+      std::exit(0);
+    }
     else if (f == "--camera-light")
       o.CameraLight = true;
     else if (f == "--per-frame")
@@ -281,6 +286,34 @@ WalkOptions ParseWalk(int argc, char** argv)
   return o;
 }
 } // namespace
+
+std::string csmWalk::Usage()
+{
+  const WalkOptions o;
+  std::string scenes;
+  for (const std::string& name : o.Scenes)
+    scenes += (scenes.empty() ? "" : ",") + name;
+  char text[1600];
+  std::snprintf(text, sizeof(text),
+    "csm-bench --walk [--scenes a,b,...] [--frames N] [--rounds N] [--size WxH] [--out FILE.csv]\n"
+    "                 [--camera-light] [--per-frame] [--variants] [--slack s,...] [--interactive]\n"
+    "The camera paths users take close to a structure (an orbit of 2 degrees and a dolly of 1 %%\n"
+    "of the model a frame, every frame a normal render): VTK's pass as it comes, ours and the\n"
+    "unshadowed frame side by side, with the maps drawn and kept and the texels and caster cells\n"
+    "drawn a frame.\n"
+    "  --scenes      engine, towers, lattice, platform [%s]\n"
+    "  --frames N    frames a path, 3..1000 [%d]\n"
+    "  --rounds N    rounds of every path, 1..20 [%d]\n"
+    "  --size WxH    the window, 64..4096 each [%dx%d]\n"
+    "  --out FILE    the CSV written [%s]\n"
+    "  --camera-light  a light that turns with the camera (as ParaView's light kit)\n"
+    "  --per-frame   each frame's maps, their times and how far a kept map missed\n"
+    "  --variants    also ours with the cascades fitted to the boxes and maps not moved\n"
+    "  --slack s,... also ours with these MapSlack values\n"
+    "  --interactive frames as while the user drags (the interactor's update rate)\n",
+    scenes.c_str(), o.Frames, o.Rounds, o.Size[0], o.Size[1], o.Out.c_str());
+  return text;
+}
 
 int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
 {

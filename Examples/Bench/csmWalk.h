@@ -9,4 +9,6 @@ namespace csmWalk
 /// Runs the walk benchmark with csm-bench's arguments (--walk and its options); the engine
 /// model's path comes from the build. Returns the exit status.
 int Run(int argc, char** argv, const std::string& engineModel);
+/// The walk's usage: its options with their defaults.
+std::string Usage();
 }

@@ -36,7 +36,7 @@ struct AtlasGrid
 /// and the light stay) its whole tile of the atlas, resolutionCeilingForCount; a cascade that
 /// follows the view (drawn again as the view moves) at most resolution texels a side of that
 /// tile, so that the whole atlas a single cascade gets does not make its map cost more at every
-/// re-render (Documentation/Results.md, "Atlas layout"). One size for both converts to this.
+/// re-render (Documentation/Tried.md, "Atlas layout"). One size for both converts to this.
 struct CascadeCeilings
 {
   MapSize sceneFitted;

@@ -53,7 +53,7 @@ ShadowSetup computeShadowSetupForError(const Camera& camera, const glm::dvec3& w
 /// What one caster triangle costs to draw into a shadow map, in texels filled: a map pass of T
 /// triangles costs as much as T times this many texels (passTexels). Measured on llvmpipe
 /// (Mesa's software rasterizer, 2 threads): about 130 ns a triangle of a thin-bar lattice
-/// against 5-8 ns a texel of a depth map (Documentation/Results.md, "Where the map time goes"
+/// against 5-8 ns a texel of a depth map (Documentation/Tried.md, "Where the map time goes"
 /// and "Cascade count"); a GPU's triangle setup against its depth fill is of the same
 /// order. A property of the renderer, not of a scene.
 constexpr double kTexelsPerCasterTriangle = 16.0;

@@ -3,6 +3,7 @@
 #include "csmAtlas.h"        // csm::resolutionCeilingForCount
 #include "csmCascadeCount.h" // csm::computeShadowSetupForError
 #include "csmTestHelpers.h"  // ErrorCounter
+#include "csmVTKMath.h"      // csmCascadeReachesBox
 #include "vtkCascadedShadowMapPlanner.h"
 
 #include "vtkCallbackCommand.h"
@@ -207,10 +208,10 @@ TEST(Planner, CascadeReachesBoxAndCascadeAtDepth)
   const double inside[6] = { -0.5, 0.5, -0.5, 0.5, -0.5, 0.5 };
   const double beside[6] = { 2.0, 3.0, -0.5, 0.5, -0.5, 0.5 };
   const double nearer[6] = { -0.5, 0.5, -0.5, 0.5, -3.0, -2.0 }; // in front of the near plane
-  EXPECT_TRUE(vtkCascadedShadowMapPlanner::CascadeReachesBox(identity, inside, false));
-  EXPECT_FALSE(vtkCascadedShadowMapPlanner::CascadeReachesBox(identity, beside, true));
-  EXPECT_FALSE(vtkCascadedShadowMapPlanner::CascadeReachesBox(identity, nearer, false));
-  EXPECT_TRUE(vtkCascadedShadowMapPlanner::CascadeReachesBox(identity, nearer, true));
+  EXPECT_TRUE(csmCascadeReachesBox(identity, inside, false));
+  EXPECT_FALSE(csmCascadeReachesBox(identity, beside, true));
+  EXPECT_FALSE(csmCascadeReachesBox(identity, nearer, false));
+  EXPECT_TRUE(csmCascadeReachesBox(identity, nearer, true));
   const double far[2] = { 4.0, 40.0 };
   EXPECT_EQ(vtkCascadedShadowMapPlanner::GetCascadeAtDepth(3.0, 1.0, far, 2), 0);
   EXPECT_EQ(vtkCascadedShadowMapPlanner::GetCascadeAtDepth(5.0, 1.0, far, 2), 1);

@@ -52,14 +52,15 @@ vtkSmartPointer<vtkPolyData> BigBall(double x, int resolution = 520, double z = 
 }
 
 /// Frames of a camera that moves a little (a big mesh is prepared once the view moves) until
-/// the baker draws `expected` props from compact blocks (at most ~30 s); then the view is the
-/// one it was.
+/// the baker draws `expected` props from compact blocks (at most 120 s: a sanitizer's build
+/// prepares slowly); then the view is the one it was.
 bool FramesUntilCompact(BoxOverPlane& scene, vtkCascadedShadowMapBakerPass* baker, int expected)
 {
   vtkNew<vtkCamera> start;
   start->DeepCopy(scene.Renderer->GetActiveCamera());
   bool prepared = false;
-  for (int frame = 0; frame < 300 && !prepared; ++frame)
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  for (int frame = 0; std::chrono::steady_clock::now() < until && !prepared; ++frame)
   {
     scene.Renderer->GetActiveCamera()->Azimuth(frame % 2 == 0 ? 0.5 : -0.5);
     scene.Window->Render();

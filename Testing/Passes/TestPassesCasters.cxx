@@ -29,6 +29,7 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtk_glew.h"
 
+#include "csmProps.h" // csmScreenSizes
 #include "csmTestHelpers.h"
 
 #include <gtest/gtest.h>
@@ -521,7 +522,7 @@ TEST(Passes, NaNLineWidthAndPointSizeGiveNoGarbage)
       ->SceneFittedCascadesOff();
     auto shadowed = scene.Render();
     float sizes[2] = { 0, 0 };
-    vtkCascadedShadowMapBakerPass::GetScreenSizes(tubes, sizes);
+    csmScreenSizes(tubes, sizes);
     EXPECT_EQ(sizes[0], 1.0f);
     EXPECT_EQ(sizes[1], 1.0f);
     darkened[nan] = DarkenedPixels(shadowed, plain);

@@ -169,6 +169,25 @@ print("shadowed_pixels_with_pass: %d" % with_pass)
 check(with_pass >= MIN_SHADOWED, "%d shadowed pixels with the pass (at least %d expected)"
       % (with_pass, MIN_SHADOWED))
 check(baker.GetPlanner().GetNumberOfPlannedCascades() > 0, "the baker made maps")
+# The frame statistics from Python: the grab's frame drew maps; a still frame after it keeps
+# every map and draws no texel.
+drawn = baker.GetLastFrameCascadesRendered() + baker.GetLastFrameCascadesKept()
+check(drawn > 0, "no map in the frame statistics")
+for _ in range(2):
+    window.Render()
+print("still frame: maps rendered %d, kept %d, texels %g"
+      % (baker.GetLastFrameCascadesRendered(), baker.GetLastFrameCascadesKept(),
+         baker.GetLastFrameTexelsRendered()))
+check(baker.GetLastFrameCascadesRendered() == 0 and baker.GetLastFrameCascadesKept() == drawn
+      and baker.GetLastFrameTexelsRendered() == 0.0,
+      "a still frame drew maps (rendered %d, kept %d, texels %g)"
+      % (baker.GetLastFrameCascadesRendered(), baker.GetLastFrameCascadesKept(),
+         baker.GetLastFrameTexelsRendered()))
+box_actor.SetPosition(0.5, 0.0, 0.0)  # a caster moved: its maps are drawn again
+window.Render()
+check(baker.GetLastFrameTexelsRendered() > 0.0 and baker.GetLastFrameCascadesRendered() > 0,
+      "a moved caster drew no map (texels %g)" % baker.GetLastFrameTexelsRendered())
+box_actor.SetPosition(0.0, 0.0, 0.0)
 
 vtkCascadedShadowMapPass.UseShadowsOff(renderer)
 after = darkened(grab(window), ground_only, mask)

@@ -1,0 +1,217 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "csmCasterPreparation.h"
+
+#include "csmCasterBlocks.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkDataArray.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+vtkSmartPointer<vtkDataArray> csmOwnCopy(vtkDataArray* source)
+{
+  auto copy = vtk::TakeSmartPointer(source->NewInstance());
+  copy->SetNumberOfComponents(source->GetNumberOfComponents());
+  copy->SetNumberOfTuples(source->GetNumberOfTuples());
+  const size_t bytes = static_cast<size_t>(source->GetNumberOfValues()) *
+    static_cast<size_t>(source->GetDataTypeSize());
+  if (!source->HasStandardMemoryLayout())
+  {
+    copy->DeepCopy(source);
+  }
+  else if (bytes > 0)
+  {
+    std::memcpy(copy->GetVoidPointer(0), source->GetVoidPointer(0), bytes);
+  }
+  return copy;
+}
+
+vtkSmartPointer<vtkCellArray> csmOwnCopy(vtkCellArray* source)
+{
+  auto copy = vtkSmartPointer<vtkCellArray>::New();
+  if (source && source->GetOffsetsArray() && source->GetConnectivityArray())
+  {
+    copy->SetData(
+      csmOwnCopy(source->GetOffsetsArray()), csmOwnCopy(source->GetConnectivityArray()));
+  }
+  return copy;
+}
+
+double csmTriangleCount(vtkPolyData* data)
+{
+  const double polys = static_cast<double>(data->GetPolys()->GetNumberOfConnectivityIds()) -
+    2.0 * static_cast<double>(data->GetPolys()->GetNumberOfCells());
+  const double strips = static_cast<double>(data->GetStrips()->GetNumberOfConnectivityIds()) -
+    2.0 * static_cast<double>(data->GetStrips()->GetNumberOfCells());
+  return std::max(0.0, polys) + std::max(0.0, strips);
+}
+
+namespace
+{
+/// Calls f(a, b, c) for every triangle of a polydata's polygons (fans) and strips, wound as
+/// drawn; safe beside the main thread's own reading (each traversal has its own iterator).
+/// Stops early (returning false) once `stop` is set.
+template <typename F>
+bool forEachTriangle(vtkPolyData* data, F&& f, const std::atomic<bool>* stop = nullptr)
+{
+  vtkIdType n;
+  const vtkIdType* ids;
+  vtkIdType visited = 0;
+  auto stopped = [&visited, stop]()
+  { return stop && (++visited & 0xfff) == 0 && stop->load(std::memory_order_relaxed); };
+  auto polys = vtk::TakeSmartPointer(data->GetPolys()->NewIterator());
+  for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
+  {
+    if (stopped())
+    {
+      return false;
+    }
+    polys->GetCurrentCell(n, ids);
+    for (vtkIdType k = 2; k < n; ++k)
+    {
+      f(ids[0], ids[k - 1], ids[k]);
+    }
+  }
+  auto strips = vtk::TakeSmartPointer(data->GetStrips()->NewIterator());
+  for (strips->GoToFirstCell(); !strips->IsDoneWithTraversal(); strips->GoToNextCell())
+  {
+    if (stopped())
+    {
+      return false;
+    }
+    strips->GetCurrentCell(n, ids);
+    for (vtkIdType k = 2; k < n; ++k)
+    {
+      // Every other triangle of a strip is wound the other way round.
+      if (k % 2 == 0)
+      {
+        f(ids[k - 2], ids[k - 1], ids[k]);
+      }
+      else
+      {
+        f(ids[k - 1], ids[k - 2], ids[k]);
+      }
+    }
+  }
+  return true;
+}
+
+bool trianglesOf(vtkPolyData* data, std::vector<glm::dvec3>& positions,
+  std::vector<std::array<std::int64_t, 3>>& triangles, const std::atomic<bool>* stop = nullptr)
+{
+  // (Cell iterators and GetPoint into a buffer: safe beside the main thread's own reading.)
+  vtkPoints* points = data->GetPoints();
+  if (!points || points->GetNumberOfPoints() == 0)
+  {
+    return false;
+  }
+  positions.resize(static_cast<size_t>(points->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    points->GetPoint(i, p);
+    positions[static_cast<size_t>(i)] = glm::dvec3(p[0], p[1], p[2]);
+  }
+  triangles.clear();
+  return forEachTriangle(
+    data,
+    [&triangles](vtkIdType a, vtkIdType b, vtkIdType c) {
+      triangles.push_back({ a, b, c });
+    },
+    stop);
+}
+} // namespace
+
+std::shared_ptr<csmPreparedBlocks> csmPrepareBlocks(
+  vtkPolyData* data, std::size_t perBlock, const std::atomic<bool>* stop)
+{
+  auto result = std::make_shared<csmPreparedBlocks>();
+  vtkPoints* points = data->GetPoints();
+  const vtkIdType pointCount = points ? points->GetNumberOfPoints() : 0;
+  result->Points = pointCount;
+  if (pointCount == 0 ||
+    pointCount > static_cast<vtkIdType>(std::numeric_limits<std::uint32_t>::max()))
+  {
+    return result;
+  }
+  std::vector<std::uint32_t> corners;
+  std::vector<glm::vec3> centroids;
+  corners.reserve(3 * static_cast<size_t>(csmTriangleCount(data)));
+  centroids.reserve(static_cast<size_t>(csmTriangleCount(data)));
+  bool valid = true;
+  valid = forEachTriangle(
+            data,
+            [&](vtkIdType a, vtkIdType b, vtkIdType c)
+            {
+              if (a < 0 || b < 0 || c < 0 || a >= pointCount || b >= pointCount || c >= pointCount)
+              {
+                valid = false;
+                return;
+              }
+              if (a == b || b == c || c == a)
+              {
+                return; // covers no texel
+              }
+              double pa[3], pb[3], pc[3];
+              points->GetPoint(a, pa);
+              points->GetPoint(b, pb);
+              points->GetPoint(c, pc);
+              corners.insert(corners.end(),
+                { static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b),
+                  static_cast<std::uint32_t>(c) });
+              centroids.emplace_back(static_cast<float>((pa[0] + pb[0] + pc[0]) / 3.0),
+                static_cast<float>((pa[1] + pb[1] + pc[1]) / 3.0),
+                static_cast<float>((pa[2] + pb[2] + pc[2]) / 3.0));
+            },
+            stop) &&
+    valid;
+  if (!valid || centroids.empty())
+  {
+    return result;
+  }
+  csm::BlockOrder order = csm::orderIntoBlocks(centroids, perBlock);
+  std::vector<glm::vec3>().swap(centroids);
+  if (order.blocks.empty() || (stop && stop->load()))
+  {
+    return result;
+  }
+  result->Corners.resize(corners.size());
+  for (size_t i = 0; i < order.order.size(); ++i)
+  {
+    std::copy_n(corners.begin() + 3 * static_cast<std::ptrdiff_t>(order.order[i]), 3,
+      result->Corners.begin() + 3 * static_cast<std::ptrdiff_t>(i));
+  }
+  std::vector<std::uint32_t>().swap(corners);
+  std::vector<std::uint32_t>().swap(order.order);
+  result->Blocks = std::move(order.blocks);
+  for (const auto& [first, count] : result->Blocks)
+  {
+    std::array<double, 6> box = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX,
+      VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    for (size_t i = 3 * first; i < 3 * (first + count); ++i)
+    {
+      double p[3];
+      points->GetPoint(result->Corners[i], p);
+      for (int k = 0; k < 3; ++k)
+      {
+        box[2 * k] = std::min(box[2 * k], p[k]);
+        box[2 * k + 1] = std::max(box[2 * k + 1], p[k]);
+      }
+    }
+    result->Bounds.push_back(box);
+  }
+  return result;
+}
+
+csm::SurfaceClosure csmClassifyPolyData(vtkPolyData* data, const std::atomic<bool>* stop)
+{
+  std::vector<glm::dvec3> positions;
+  std::vector<std::array<std::int64_t, 3>> triangles;
+  return trianglesOf(data, positions, triangles, stop) ? csm::classifySurface(positions, triangles)
+                                                       : csm::SurfaceClosure();
+}

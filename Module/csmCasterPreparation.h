@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// What the caster collection's worker threads do with a big mesh (internal): its copy of the
+// mesh's arrays, made on the rendering thread, and from that copy its compact blocks and its
+// closed-surface classification. The functions read only the polydata they are given.
+#ifndef csmCasterPreparation_h
+#define csmCasterPreparation_h
+
+#include "csmClosedSurface.h" // for csm::SurfaceClosure
+
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+class vtkCellArray;
+class vtkDataArray;
+class vtkPolyData;
+
+/// A big caster's triangles in compact blocks (csm::orderIntoBlocks), for
+/// vtkCascadedShadowBlockMapper: the corners block after block, each block's triangles and its
+/// box in the data's coordinates. Empty where the mesh has no usable triangle.
+struct csmPreparedBlocks
+{
+  vtkIdType Points = 0; ///< of the data the corners index
+  std::vector<std::uint32_t> Corners;
+  std::vector<std::pair<std::size_t, std::size_t>> Blocks;
+  std::vector<std::array<double, 6>> Bounds;
+};
+
+/// A big caster's closed-surface classification.
+struct csmPreparedClosure
+{
+  csm::SurfaceClosure Closure;
+};
+
+/// A copy of an array of the same type, or of a cell array, copied as memory on this thread
+/// (vtkDataArray::DeepCopy may copy on VTK's SMP threads, which a worker's reads would then race
+/// with in the eyes of a thread sanitizer).
+vtkSmartPointer<vtkDataArray> csmOwnCopy(vtkDataArray* source);
+vtkSmartPointer<vtkCellArray> csmOwnCopy(vtkCellArray* source);
+
+/// Triangles of a polydata (polygons as fans, strips) without traversing them.
+double csmTriangleCount(vtkPolyData* data);
+
+/// The polydata's triangles in blocks of at least perBlock triangles; stops early (an empty
+/// result) once `stop` is set.
+std::shared_ptr<csmPreparedBlocks> csmPrepareBlocks(
+  vtkPolyData* data, std::size_t perBlock, const std::atomic<bool>* stop);
+
+/// csm::classifySurface of a polydata (open where it stopped early, once `stop` is set).
+csm::SurfaceClosure csmClassifyPolyData(vtkPolyData* data, const std::atomic<bool>* stop);
+
+#endif

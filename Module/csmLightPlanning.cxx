@@ -1,0 +1,401 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "csmLightPlanning.h"
+
+#include "csmAtlas.h" // csm::assignTiles, csm::kAtlasFullMaps
+#include "csmBakerState.h"
+#include "csmCasterCollection.h"
+#include "csmMapDrawing.h"
+#include "csmProps.h"
+#include "csmReuse.h"
+#include "csmVTKMath.h"
+
+#include "vtkCamera.h"
+#include "vtkCascadedShadowMapPlanner.h"
+#include "vtkCommunicator.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+using namespace vtkCascadedShadows; // LightMaps, CascadeMap, MapKind, MapAction, LightKind
+
+namespace
+{
+constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES;
+// Border a kept map must have around the new body, in texels: none, as a freshly planned map,
+// fitted to the body, has none either (the lookup clamps its taps to the map).
+constexpr double kReuseMarginTexels = 0.0;
+
+/// A light's maps before they are planned: the light as they are rendered for.
+vtkCascadedShadows::LightMaps lightMapsOf(vtkLight* light, int index)
+{
+  vtkCascadedShadows::LightMaps maps;
+  maps.Light = light;
+  maps.LightIndex = index;
+  maps.Kind = light->GetPositional() ? vtkCascadedShadows::LightKind::Spot
+                                     : vtkCascadedShadows::LightKind::Directional;
+  light->GetTransformedPosition(maps.Position);
+  light->GetTransformedFocalPoint(maps.FocalPoint);
+  maps.ConeAngle = light->GetPositional() ? light->GetConeAngle() : 0.0;
+  return maps;
+}
+}
+
+csmLightPlanning::csmLightPlanning(vtkCascadedShadowMapPlanner* planner,
+  const BakerOptions& options, vtkMultiProcessController* controller, FrameStatistics& statistics,
+  Reporter report)
+  : Planner(planner)
+  , Options(options)
+  , Controller(controller)
+  , Statistics(statistics)
+  , Report(std::move(report))
+{
+}
+
+bool csmLightPlanning::Distributed() const
+{
+  return this->Controller && this->Controller->GetNumberOfProcesses() > 1;
+}
+
+int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
+  csmRendererMaps& state, const csmFrameCasters& props, int maximumLights,
+  std::vector<LightMaps>& planned)
+{
+  props.FeedPlanner(this->Planner);
+  // Plan every shadowed light for this frame, and decide per cascade whether the map kept from
+  // an earlier frame still serves (only the camera moved, it covers, its error is bounded).
+  // While the user interacts (VTK's convention: the interactor raises the window's desired
+  // update rate), maps get a border and may be kept within MapReuseTolerance; a still frame
+  // keeps a map while its error at this view meets what a fresh map would (MapSlack).
+  csmFramePlan frame;
+  frame.Interacting = csmIsInteracting(window);
+  frame.Border = frame.Interacting ? this->Options.InteractiveMapBorder : 0.0;
+  // (The tolerance is against a fresh map with the same border, whose error is 1 + 2 border
+  // times a tight one's.)
+  frame.Tolerance = this->Options.MapReuseTolerance * (1.0 + 2.0 * frame.Border);
+  // Tubes, spheres, wide lines and big points are drawn into the maps as wide as the main view
+  // draws them: a still frame keeps such a map only for the view it was sized for.
+  frame.ScreenSized = props.ScreenSized;
+  // Kept maps move with the view where the GL copies between images (GL 4.3) and one process
+  // draws the maps (each would move its own).
+  frame.MoveMaps =
+    this->Options.MoveKeptMaps && (GLEW_VERSION_4_3 || GLEW_ARB_copy_image) && !this->Distributed();
+  // Resolution from need (ErrorTarget), up to the ceiling of this kind of frame; more cascades
+  // than fill the atlas with full maps only in a still frame (each is a caster pass; they
+  // refine the error where four full maps cannot reach ErrorTarget).
+  frame.Ceiling = frame.Interacting
+    ? std::min(this->Options.InteractiveResolution, this->Options.Resolution)
+    : this->Options.Resolution;
+  frame.MostCascades = frame.Interacting ? csm::kAtlasFullMaps : 0;
+  frame.ImageHeight = renderer->GetSize()[1];
+  frame.Aspect = renderer->GetTiledAspectRatio();
+  frame.Changed = props.Changed;
+  csmMapDrawing::MainView(renderer, renderer->GetActiveCamera(), frame.ViewKey);
+  this->FeedVisibleDepths(renderer, window, state, props);
+  int shadowingLights = 0;
+  int lightIndex = 0;
+  vtkCollectionSimpleIterator lit;
+  renderer->GetLights()->InitTraversal(lit);
+  while (vtkLight* light = renderer->GetLights()->GetNextLight(lit))
+  {
+    if (!light->GetSwitch())
+    {
+      continue; // the mapper numbers switched-on lights only
+    }
+    const int index = lightIndex++;
+    if (!csmLightCastsShadows(light) || ++shadowingLights > maximumLights)
+    {
+      continue;
+    }
+    this->PlanLight(renderer, state, props, frame, light, index, planned);
+  }
+  if (!state.LastCamera)
+  {
+    state.LastCamera = vtkSmartPointer<vtkCamera>::New();
+  }
+  state.LastCamera->DeepCopy(renderer->GetActiveCamera());
+  if (this->Distributed())
+  {
+    this->DrawWhereAnyProcessDraws(planned);
+  }
+  // Textures only for the lights that cast shadows now.
+  for (size_t i = planned.size(); i < state.AtlasPool.size(); ++i)
+  {
+    state.AtlasPool[i]->ReleaseGraphicsResources(window);
+  }
+  state.AtlasPool.resize(planned.size());
+  return shadowingLights;
+}
+
+void csmLightPlanning::PlanLight(vtkRenderer* renderer, csmRendererMaps& state,
+  const csmFrameCasters& props, const csmFramePlan& frame, vtkLight* light, int index,
+  std::vector<LightMaps>& planned)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const size_t slot = planned.size();
+  LightMaps maps = lightMapsOf(light, index);
+  const int count = std::min(kMaxCascades,
+    this->Planner->Plan(camera, frame.Aspect, light, props.SceneBounds, frame.ImageHeight,
+      frame.Ceiling, frame.MostCascades));
+  this->Statistics.VisibleDepthsUsed =
+    this->Statistics.VisibleDepthsUsed || this->Planner->GetVisibleDepthsUsed();
+  this->Statistics.VisibleFootprintUsed =
+    this->Statistics.VisibleFootprintUsed || this->Planner->GetVisibleFootprintUsed();
+  if (this->Planner->GetAtlasShrunk())
+  {
+    this->Report(false,
+      "Shadow map tiles of " + std::to_string(this->Options.Resolution) +
+        " texels exceed the GL's texture size limit; the tiles are smaller");
+  }
+  this->Planner->GetAtlasSize(maps.AtlasSize);
+  maps.Cascades.resize(static_cast<size_t>(std::max(count, 0)));
+  const MapKind followKind = this->PlannedMapKind(light);
+  // The maps kept from the last frame (only the camera moved: the light, the scene, the options
+  // and the atlas are the same). (Face partitions and camera space maps are re-rendered every
+  // frame: their error is not measured along the cascades' map axes.)
+  const LightMaps* kept = !frame.Changed && this->Planner->GetDepthClamp() &&
+      followKind == MapKind::FollowsView && slot < state.Maps.size() &&
+      state.Maps[slot].Light == light && sameLightGeometry(state.Maps[slot], maps) &&
+      std::equal(state.Maps[slot].AtlasSize, state.Maps[slot].AtlasSize + 2, maps.AtlasSize)
+    ? &state.Maps[slot]
+    : nullptr;
+  // Slack pays only where the next frames can keep the map: a still frame of a camera on a
+  // smooth path, the light and scene unchanged (a camera light moves with the camera).
+  const bool smoothPath = !frame.Interacting && kept && count > 0;
+  std::vector<csm::TexelRect> tiles(static_cast<size_t>(std::max(count, 0)));
+  std::vector<csmCascadeNeed> needs(tiles.size());
+  std::vector<int> order; // the scene-fitted cascades first: they cost most to draw again
+  for (int c = 0; c < count; ++c)
+  {
+    CascadeMap& map = maps.Cascades[c];
+    map.Kind = this->Planner->GetCascadeSceneFitted(c) ? MapKind::SceneFitted : followKind;
+    this->PlanCascade(frame, camera, state, c, smoothPath, map, needs[c]);
+    std::copy(map.Tile, map.Tile + 4, tiles[c].begin());
+    order.insert(map.IsSceneFitted() ? order.begin() : order.end(), c);
+  }
+  // The kept maps where they serve, also across a change of the count (then in the tile they
+  // are in), except with several processes (each would choose its own tiles).
+  std::vector<csm::TexelRect> keptTiles;
+  for (int k = 0; kept && k < kept->GetNumberOfCascades(); ++k)
+  {
+    const int* tile = kept->Cascades[k].Tile;
+    keptTiles.push_back({ tile[0], tile[1], tile[2], tile[3] });
+  }
+  // (What serves for cascade c: kept map k as it was, or moved with the view.)
+  std::map<std::pair<int, int>, CascadeMap> serving;
+  const csm::TileAssignment assigned = csm::assignTiles(
+    tiles, keptTiles,
+    [&](int c, int k)
+    {
+      CascadeMap candidate;
+      if (!this->KeptMapServes(frame, c, needs[c], maps.Cascades[c], kept->Cascades[k], candidate))
+      {
+        return false;
+      }
+      serving[{ c, k }] = candidate;
+      return true;
+    },
+    order, !this->Distributed());
+  for (int c = 0; c < count; ++c)
+  {
+    CascadeMap& map = maps.Cascades[c];
+    std::copy(assigned.tile[c].begin(), assigned.tile[c].end(), map.Tile);
+    map.Action = MapAction::Draw;
+    if (assigned.kept[c] >= 0)
+    {
+      const CascadeMap& old = serving.at({ c, assigned.kept[c] });
+      std::copy(old.WorldToMap, old.WorldToMap + 16, map.WorldToMap);
+      std::copy(old.CasterView, old.CasterView + 18, map.CasterView);
+      std::copy(old.Resolution, old.Resolution + 2, map.Resolution);
+      std::copy(old.Moved, old.Moved + 2, map.Moved);
+      map.Action = map.IsMoved() ? MapAction::Move : MapAction::Keep;
+    }
+  }
+  if (count > 0)
+  {
+    maps.SplitNear = this->Planner->GetCascadeNear(0);
+  }
+  if (state.AtlasPool.size() <= slot)
+  {
+    state.AtlasPool.push_back(vtkSmartPointer<vtkTextureObject>::New());
+  }
+  maps.Atlas = state.AtlasPool[slot];
+  planned.push_back(std::move(maps));
+}
+
+MapKind csmLightPlanning::PlannedMapKind(vtkLight* light) const
+{
+#if CSM_COMPARISON_TECHNIQUES
+  if (!light->GetPositional() && this->Planner->GetCascadesSelectedByPlanes())
+  {
+    return MapKind::FacePartition;
+  }
+  return this->Planner->GetCameraSpace() ? MapKind::CameraSpace : MapKind::FollowsView;
+#else
+  (void)light;
+  return MapKind::FollowsView;
+#endif
+}
+
+void csmLightPlanning::PlanCascade(const csmFramePlan& frame, vtkCamera* camera,
+  const csmRendererMaps& state, int c, bool smoothPath, CascadeMap& map, csmCascadeNeed& need)
+{
+  // The map this cascade needs (ErrorTarget) in its tile of the planned atlas.
+  this->Planner->GetCascadeTile(c, map.Tile);
+  int ceiling[2];
+  this->Planner->GetCascadeResolutionCeiling(c, ceiling);
+  this->Planner->GetCascadeResolution(
+    c, frame.ImageHeight, vtkCascadedShadows::ResolutionStep, ceiling, map.Resolution);
+  need.Texels[0] = map.Resolution[0];
+  need.Texels[1] = map.Resolution[1];
+  this->Planner->GetCascadeResolution(c, frame.ImageHeight, 1, ceiling, need.TargetTexels);
+  need.TargetOutOfReach =
+    this->Planner->GetCascadeErrorTargetOutOfReach(c, frame.ImageHeight, ceiling);
+  const csm::MapSize most(ceiling[0], ceiling[1]);
+  // A still frame's map that follows the view gets slack (a border and more texels), so that
+  // the next frames of a camera that moves a little keep it while it meets what a fresh map
+  // would (csm::slackedMap, csm::keptMapServes). Not for screen-sized casters, whose maps serve
+  // only the view they were sized for. (Judged per cascade: a step that moves a near cascade's
+  // small body out of any border may leave a far one's well inside.)
+  double border = frame.Border;
+  if (smoothPath && !frame.ScreenSized && map.Kind == MapKind::FollowsView &&
+    csmIsSmallCameraStep(state.LastCamera, camera, frame.Aspect, this->Planner->GetCascadeFar(c)))
+  {
+    const csm::SlackedMap slacked =
+      csm::slackedMap(csm::MapSize(need.Texels[0], need.Texels[1]), most, this->Options.MapSlack);
+    border = slacked.border;
+    map.Resolution[0] = slacked.size.width;
+    map.Resolution[1] = slacked.size.height;
+  }
+  for (int axis = 0; axis < 2; ++axis)
+  {
+    map.Resolution[axis] = std::max(1, std::min(map.Resolution[axis], map.Tile[2 + axis]));
+  }
+  map.Turned = this->Planner->GetCascadeMapTurned(c);
+  vtkNew<vtkMatrix4x4> m;
+  this->Planner->GetCascadeMatrix(c, m, border, map.Resolution);
+  std::copy(m->GetData(), m->GetData() + 16, map.WorldToMap);
+  map.SplitFar = this->Planner->GetCascadeFar(c);
+#if CSM_COMPARISON_TECHNIQUES
+  this->Planner->GetCascadePlanes(c, map.Planes);
+  map.DepthW = this->Planner->GetCascadeDepthW(c);
+#endif
+}
+
+bool csmLightPlanning::KeptMapServes(const csmFramePlan& frame, int c, const csmCascadeNeed& need,
+  const CascadeMap& map, const CascadeMap& old, CascadeMap& moved)
+{
+  // A kept map serves if it has the texels this view needs (or all its tile holds, where the
+  // GL's texture size limit made the tiles smaller than Resolution): while the user interacts,
+  // within MapReuseTolerance of a fresh map with the same border; in a still frame, where its
+  // error at this view meets ErrorTarget (what a fresh map of the fewest texels that meet it
+  // meets; fresh maps get whole vtkCascadedShadows::ResolutionSteps more), or comes within the
+  // cascade count's hysteresis of a fresh map where no map meets ErrorTarget (csm::keptMapServes).
+  // (Turned the same way: the error ratio compares the maps at equal resolution.) (Of the same
+  // kind; its tile is assignTiles' to choose.)
+  if ((!frame.Interacting && frame.ScreenSized &&
+        !std::equal(frame.ViewKey, frame.ViewKey + 18, old.CasterView)) ||
+    old.Turned != map.Turned || old.Kind != map.Kind)
+  {
+    return false;
+  }
+  auto serves = [&](const double* worldToMap)
+  {
+    const double ratio = this->Planner->CompareKeptMap(
+      c, worldToMap, kReuseMarginTexels, std::min(old.Resolution[0], old.Resolution[1]));
+    if (frame.Interacting)
+    {
+      return old.Resolution[0] >= std::min(map.Resolution[0], map.Tile[2]) &&
+        old.Resolution[1] >= std::min(map.Resolution[1], map.Tile[3]) && ratio <= frame.Tolerance;
+    }
+    const csm::MapSize keptSize(old.Resolution[0], old.Resolution[1]);
+    const csm::MapSize tight(
+      std::min(need.TargetTexels[0], map.Tile[2]), std::min(need.TargetTexels[1], map.Tile[3]));
+    if (c >= 0 && c < kMaxCascades)
+    {
+      double& least = this->Statistics.KeptError[c];
+      const double error = csm::keptMapError(ratio, keptSize, tight);
+      least = least == 0.0 ? error : std::min(least, error);
+    }
+    return csm::keptMapServes(ratio, keptSize, tight, need.TargetOutOfReach);
+  };
+  moved = old;
+  moved.Moved[0] = moved.Moved[1] = 0;
+  if (serves(old.WorldToMap))
+  {
+    return true;
+  }
+  // Where it no longer serves as it is, the map moved with the view by whole texels (its
+  // content shifted, the strips that came in drawn): judged at this view like any kept map.
+  // (Not a map of screen-sized casters, sized for one view only.)
+  return frame.MoveMaps && !frame.ScreenSized && old.Kind == MapKind::FollowsView &&
+    this->Planner->PanKeptMap(c, old.WorldToMap, old.Resolution, moved.WorldToMap, moved.Moved) &&
+    serves(moved.WorldToMap);
+}
+
+void csmLightPlanning::FeedVisibleDepths(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
+  csmRendererMaps& state, const csmFrameCasters& props)
+{
+  // The visible depths of this view (VisibleDepthFit; MeasureVisibleDepths).
+  if (this->Options.VisibleDepthFit && !this->Distributed() && state.VisibleCamera)
+  {
+    this->Planner->SetVisibleDepths(
+      state.VisibleCamera, state.VisibleAspect, state.VisibleWindow[0], state.VisibleWindow[1]);
+    // Where on the image (VisibleFootprintFit): the depth pass draws the casters, so not where
+    // a receiver without opaque geometry may lie outside it; and its pixels are the camera's
+    // whole image only for an on-axis camera drawn in one tile (not a magnified screenshot's
+    // tiles, not an off-axis or shifted projection).
+    vtkCamera* camera = renderer->GetActiveCamera();
+    const double* tile = window->GetTileViewport();
+    const double* centre = camera->GetWindowCenter();
+    const bool wholeImage = window->GetTileScale()[0] == 1 && window->GetTileScale()[1] == 1 &&
+      tile[0] == 0.0 && tile[1] == 0.0 && tile[2] == 1.0 && tile[3] == 1.0 && centre[0] == 0.0 &&
+      centre[1] == 0.0 && !camera->GetUseOffAxisProjection() &&
+      !camera->GetUseExplicitProjectionTransformMatrix();
+    this->Planner->SetVisibleFootprint(
+      this->Options.VisibleFootprintFit && !props.TranslucentReceivers && wholeImage
+        ? &state.VisibleFootprint
+        : nullptr);
+  }
+  else
+  {
+    this->Planner->ClearVisibleDepths();
+  }
+}
+
+void csmLightPlanning::DrawWhereAnyProcessDraws(std::vector<LightMaps>& planned)
+{
+  // One process's draw is every process's: the maps are combined across them. (Kept maps do
+  // not move with several processes.)
+  std::vector<int> draw(kMaxCascades * planned.size(), 0), any(draw.size(), 0);
+  for (size_t slot = 0; slot < planned.size(); ++slot)
+  {
+    for (int c = 0; c < planned[slot].GetNumberOfCascades(); ++c)
+    {
+      draw[kMaxCascades * slot + c] = planned[slot].Cascades[c].Action != MapAction::Keep ? 1 : 0;
+    }
+  }
+  this->Controller->AllReduce(
+    draw.data(), any.data(), static_cast<vtkIdType>(draw.size()), vtkCommunicator::MAX_OP);
+  for (size_t slot = 0; slot < planned.size(); ++slot)
+  {
+    for (int c = 0; c < planned[slot].GetNumberOfCascades(); ++c)
+    {
+      if (any[kMaxCascades * slot + c] != 0)
+      {
+        planned[slot].Cascades[c].Action = MapAction::Draw;
+      }
+    }
+  }
+}

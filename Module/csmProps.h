@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// What the module's parts read of VTK's props and windows alike (internal): how wide VTK draws
+// a prop's lines and points, and whether the user is dragging.
+#ifndef csmProps_h
+#define csmProps_h
+
+#include "vtkRenderingCascadedShadowsModule.h" // for export macro
+
+class vtkLight;
+class vtkProp;
+class vtkRenderWindow;
+
+/// The line width and point size VTK draws a prop with, in pixels (1 where not finite).
+VTKRENDERINGCASCADEDSHADOWS_EXPORT void csmScreenSizes(vtkProp* prop, float sizes[2]);
+
+/// Does VTK shadow this light? Scene and camera lights that are on, directional or spot with
+/// cone angle < 90 degrees (vtkShadowMapBakerPass's rule), with ShadowAttenuation above 0.
+bool csmLightCastsShadows(vtkLight* light);
+
+/// Is the user dragging? (The window's desired update rate is at least 1 a second, VTK's
+/// interactor convention.)
+bool csmIsInteracting(vtkRenderWindow* window);
+
+#endif

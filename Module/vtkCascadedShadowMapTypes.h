@@ -1,0 +1,141 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * The maps a frame makes, as the baker draws them and the shadow pass reads them, and what the
+ * frame did (vtkCascadedShadowMapBakerPass names them LightMaps, CascadeMap, LightKind, MapKind
+ * and FrameStatistics). The bottom of the module: it includes none of the module's classes, and
+ * the baker, the shadow pass and the module's helpers include it.
+ */
+#ifndef vtkCascadedShadowMapTypes_h
+#define vtkCascadedShadowMapTypes_h
+
+#include "vtkCascadedShadowsConfigure.h" // for CSM_COMPARISON_TECHNIQUES
+#include "vtkSmartPointer.h"             // for LightMaps::Atlas
+
+#include <vector> // for LightMaps::Cascades
+
+class vtkLight;
+class vtkTextureObject;
+
+namespace vtkCascadedShadows
+{
+/// The most cascades a light gets (the shaders hold them in uniform arrays).
+constexpr int MaximumCascades = 8;
+
+/// Map sizes from the error target are multiples of it (texels).
+constexpr int ResolutionStep = 64;
+
+/// Compact casters (vtkCascadedShadowMapBakerPass::CompactCasters): at least
+/// MinimumBlockTriangles a block, at most MaximumBlocks a prop; meshes of more than
+/// SynchronousPreparationTriangles are prepared by a worker thread; beyond
+/// MostClassifiedTriangles none is classified as closed.
+constexpr int MinimumBlockTriangles = 16384;
+constexpr int MaximumBlocks = 64;
+constexpr int SynchronousPreparationTriangles = 262144;
+constexpr int MostClassifiedTriangles = 4194304;
+
+enum class LightKind
+{
+  Directional, ///< cascades along the view (z-partitions), or a scene-fitted map
+  Spot         ///< one perspective map fitted to the lit part of the visible scene
+};
+
+enum class MapKind
+{
+  FollowsView, ///< planned for the view: rendered again when it does not serve the view
+  SceneFitted, ///< fixed in the world: kept while the scene and the light stay
+#if CSM_COMPARISON_TECHNIQUES
+  FacePartition, ///< a face partition, selected by its planes (comparison technique)
+  CameraSpace    ///< a camera space map (comparison technique)
+#endif
+};
+
+/// What a frame does with a cascade's map.
+enum class MapAction
+{
+  Keep, ///< the map of an earlier frame serves as it is
+  Move, ///< the map of an earlier frame, moved with the view: its texels shifted, strips drawn
+  Draw  ///< drawn whole
+};
+
+/// One cascade's map, as the shadow pass reads it.
+struct CascadeMap
+{
+  MapKind Kind = MapKind::FollowsView;
+  MapAction Action = MapAction::Draw; ///< what this frame does with it
+  double WorldToMap[16] = {};         ///< world -> light clip, row-major
+  double SplitFar = 0.0;              ///< view depth where the cascade ends
+  int Tile[4] = {};                   ///< its tile in the atlas, texels: x, y, width, height
+  int Resolution[2] = {};             ///< texels of its map, in the lower left of its tile
+  bool Turned = false;                ///< turned a quarter to its tile (csm::orientToTile)
+  double CasterView[18] = {};         ///< the view its screen-sized casters were sized for
+  /// Texels its window moved along s and t in this frame's render, the rest of the earlier map
+  /// kept (a map that follows the view, moved with it: csm::panKeptMap); 0, 0: drawn whole or
+  /// kept as it was.
+  int Moved[2] = {};
+#if CSM_COMPARISON_TECHNIQUES
+  double Planes[16] = {}; ///< a face partition's 4 world half-spaces
+  double DepthW = 0.0;    ///< a camera space map's smallest w (0: none)
+#endif
+  bool IsSceneFitted() const
+  {
+    return this->Kind == MapKind::SceneFitted;
+  }
+  bool IsMoved() const
+  {
+    return this->Moved[0] != 0 || this->Moved[1] != 0;
+  }
+};
+
+/// The maps of one shadowed light, as the shadow pass reads them.
+struct LightMaps
+{
+  vtkLight* Light = nullptr;
+  int LightIndex = -1; ///< index among the renderer's switched-on lights
+  LightKind Kind = LightKind::Directional;
+  double Position[3] = { 0, 0, 0 };   ///< transformed, as the maps were rendered for
+  double FocalPoint[3] = { 0, 0, 0 }; ///< transformed, likewise
+  double ConeAngle = 0.0;             ///< a spot light's (0 for a directional light)
+  double SplitNear = 0.0;             ///< view depth where the first cascade begins
+  std::vector<CascadeMap> Cascades;   ///< none: nothing to shadow this frame
+  int AtlasSize[2] = { 0, 0 };        ///< texels of the atlas texture
+  vtkSmartPointer<vtkTextureObject> Atlas;
+
+  int GetNumberOfCascades() const { return static_cast<int>(this->Cascades.size()); }
+#if CSM_COMPARISON_TECHNIQUES
+  bool SelectedByPlanes() const
+  {
+    return !this->Cascades.empty() && this->Cascades[0].Kind == MapKind::FacePartition;
+  }
+#endif
+};
+
+/// What the last frame did, for tests and benchmarks (seconds only with MeasureTimes).
+struct FrameStatistics
+{
+  int CascadesRendered = 0, CascadesKept = 0;
+  int CascadesMoved = 0; ///< kept maps moved with the view (counted as kept; their strips drawn)
+  int PropsDrawn = 0;    ///< props (or block actors) drawn into maps
+  double TexelsRendered = 0.0, CellsDrawn = 0.0; ///< of the rendered maps
+  int ClosedCasters = 0;                         ///< drawn with their exit layer only
+  int CompactCasters = 0, BlocksDrawn = 0;       ///< casters from compact blocks, blocks drawn
+  int CastersWithoutReceivers = 0;               ///< casters (or blocks) left out of a map
+  bool VisibleDepthsUsed = false, VisibleDepthsMeasured = false; ///< measured in this frame
+  bool VisibleFootprintUsed = false; ///< a light's cascades were fitted to the footprint
+  /// Casters (or blocks) the visible-depth pass left out, small on the image for their
+  /// triangles: their boxes stand in for their samples (csm::boxStandIn).
+  int DepthPassStandIns = 0;
+  double PlanSeconds = 0.0, MapSeconds = 0.0, ClearSeconds = 0.0, CombineSeconds = 0.0;
+  double CascadeSeconds[MaximumCascades] = {};
+  /// Per cascade, in a frame that is not interactive: the least error of a map kept from the
+  /// last frame (as it was or moved) over the fresh map's that meets ErrorTarget
+  /// (csm::keptMapError; at most 1 serves, or 1 / csm::kCountHysteresis where no map meets the
+  /// target); 0 where no kept map was judged, +infinity where none covers the cascade.
+  double KeptError[MaximumCascades] = {};
+  double GetCascadeSeconds(int c) const
+  {
+    return c >= 0 && c < MaximumCascades ? this->CascadeSeconds[c] : 0.0;
+  }
+};
+} // namespace vtkCascadedShadows
+
+#endif
