@@ -33,6 +33,7 @@ struct csmRendererMaps
   /// Rows of a map in transit while it moves with the view (csmMapDrawing::MoveMap).
   vtkSmartPointer<vtkTextureObject> MoveBuffer;
   vtkMTimeType LastInputTime = 0;
+  std::vector<std::vector<double>> LastCasting; ///< each view prop's csmCastingState, in order
   int LastSize[2] = { 0, 0 };
   /// The visible depths last measured (VisibleDepthFit): the camera that measured them (null:
   /// none), its aspect and window depths.

@@ -2,11 +2,19 @@
 #include "csmProps.h"
 
 #include "vtkActor.h"
+#include "vtkCellArray.h"
+#include "vtkCompositePolyDataMapper2.h"
 #include "vtkLight.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 
 #include <cmath>
+#include <cstdint>
 
 namespace
 {
@@ -26,6 +34,55 @@ void csmScreenSizes(vtkProp* prop, float sizes[2])
     // vtkProperty's clamped setters let NaN through: such a prop is drawn one pixel wide here.
     sizes[i] = std::isfinite(sizes[i]) && sizes[i] >= 1.0f ? sizes[i] : 1.0f;
   }
+}
+
+std::vector<double> csmCastingState(vtkProp* prop)
+{
+  vtkActor* actor = vtkActor::SafeDownCast(prop);
+  vtkPolyDataMapper* mapper = actor ? vtkPolyDataMapper::SafeDownCast(actor->GetMapper()) : nullptr;
+  vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
+  if (!prop)
+  {
+    return {};
+  }
+  if (!data || vtkCompositePolyDataMapper2::SafeDownCast(mapper))
+  {
+    return { 0.0, static_cast<double>(prop->GetRedrawMTime()) };
+  }
+  auto time = [](vtkObject* object)
+  { return object ? static_cast<double>(object->GetMTime()) : -1.0; };
+  // (The actor's own time and its transform's: position, orientation, scale, user matrix,
+  // visibility, a new property or mapper; not its property's colours.)
+  std::vector<double> state = { 1.0, static_cast<double>(actor->vtkProp3D::GetMTime()),
+    static_cast<double>(reinterpret_cast<std::uintptr_t>(mapper)),
+    static_cast<double>(reinterpret_cast<std::uintptr_t>(data)), time(data->GetPoints()),
+    time(data->GetVerts()), time(data->GetLines()), time(data->GetPolys()), time(data->GetStrips()),
+    prop->HasOpaqueGeometry() ? 1.0 : 0.0,
+    static_cast<double>(mapper->GetNumberOfClippingPlanes()) };
+  if (vtkPlaneCollection* planes = mapper->GetClippingPlanes())
+  {
+    state.push_back(time(planes));
+    vtkCollectionSimpleIterator it;
+    planes->InitTraversal(it);
+    while (vtkPlane* plane = planes->GetNextPlane(it))
+    {
+      state.push_back(time(plane));
+    }
+  }
+  if (vtkProperty* property = actor->GetProperty())
+  {
+    state.insert(state.end(),
+      { static_cast<double>(property->GetRepresentation()), property->GetOpacity(),
+        property->GetLineWidth(), property->GetPointSize(),
+        property->GetBackfaceCulling() ? 1.0 : 0.0, property->GetFrontfaceCulling() ? 1.0 : 0.0,
+        property->GetRenderLinesAsTubes() ? 1.0 : 0.0,
+        property->GetRenderPointsAsSpheres() ? 1.0 : 0.0 });
+  }
+  for (double& value : state)
+  {
+    value = std::isfinite(value) ? value : -2.0; // (NaN would differ from itself every frame)
+  }
+  return state;
 }
 
 bool csmLightCastsShadows(vtkLight* light)

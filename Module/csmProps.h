@@ -6,12 +6,22 @@
 
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 
+#include <vector>
+
 class vtkLight;
 class vtkProp;
 class vtkRenderWindow;
 
 /// The line width and point size VTK draws a prop with, in pixels (1 where not finite).
 VTKRENDERINGCASCADEDSHADOWS_EXPORT void csmScreenSizes(vtkProp* prop, float sizes[2]);
+
+/// What a prop casts into a shadow map, as numbers that change when it does: where it is, its
+/// visibility, its data's points and cells, the representation, line width, point size and
+/// culling it is drawn with, its clipping planes, whether it is opaque. Colours, scalars,
+/// lookup tables, textures and lighting coefficients are not among them: they change no map.
+/// A prop other than a plain actor of polygonal data counts every change of its own and its
+/// mapper's (GetRedrawMTime).
+std::vector<double> csmCastingState(vtkProp* prop);
 
 /// Does VTK shadow this light? Scene and camera lights that are on, directional or spot with
 /// cone angle < 90 degrees (vtkShadowMapBakerPass's rule), with ShadowAttenuation above 0.

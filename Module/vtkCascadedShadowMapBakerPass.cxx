@@ -144,10 +144,12 @@ bool vtkCascadedShadowMapBakerPass::InputsChanged(vtkRenderer* renderer, csmRend
 {
   // Everything but the camera and the lights' geometry: a camera move is judged cascade by
   // cascade, a light's direction or position with its maps (Render()). Headlights and camera
-  // lights follow the camera, so their MTime changes with every camera move.
+  // lights follow the camera, so their MTime changes with every camera move. Of the props, only
+  // what they cast (csmCastingState): a new colour, scalars or material changes no map.
   vtkMTimeType input = std::max(this->GetMTime(), renderer->GetLights()->GetMTime());
   vtkPropCollection* props = renderer->GetViewProps();
   input = std::max(input, props->GetMTime());
+  std::vector<std::vector<double>> casting;
   vtkCollectionSimpleIterator pit;
   props->InitTraversal(pit);
   while (vtkProp* prop = props->GetNextProp(pit))
@@ -159,12 +161,13 @@ bool vtkCascadedShadowMapBakerPass::InputsChanged(vtkRenderer* renderer, csmRend
       vtkNew<vtkInformation> keys;
       prop->SetPropertyKeys(keys);
     }
-    input = std::max(input, prop->GetRedrawMTime());
+    casting.push_back(csmCastingState(prop));
   }
   int* size = renderer->GetSize();
-  const bool changed =
-    input > state.LastInputTime || size[0] != state.LastSize[0] || size[1] != state.LastSize[1];
+  const bool changed = input > state.LastInputTime || casting != state.LastCasting ||
+    size[0] != state.LastSize[0] || size[1] != state.LastSize[1];
   state.LastInputTime = input;
+  state.LastCasting = std::move(casting);
   state.LastSize[0] = size[0];
   state.LastSize[1] = size[1];
   return changed;

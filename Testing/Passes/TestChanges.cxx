@@ -1,0 +1,160 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Data that changes while the camera stays: a change of what a prop casts draws its light's maps
+// again; a change of colour, scalars, lookup table or material draws no texel, and the frame
+// equals a fresh chain's.
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkCascadedShadowMapPass.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkLookupTable.h"
+#include "vtkMapper.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+
+#include "csmTestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace
+{
+using csmTest::BoxOverPlane;
+using csmTest::DifferingValues;
+
+/// The box's polydata with a point scalar array "field" (0 everywhere).
+vtkPolyData* AddField(BoxOverPlane& scene)
+{
+  vtkMapper* mapper = scene.Box->GetMapper();
+  mapper->Update();
+  vtkPolyData* data = vtkPolyData::SafeDownCast(mapper->GetInputDataObject(0, 0));
+  vtkNew<vtkFloatArray> field;
+  field->SetName("field");
+  field->SetNumberOfTuples(data->GetNumberOfPoints());
+  field->Fill(0.0);
+  data->GetPointData()->SetScalars(field);
+  return data;
+}
+
+/// A fresh chain's frame of the same scene and view; the fresh chain stays on, its baker in
+/// `baker`, after a still frame of its own.
+vtkSmartPointer<vtkImageData> FreshFrame(BoxOverPlane& scene, vtkCascadedShadowMapBakerPass*& baker)
+{
+  vtkCascadedShadowMapPass::UseShadowsOff(scene.Renderer);
+  scene.Frame();
+  baker = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  auto image = scene.Frame();
+  scene.Frame();
+  return image;
+}
+} // namespace
+
+// Colours, scalars, lookup tables and material: every map kept, no texel drawn, the frame the
+// one a fresh chain draws.
+TEST(Changes, ColourScalarsAndMaterialDrawNoTexel)
+{
+  BoxOverPlane scene;
+  vtkPolyData* data = AddField(scene);
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  scene.Frame();
+  ASSERT_GT(baker->GetLastFrameStatistics().CascadesRendered, 0);
+  scene.Frame();
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, 0); // a still frame draws nothing
+  vtkNew<vtkLookupTable> table;
+  table->SetHueRange(0.0, 0.66);
+  const std::vector<std::pair<std::string, std::function<void()>>> changes = {
+    { "colour", [&]() { scene.Box->GetProperty()->SetColor(0.2, 0.8, 0.3); } },
+    { "specular", [&]() { scene.Box->GetProperty()->SetSpecular(0.7); } },
+    { "ambient and diffuse",
+      [&]()
+      {
+        scene.Ground->GetProperty()->SetAmbient(0.3);
+        scene.Ground->GetProperty()->SetDiffuse(0.6);
+      } },
+    { "scalars shown",
+      [&]()
+      {
+        scene.Box->GetMapper()->ScalarVisibilityOn();
+        scene.Box->GetMapper()->SetScalarRange(0.0, 1.0);
+      } },
+    { "scalars of a new time step",
+      [&]()
+      {
+        vtkFloatArray* field = vtkFloatArray::SafeDownCast(data->GetPointData()->GetScalars());
+        for (vtkIdType i = 0; i < field->GetNumberOfTuples(); ++i)
+        {
+          field->SetValue(i, static_cast<float>(i % 3) / 2.0f);
+        }
+        field->Modified();
+      } },
+    { "another field array",
+      [&]()
+      {
+        vtkNew<vtkFloatArray> other;
+        other->SetName("other");
+        other->SetNumberOfTuples(data->GetNumberOfPoints());
+        other->Fill(0.5);
+        data->GetPointData()->SetScalars(other);
+      } },
+    { "lookup table and range",
+      [&]()
+      {
+        scene.Box->GetMapper()->SetLookupTable(table);
+        scene.Box->GetMapper()->SetScalarRange(0.0, 0.5);
+      } },
+  };
+  for (const auto& [name, change] : changes)
+  {
+    change();
+    auto changed = scene.Frame();
+    const auto& statistics = baker->GetLastFrameStatistics();
+    EXPECT_EQ(statistics.CascadesRendered, 0) << name;
+    EXPECT_EQ(statistics.TexelsRendered, 0.0) << name;
+    EXPECT_GT(statistics.CascadesKept, 0) << name;
+    EXPECT_EQ(DifferingValues(FreshFrame(scene, baker), changed), 0) << name;
+  }
+}
+
+// What a prop casts: its place, its points, its representation, its opacity, its visibility:
+// each draws the maps again, and the frame is the one a fresh chain draws.
+TEST(Changes, WhatAPropCastsDrawsTheMapsAgain)
+{
+  BoxOverPlane scene;
+  vtkPolyData* data = AddField(scene);
+  const std::vector<std::pair<std::string, std::function<void()>>> changes = {
+    { "moved", [&]() { scene.Box->SetPosition(0.5, 0.0, 0.0); } },
+    { "points",
+      [&]()
+      {
+        double p[3];
+        data->GetPoint(0, p);
+        data->GetPoints()->SetPoint(0, p[0] - 0.5, p[1], p[2]);
+        data->GetPoints()->Modified();
+      } },
+    { "wireframe", [&]() { scene.Box->GetProperty()->SetRepresentationToWireframe(); } },
+    { "translucent", [&]() { scene.Box->GetProperty()->SetOpacity(0.5); } },
+    { "opaque again", [&]() { scene.Box->GetProperty()->SetOpacity(1.0); } },
+    { "hidden", [&]() { scene.Box->VisibilityOff(); } },
+  };
+  vtkCascadedShadowMapBakerPass* baker =
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  scene.Frame();
+  scene.Frame();
+  for (const auto& [name, change] : changes)
+  {
+    change();
+    auto changed = scene.Frame();
+    EXPECT_GT(baker->GetLastFrameStatistics().CascadesRendered, 0) << name;
+    EXPECT_EQ(DifferingValues(FreshFrame(scene, baker), changed), 0) << name;
+  }
+}
