@@ -16,10 +16,12 @@
 #include "vtkWeakPointer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
 class vtkOpenGLRenderWindow;
+class vtkProp;
 class vtkRenderer;
 
 /// The maps of one renderer and the GL objects (of its window's context) that hold them.
@@ -33,7 +35,9 @@ struct csmRendererMaps
   /// Rows of a map in transit while it moves with the view (csmMapDrawing::MoveMap).
   vtkSmartPointer<vtkTextureObject> MoveBuffer;
   vtkMTimeType LastInputTime = 0;
-  std::vector<std::vector<double>> LastCasting; ///< each view prop's csmCastingState, in order
+  std::vector<std::vector<double>> LastCasting;  ///< each view prop's csmCastingState, in order
+  std::vector<vtkProp*> LastProps;               ///< the view props, in order
+  std::vector<std::array<double, 6>> LastBounds; ///< their world boxes (empty: none shown)
   int LastSize[2] = { 0, 0 };
   /// The visible depths last measured (VisibleDepthFit): the camera that measured them (null:
   /// none), its aspect and window depths.
@@ -100,13 +104,14 @@ inline bool sameView(vtkCamera* a, vtkCamera* b, double aspect)
 struct csmFramePlan
 {
   bool Interacting = false;
-  bool Changed = true;      ///< every map must be rendered
-  bool ScreenSized = false; ///< some caster is drawn as wide as the main view draws it
-  bool MoveMaps = false;    ///< kept maps may move with the view (one process, GL copies images)
-  double Border = 0.0;      ///< of the maps while interacting (InteractiveMapBorder)
-  double Tolerance = 1.0;   ///< of a kept map's error while interacting
-  int Ceiling = 0;          ///< texels a side of the largest map that follows the view
-  int MostCascades = 0;     ///< this frame's (0: NumberOfCascades)
+  bool Changed = true;         ///< every map must be rendered
+  bool CastersChanged = false; ///< some casters changed (csmFrameCasters::Dirty)
+  bool ScreenSized = false;    ///< some caster is drawn as wide as the main view draws it
+  bool MoveMaps = false;       ///< kept maps may move with the view (one process, GL copies images)
+  double Border = 0.0;         ///< of the maps while interacting (InteractiveMapBorder)
+  double Tolerance = 1.0;      ///< of a kept map's error while interacting
+  int Ceiling = 0;             ///< texels a side of the largest map that follows the view
+  int MostCascades = 0;        ///< this frame's (0: NumberOfCascades)
   int ImageHeight = 0;
   double Aspect = 1.0;
   double ViewKey[18] = {}; ///< the main view (csmMapDrawing::MainView)

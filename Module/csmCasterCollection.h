@@ -38,6 +38,11 @@ struct csmFrameCasters
 {
   double SceneBounds[6] = { 1, -1, 1, -1, 1, -1 };
   bool Changed = true; ///< a prop, light, option or the window size changed: render every map
+  /// Else, the world boxes (before and after) of the casters whose shadow changed: a kept map
+  /// draws again only the texels they cover.
+  std::vector<std::array<double, 6>> Dirty;
+  /// Some caster's geometry or place changed (Changed, or Dirty not empty).
+  bool GeometryChanged = true;
   struct Caster
   {
     vtkProp* Prop = nullptr;      ///< a visible opaque prop, or an actor of a prop's blocks

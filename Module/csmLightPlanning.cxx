@@ -37,6 +37,41 @@ constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASC
 // fitted to the body, has none either (the lookup clamps its taps to the map).
 constexpr double kReuseMarginTexels = 0.0;
 
+/// Texels around a changed caster's image a kept map draws again (rasterization rounds a
+/// triangle's edge to the texel centres it covers, never beyond the next texel).
+constexpr int kPatchMarginTexels = 1;
+
+/// A kept map where casters changed (props.Dirty): the texels their boxes cover, drawn again
+/// (MapAction::Patch; a moved map draws them besides its strips); drawn whole where they cover
+/// as many texels as the map.
+void PatchChangedCasters(const csmFrameCasters& props, CascadeMap& map)
+{
+  map.Patches.clear();
+  const csm::MapSize size(map.Resolution[0], map.Resolution[1]);
+  const glm::dmat4 wsToClip = csmFromRowMajor(map.WorldToMap);
+  double texels = 0.0;
+  for (const std::array<double, 6>& box : props.Dirty)
+  {
+    const csm::TexelRect rect =
+      csm::boxTexels(wsToClip, csm::Bounds::fromMinMaxPairs(box.data()), size, kPatchMarginTexels);
+    if (rect[2] > 0 && rect[3] > 0)
+    {
+      map.Patches.push_back(rect);
+      texels += double(rect[2]) * double(rect[3]);
+    }
+  }
+  if (texels >= double(size.width) * double(size.height))
+  {
+    map.Patches.clear();
+    map.Action = MapAction::Draw;
+    map.Moved[0] = map.Moved[1] = 0;
+  }
+  else if (!map.Patches.empty() && map.Action == MapAction::Keep)
+  {
+    map.Action = MapAction::Patch;
+  }
+}
+
 /// A light's maps before they are planned: the light as they are rendered for.
 vtkCascadedShadows::LightMaps lightMapsOf(vtkLight* light, int index)
 {
@@ -101,6 +136,7 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
   frame.ImageHeight = renderer->GetSize()[1];
   frame.Aspect = renderer->GetTiledAspectRatio();
   frame.Changed = props.Changed;
+  frame.CastersChanged = !props.Dirty.empty();
   csmMapDrawing::MainView(renderer, renderer->GetActiveCamera(), frame.ViewKey);
   this->FeedVisibleDepths(renderer, window, state, props);
   int shadowingLights = 0;
@@ -220,6 +256,7 @@ void csmLightPlanning::PlanLight(vtkRenderer* renderer, csmRendererMaps& state,
       std::copy(old.Resolution, old.Resolution + 2, map.Resolution);
       std::copy(old.Moved, old.Moved + 2, map.Moved);
       map.Action = map.IsMoved() ? MapAction::Move : MapAction::Keep;
+      PatchChangedCasters(props, map);
     }
   }
   if (count > 0)
@@ -300,15 +337,22 @@ bool csmLightPlanning::KeptMapServes(const csmFramePlan& frame, int c, const csm
   // GL's texture size limit made the tiles smaller than Resolution): while the user interacts,
   // within MapReuseTolerance of a fresh map with the same border; in a still frame, where its
   // error at this view meets ErrorTarget (what a fresh map of the fewest texels that meet it
-  // meets; fresh maps get whole vtkCascadedShadows::ResolutionSteps more), or comes within the
-  // cascade count's hysteresis of a fresh map where no map meets ErrorTarget (csm::keptMapServes).
+  // meets; fresh maps get whole steps of ResolutionStep more), or comes within the cascade
+  // count's hysteresis of a fresh map where no map meets ErrorTarget (csm::keptMapServes).
   // (Turned the same way: the error ratio compares the maps at equal resolution.) (Of the same
-  // kind; its tile is assignTiles' to choose.)
+  // kind; its tile is assignTiles' to choose.) Where casters changed, only a map planned as it
+  // was serves, its changed texels drawn again: the frame is then the one a fresh map gives.
   if ((!frame.Interacting && frame.ScreenSized &&
         !std::equal(frame.ViewKey, frame.ViewKey + 18, old.CasterView)) ||
     old.Turned != map.Turned || old.Kind != map.Kind)
   {
     return false;
+  }
+  if (frame.CastersChanged)
+  {
+    moved = old;
+    return !old.IsMoved() && std::equal(old.WorldToMap, old.WorldToMap + 16, map.WorldToMap) &&
+      std::equal(old.Resolution, old.Resolution + 2, map.Resolution);
   }
   auto serves = [&](const double* worldToMap)
   {

@@ -5,6 +5,7 @@
 #include "vtkCellArray.h"
 #include "vtkCompositePolyDataMapper2.h"
 #include "vtkLight.h"
+#include "vtkMatrix4x4.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPoints.h"
@@ -47,18 +48,20 @@ std::vector<double> csmCastingState(vtkProp* prop)
   }
   if (!data || vtkCompositePolyDataMapper2::SafeDownCast(mapper))
   {
-    return { 0.0, static_cast<double>(prop->GetRedrawMTime()) };
+    return { static_cast<double>(prop->GetRedrawMTime()) };
   }
   auto time = [](vtkObject* object)
   { return object ? static_cast<double>(object->GetMTime()) : -1.0; };
-  // (The actor's own time and its transform's: position, orientation, scale, user matrix,
-  // visibility, a new property or mapper; not its property's colours.)
-  std::vector<double> state = { 1.0, static_cast<double>(actor->vtkProp3D::GetMTime()),
-    static_cast<double>(reinterpret_cast<std::uintptr_t>(mapper)),
-    static_cast<double>(reinterpret_cast<std::uintptr_t>(data)), time(data->GetPoints()),
-    time(data->GetVerts()), time(data->GetLines()), time(data->GetPolys()), time(data->GetStrips()),
-    prop->HasOpaqueGeometry() ? 1.0 : 0.0,
-    static_cast<double>(mapper->GetNumberOfClippingPlanes()) };
+  // (Its matrix: position, orientation, scale, origin, user matrix and transform.)
+  vtkMatrix4x4* matrix = actor->GetMatrix();
+  std::vector<double> state(matrix->GetData(), matrix->GetData() + 16);
+  state.insert(state.end(),
+    { static_cast<double>(actor->GetVisibility()),
+      static_cast<double>(reinterpret_cast<std::uintptr_t>(mapper)),
+      static_cast<double>(reinterpret_cast<std::uintptr_t>(data)), time(data->GetPoints()),
+      time(data->GetVerts()), time(data->GetLines()), time(data->GetPolys()),
+      time(data->GetStrips()), prop->HasOpaqueGeometry() ? 1.0 : 0.0,
+      static_cast<double>(mapper->GetNumberOfClippingPlanes()) });
   if (vtkPlaneCollection* planes = mapper->GetClippingPlanes())
   {
     state.push_back(time(planes));

@@ -140,16 +140,20 @@ vtkCascadedShadowMapBakerPass::GetLightMaps(vtkRenderer* renderer) const
   return none;
 }
 
-bool vtkCascadedShadowMapBakerPass::InputsChanged(vtkRenderer* renderer, csmRendererMaps& state)
+bool vtkCascadedShadowMapBakerPass::InputsChanged(
+  vtkRenderer* renderer, csmRendererMaps& state, std::vector<std::array<double, 6>>& dirty)
 {
   // Everything but the camera and the lights' geometry: a camera move is judged cascade by
   // cascade, a light's direction or position with its maps (Render()). Headlights and camera
   // lights follow the camera, so their MTime changes with every camera move. Of the props, only
-  // what they cast (csmCastingState): a new colour, scalars or material changes no map.
+  // what they cast (csmCastingState): a new colour, scalars or material changes no map, and
+  // where only some props' casting changed, their boxes before and after are the dirty part.
   vtkMTimeType input = std::max(this->GetMTime(), renderer->GetLights()->GetMTime());
   vtkPropCollection* props = renderer->GetViewProps();
   input = std::max(input, props->GetMTime());
   std::vector<std::vector<double>> casting;
+  std::vector<vtkProp*> list;
+  std::vector<std::array<double, 6>> boxes;
   vtkCollectionSimpleIterator pit;
   props->InitTraversal(pit);
   while (vtkProp* prop = props->GetNextProp(pit))
@@ -162,14 +166,43 @@ bool vtkCascadedShadowMapBakerPass::InputsChanged(vtkRenderer* renderer, csmRend
       prop->SetPropertyKeys(keys);
     }
     casting.push_back(csmCastingState(prop));
+    list.push_back(prop);
+    std::array<double, 6> box = { 1, -1, 1, -1, 1, -1 };
+    const double* b = prop->GetVisibility() && prop->GetUseBounds() ? prop->GetBounds() : nullptr;
+    if (b && b[0] <= b[1] && b[2] <= b[3] && b[4] <= b[5])
+    {
+      std::copy(b, b + 6, box.begin());
+    }
+    boxes.push_back(box);
   }
   int* size = renderer->GetSize();
-  const bool changed = input > state.LastInputTime || casting != state.LastCasting ||
+  bool changed = input > state.LastInputTime || list != state.LastProps ||
     size[0] != state.LastSize[0] || size[1] != state.LastSize[1];
+  dirty.clear();
+  for (size_t i = 0; !changed && i < casting.size(); ++i)
+  {
+    if (casting[i] == state.LastCasting[i])
+    {
+      continue;
+    }
+    for (const std::array<double, 6>& box : { state.LastBounds[i], boxes[i] })
+    {
+      if (box[0] <= box[1])
+      {
+        dirty.push_back(box);
+      }
+    }
+  }
   state.LastInputTime = input;
   state.LastCasting = std::move(casting);
+  state.LastProps = std::move(list);
+  state.LastBounds = std::move(boxes);
   state.LastSize[0] = size[0];
   state.LastSize[1] = size[1];
+  if (changed)
+  {
+    dirty.clear();
+  }
   return changed;
 }
 
@@ -330,7 +363,7 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
     state.VisibleCamera = nullptr; // each process sees only its own; nothing to see
     return;
   }
-  if (!props.Changed && state.VisibleCamera && state.VisibleAspect == aspect &&
+  if (!props.GeometryChanged && state.VisibleCamera && state.VisibleAspect == aspect &&
     sameView(state.VisibleCamera, camera, aspect))
   {
     return; // measured for this very view of this scene
@@ -364,7 +397,13 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
   // Bounds first: computing them brings the props' pipelines up to date, which must not count
   // as a change next frame.
   renderer->ComputeVisiblePropBounds(props.SceneBounds);
-  props.Changed = this->InputsChanged(renderer, state) || state.Maps.empty();
+  props.Changed = this->InputsChanged(renderer, state, props.Dirty) || state.Maps.empty();
+  if (props.Changed || this->Distributed()) // (each process sees its own casters change)
+  {
+    props.Changed = props.Changed || !props.Dirty.empty();
+    props.Dirty.clear();
+  }
+  props.GeometryChanged = props.Changed || !props.Dirty.empty();
   csmCasterCollection::Options options;
   options.CullClosedCasters = this->CullClosedCasters;
   options.CompactCasters = this->CompactCasters;
@@ -443,6 +482,7 @@ bool vtkCascadedShadowMapBakerPass::BindAtlas(
     if (reallocated) // (nothing kept: drawn whole)
     {
       map.Moved[0] = map.Moved[1] = 0;
+      map.Patches.clear();
       map.Action = MapAction::Draw;
     }
     any = any || map.Action != MapAction::Keep;
@@ -488,23 +528,30 @@ void vtkCascadedShadowMapBakerPass::ClearAndMoveMaps(
   vtkOpenGLState* ostate = window->GetState();
   csmMapDrawing::ClearTiles(ostate, maps);
   // The maps that move with the view: their kept texels shifted, the strips that came in
-  // cleared (drawn whole where the move fails).
+  // cleared (drawn whole where the move fails). Then the texels changed casters cover.
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
     CascadeMap& map = maps.Cascades[c];
-    if (map.Action != MapAction::Move)
+    if (map.Action == MapAction::Move)
     {
-      continue;
+      if (!state.MoveBuffer)
+      {
+        state.MoveBuffer = vtkSmartPointer<vtkTextureObject>::New();
+      }
+      if (!csmMapDrawing::MoveMap(window, state.MoveBuffer, maps, c))
+      {
+        map.Moved[0] = map.Moved[1] = 0;
+        map.Patches.clear();
+        map.Action = MapAction::Draw;
+        csmMapDrawing::ClearMap(ostate, maps, c, nullptr);
+      }
     }
-    if (!state.MoveBuffer)
+    if (map.Action == MapAction::Move || map.Action == MapAction::Patch)
     {
-      state.MoveBuffer = vtkSmartPointer<vtkTextureObject>::New();
-    }
-    if (!csmMapDrawing::MoveMap(window, state.MoveBuffer, maps, c))
-    {
-      map.Moved[0] = map.Moved[1] = 0;
-      map.Action = MapAction::Draw;
-      csmMapDrawing::ClearMap(ostate, maps, c, nullptr);
+      for (const std::array<int, 4>& patch : map.Patches)
+      {
+        csmMapDrawing::ClearMap(ostate, maps, c, patch.data());
+      }
     }
   }
 }
@@ -539,13 +586,21 @@ void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
     const CascadeMap& map = maps.Cascades[c];
-    if (map.Action == MapAction::Move)
+    if (map.Action == MapAction::Move || map.Action == MapAction::Patch)
     {
-      ++this->Statistics.CascadesMoved; // (kept in part: its strips drawn)
-      for (const csm::TexelRect& strip : csmMapDrawing::MovedStrips(map))
+      // Kept in part: a moved map's strips, the texels of changed casters.
+      std::vector<csm::TexelRect> rects = map.Patches;
+      if (map.Action == MapAction::Move)
+      {
+        ++this->Statistics.CascadesMoved;
+        const std::vector<csm::TexelRect> strips = csmMapDrawing::MovedStrips(map);
+        rects.insert(rects.end(), strips.begin(), strips.end());
+      }
+      this->Statistics.CascadesPatched += map.Patches.empty() ? 0 : 1;
+      for (const csm::TexelRect& rect : rects)
       {
         this->NumberOfRenderedProps += this->Drawing->DrawCascade(renderer, state.FrameBuffer, maps,
-          c, props, depthClamp, this->Distributed(), this->Statistics, strip.data());
+          c, props, depthClamp, this->Distributed(), this->Statistics, rect.data());
       }
     }
     else if (map.Action == MapAction::Draw)

@@ -26,6 +26,7 @@
 #include "vtkSmartPointer.h"                   // for members
 #include "vtkWeakPointer.h"                    // for members
 
+#include <array>  // for InputsChanged
 #include <memory> // for members
 #include <set>    // for members
 #include <string> // for members
@@ -182,6 +183,7 @@ public:
   vtkCascadedShadowsStatisticMacro(CascadesRendered, int);
   vtkCascadedShadowsStatisticMacro(CascadesKept, int);
   vtkCascadedShadowsStatisticMacro(CascadesMoved, int);
+  vtkCascadedShadowsStatisticMacro(CascadesPatched, int);
   vtkCascadedShadowsStatisticMacro(PropsDrawn, int);
   vtkCascadedShadowsStatisticMacro(TexelsRendered, double);
   vtkCascadedShadowsStatisticMacro(CellsDrawn, double);
@@ -222,7 +224,8 @@ protected:
     csmRendererMaps& state, const csmFrameCasters& props, LightMaps& maps, bool timed);
 
   csmRendererMaps& MapsOf(vtkRenderer* renderer, vtkOpenGLRenderWindow* window);
-  bool InputsChanged(vtkRenderer* renderer, csmRendererMaps& state);
+  bool InputsChanged(
+    vtkRenderer* renderer, csmRendererMaps& state, std::vector<std::array<double, 6>>& dirty);
   bool Distributed() const;
   void CombineAcrossProcesses(vtkTextureObject* atlas);
   bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, bool& reallocated);

@@ -11,6 +11,7 @@
 #include "vtkCascadedShadowsConfigure.h" // for CSM_COMPARISON_TECHNIQUES
 #include "vtkSmartPointer.h"             // for LightMaps::Atlas
 
+#include <array>  // for CascadeMap::Patches
 #include <vector> // for LightMaps::Cascades
 
 class vtkLight;
@@ -52,9 +53,10 @@ enum class MapKind
 /// What a frame does with a cascade's map.
 enum class MapAction
 {
-  Keep, ///< the map of an earlier frame serves as it is
-  Move, ///< the map of an earlier frame, moved with the view: its texels shifted, strips drawn
-  Draw  ///< drawn whole
+  Keep,  ///< the map of an earlier frame serves as it is
+  Move,  ///< the map of an earlier frame, moved with the view: its texels shifted, strips drawn
+  Patch, ///< the map of an earlier frame, the texels its changed casters cover drawn again
+  Draw   ///< drawn whole
 };
 
 /// One cascade's map, as the shadow pass reads it.
@@ -72,6 +74,9 @@ struct CascadeMap
   /// kept (a map that follows the view, moved with it: csm::panKeptMap); 0, 0: drawn whole or
   /// kept as it was.
   int Moved[2] = {};
+  /// The texels (x, y, width, height from the map's lower left) a kept map draws again where
+  /// casters changed (MapAction::Patch, or a moved map's besides its strips).
+  std::vector<std::array<int, 4>> Patches;
 #if CSM_COMPARISON_TECHNIQUES
   double Planes[16] = {}; ///< a face partition's 4 world half-spaces
   double DepthW = 0.0;    ///< a camera space map's smallest w (0: none)
@@ -113,8 +118,9 @@ struct LightMaps
 struct FrameStatistics
 {
   int CascadesRendered = 0, CascadesKept = 0;
-  int CascadesMoved = 0; ///< kept maps moved with the view (counted as kept; their strips drawn)
-  int PropsDrawn = 0;    ///< props (or block actors) drawn into maps
+  int CascadesMoved = 0;   ///< kept maps moved with the view (counted as kept; their strips drawn)
+  int CascadesPatched = 0; ///< kept maps whose changed casters' texels were drawn (counted as kept)
+  int PropsDrawn = 0;      ///< props (or block actors) drawn into maps
   double TexelsRendered = 0.0, CellsDrawn = 0.0; ///< of the rendered maps
   int ClosedCasters = 0;                         ///< drawn with their exit layer only
   int CompactCasters = 0, BlocksDrawn = 0;       ///< casters from compact blocks, blocks drawn

@@ -234,6 +234,53 @@ glm::dmat4 cropToTexels(const glm::dmat4& wsToClip, const TexelRect& rect, const
   return crop * wsToClip;
 }
 
+TexelRect boxTexels(
+  const glm::dmat4& wsToClip, const Bounds& wsBox, const MapSize& size, int marginTexels)
+{
+  const TexelRect whole = { 0, 0, size.width, size.height };
+  if (size.width <= 0 || size.height <= 0 || wsBox.isEmpty())
+  {
+    return { 0, 0, 0, 0 };
+  }
+  if (!wsBox.isFinite())
+  {
+    return whole;
+  }
+  double lo[2] = { HUGE_VAL, HUGE_VAL }, hi[2] = { -HUGE_VAL, -HUGE_VAL };
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::dvec4 clip = wsToClip *
+      glm::dvec4(corner & 1 ? wsBox.wsMax.x : wsBox.wsMin.x,
+        corner & 2 ? wsBox.wsMax.y : wsBox.wsMin.y, corner & 4 ? wsBox.wsMax.z : wsBox.wsMin.z,
+        1.0);
+    if (!(clip.w > 0.0) || !std::isfinite(clip.x) || !std::isfinite(clip.y))
+    {
+      return whole;
+    }
+    // Normalized device x and y to texels from the map's lower left.
+    const double s = 0.5 * (clip.x / clip.w + 1.0) * size.width;
+    const double t = 0.5 * (clip.y / clip.w + 1.0) * size.height;
+    lo[0] = std::min(lo[0], s);
+    lo[1] = std::min(lo[1], t);
+    hi[0] = std::max(hi[0], s);
+    hi[1] = std::max(hi[1], t);
+  }
+  const int extent[2] = { size.width, size.height };
+  TexelRect rect = { 0, 0, 0, 0 };
+  for (int axis = 0; axis < 2; ++axis)
+  {
+    const double first = std::max(0.0, std::floor(lo[axis]) - marginTexels);
+    const double last = std::min(double(extent[axis]), std::ceil(hi[axis]) + marginTexels);
+    if (!(last > first))
+    {
+      return { 0, 0, 0, 0 };
+    }
+    rect[axis] = static_cast<int>(first);
+    rect[2 + axis] = static_cast<int>(last - first);
+  }
+  return rect;
+}
+
 bool rectInside(const TexelRect& inner, const TexelRect& outer)
 {
   return inner[0] >= outer[0] && inner[1] >= outer[1] &&

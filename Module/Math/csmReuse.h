@@ -108,6 +108,13 @@ std::vector<TexelRect> panStrips(const MapPan& pan, const MapSize& size);
 /// wsToClip with the rect's share of clip x and y stretched to [-1, 1].
 glm::dmat4 cropToTexels(const glm::dmat4& wsToClip, const TexelRect& rect, const MapSize& size);
 
+/// The texels of a map of `size` (world -> light clip wsToClip) whose content a caster inside a
+/// world box may set: the box's image grown by marginTexels, clipped to the map (what a change
+/// of that caster makes a kept map draw again). Width 0 where the box misses the map; the whole
+/// map where part of the box lies at or behind the light's eye (w <= 0: no bounded image).
+TexelRect boxTexels(
+  const glm::dmat4& wsToClip, const Bounds& wsBox, const MapSize& size, int marginTexels);
+
 /// Does inner lie inside outer (edges may touch)?
 bool rectInside(const TexelRect& inner, const TexelRect& outer);
 

@@ -498,3 +498,42 @@ TEST(Reuse, AMovedWarpedMapServesACameraMovingSidewaysLongerThanAKeptOne)
   EXPECT_GT(walk.MovingServed, walk.StillServed);
   EXPECT_GT(walk.Moves, 0);
 }
+
+// The texels a changed caster's box may set in a kept map: its image, grown by the margin and
+// clipped to the map; nothing where it misses the map, the whole map where part of it lies
+// behind the light's eye.
+TEST(Reuse, ABoxSetsTheTexelsOfItsImage)
+{
+  // An orthographic map of x, y in [-10, 10] over 200 x 100 texels: 10 and 5 texels a unit.
+  glm::dmat4 wsToClip(1.0);
+  wsToClip[0][0] = 0.1;
+  wsToClip[1][1] = 0.1;
+  wsToClip[2][2] = 0.1;
+  const csm::MapSize size(200, 100);
+  csm::Bounds box;
+  box.wsMin = { -1.0, 2.0, -3.0 };
+  box.wsMax = { 1.5, 4.0, 3.0 };
+  // x -1 .. 1.5 -> texels 90 .. 115; y 2 .. 4 -> texels 60 .. 70; one texel more each side.
+  const csm::TexelRect rect = csm::boxTexels(wsToClip, box, size, 1);
+  EXPECT_EQ(rect, (csm::TexelRect{ 89, 59, 27, 12 }));
+  EXPECT_EQ(csm::boxTexels(wsToClip, box, size, 0), (csm::TexelRect{ 90, 60, 25, 10 }));
+  // At the map's edge: clipped.
+  box.wsMin.x = 8.0;
+  box.wsMax.x = 30.0;
+  EXPECT_EQ(csm::boxTexels(wsToClip, box, size, 1), (csm::TexelRect{ 179, 59, 21, 12 }));
+  // Beside the map: nothing.
+  box.wsMin.x = 12.0;
+  EXPECT_EQ(csm::boxTexels(wsToClip, box, size, 1)[2], 0);
+  // Empty box: nothing; a box behind a perspective map's eye (w <= 0): the whole map.
+  EXPECT_EQ(csm::boxTexels(wsToClip, csm::Bounds(), size, 1)[2], 0);
+  glm::dmat4 perspective(1.0);
+  perspective[2][3] = -1.0; // w = -z
+  perspective[3][3] = 0.0;
+  box.wsMin = { -1.0, -1.0, -2.0 };
+  box.wsMax = { 1.0, 1.0, 1.0 };
+  EXPECT_EQ(csm::boxTexels(perspective, box, size, 1), (csm::TexelRect{ 0, 0, 200, 100 }));
+  box.wsMin = { -0.5, -0.5, -2.0 };
+  box.wsMax = { 0.5, 0.5, -1.0 }; // in front: x / w and y / w in [-0.5, 0.5], the middle half
+  const csm::TexelRect front = csm::boxTexels(perspective, box, size, 0);
+  EXPECT_EQ(front, (csm::TexelRect{ 50, 25, 100, 50 }));
+}

@@ -21,6 +21,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <utility>
@@ -154,7 +155,51 @@ TEST(Changes, WhatAPropCastsDrawsTheMapsAgain)
   {
     change();
     auto changed = scene.Frame();
-    EXPECT_GT(baker->GetLastFrameStatistics().CascadesRendered, 0) << name;
+    const auto& statistics = baker->GetLastFrameStatistics();
+    EXPECT_GT(statistics.TexelsRendered, 0.0) << name;
+    std::printf("%s: maps drawn %d, patched %d, texels %.0f\n", name.c_str(),
+      statistics.CascadesRendered, statistics.CascadesPatched, statistics.TexelsRendered);
     EXPECT_EQ(DifferingValues(FreshFrame(scene, baker), changed), 0) << name;
+  }
+}
+
+// An assembly of 16 parts, one of them moved (within the others' extent): the kept map draws
+// again only the texels of that part's boxes before and after (at most a quarter of the first
+// frame's texels), and the frame is the one a fresh chain draws.
+TEST(Changes, OnePartOfSixteenMovedDrawsOnlyItsTexels)
+{
+  BoxOverPlane scene;
+  scene.Renderer->RemoveActor(scene.Box);
+  std::vector<vtkSmartPointer<vtkActor>> parts;
+  for (int i = 0; i < 16; ++i)
+  {
+    const double x = -6.0 + 4.0 * (i % 4), z = -6.0 + 4.0 * (i / 4);
+    parts.push_back(
+      csmTest::BoxActor(x - 0.5, x + 0.5, 1.0, 2.5 + 0.25 * (i % 3), z - 0.5, z + 0.5));
+    scene.Renderer->AddActor(parts.back());
+  }
+  vtkCascadedShadowMapBakerPass* baker =
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  scene.Frame();
+  const double firstTexels = baker->GetLastFrameStatistics().TexelsRendered;
+  ASSERT_GT(firstTexels, 0.0);
+  for (int still = 0; still < 3; ++still) // (the second frame too: nothing changed)
+  {
+    scene.Frame();
+    EXPECT_EQ(baker->GetLastFrameStatistics().TexelsRendered, 0.0) << still;
+  }
+  for (int step = 0; step < 3; ++step)
+  {
+    parts[5]->SetPosition(0.3 * (step + 1), 0.0, -0.3 * step); // an inner part, not higher
+    auto moved = scene.Frame();
+    const auto& statistics = baker->GetLastFrameStatistics();
+    std::printf("step %d: maps drawn %d, patched %d, kept %d, texels %.0f of %.0f\n", step,
+      statistics.CascadesRendered, statistics.CascadesPatched, statistics.CascadesKept,
+      statistics.TexelsRendered, firstTexels);
+    EXPECT_GT(statistics.CascadesPatched, 0) << step;
+    EXPECT_EQ(statistics.CascadesRendered, 0) << step;
+    EXPECT_GT(statistics.TexelsRendered, 0.0) << step;
+    EXPECT_LE(statistics.TexelsRendered, 0.25 * firstTexels) << step;
+    EXPECT_EQ(DifferingValues(FreshFrame(scene, baker), moved), 0) << step;
   }
 }
