@@ -174,7 +174,7 @@ std::shared_ptr<csmPreparedBlocks> csmPrepareBlocks(
   {
     return result;
   }
-  csm::BlockOrder order = csm::orderIntoBlocks(centroids, perBlock);
+  csm::BlockOrder order = csm::orderIntoBlocks(centroids, perBlock, stop);
   std::vector<glm::vec3>().swap(centroids);
   if (order.blocks.empty() || (stop && stop->load()))
   {
@@ -212,6 +212,7 @@ csm::SurfaceClosure csmClassifyPolyData(vtkPolyData* data, const std::atomic<boo
 {
   std::vector<glm::dvec3> positions;
   std::vector<std::array<std::int64_t, 3>> triangles;
-  return trianglesOf(data, positions, triangles, stop) ? csm::classifySurface(positions, triangles)
-                                                       : csm::SurfaceClosure();
+  return trianglesOf(data, positions, triangles, stop)
+    ? csm::classifySurface(positions, triangles, stop)
+    : csm::SurfaceClosure();
 }

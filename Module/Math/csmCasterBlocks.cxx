@@ -19,6 +19,7 @@ struct Splitter
   const std::vector<Vector>& Centroids;
   std::size_t MaxTriangles;
   std::vector<std::pair<std::size_t, std::size_t>> Leaves; // ranges of the order
+  const std::atomic<bool>* Stop = nullptr;                 // set: end early, no leaves
 
   // Median splits of order[begin, end) until every range fits (explicit stack: no recursion depth
   // to worry about on a degenerate distribution).
@@ -27,6 +28,11 @@ struct Splitter
     std::vector<std::pair<std::size_t, std::size_t>> todo{ { 0, order.size() } };
     while (!todo.empty())
     {
+      if (this->Stop && this->Stop->load(std::memory_order_relaxed))
+      {
+        this->Leaves.clear();
+        return;
+      }
       const auto [begin, end] = todo.back();
       todo.pop_back();
       if (end - begin <= this->MaxTriangles)
@@ -146,7 +152,8 @@ std::vector<CasterBlock> splitIntoBlocks(const std::vector<glm::dvec3>& position
   return blocks;
 }
 
-BlockOrder orderIntoBlocks(const std::vector<glm::vec3>& centroids, std::size_t maxTriangles)
+BlockOrder orderIntoBlocks(
+  const std::vector<glm::vec3>& centroids, std::size_t maxTriangles, const std::atomic<bool>* stop)
 {
   BlockOrder result;
   if (centroids.empty() || centroids.size() > std::numeric_limits<std::uint32_t>::max())
@@ -162,8 +169,12 @@ BlockOrder orderIntoBlocks(const std::vector<glm::vec3>& centroids, std::size_t 
   }
   result.order.resize(centroids.size());
   std::iota(result.order.begin(), result.order.end(), 0u);
-  Splitter<glm::vec3> splitter{ centroids, std::max<std::size_t>(maxTriangles, 1), {} };
+  Splitter<glm::vec3> splitter{ centroids, std::max<std::size_t>(maxTriangles, 1), {}, stop };
   splitter.Split(result.order);
+  if (splitter.Leaves.empty())
+  {
+    return BlockOrder(); // stopped
+  }
   result.blocks.reserve(splitter.Leaves.size());
   for (const auto& [begin, end] : splitter.Leaves)
   {

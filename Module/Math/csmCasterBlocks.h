@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -52,6 +53,8 @@ struct BlockOrder
   std::vector<std::uint32_t> order;
   std::vector<std::pair<std::size_t, std::size_t>> blocks;
 };
-BlockOrder orderIntoBlocks(const std::vector<glm::vec3>& centroids, std::size_t maxTriangles);
+/// stop: once set (by another thread), the work ends early with no blocks.
+BlockOrder orderIntoBlocks(const std::vector<glm::vec3>& centroids, std::size_t maxTriangles,
+  const std::atomic<bool>* stop = nullptr);
 
 } // namespace csm

@@ -158,11 +158,13 @@ bool isConvex(const std::vector<glm::dvec3>& positions,
 } // namespace
 
 SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
-  const std::vector<std::array<std::int64_t, 3>>& triangles)
+  const std::vector<std::array<std::int64_t, 3>>& triangles, const std::atomic<bool>* stop)
 {
   SurfaceClosure result;
+  auto stopped = [stop]() { return stop && stop->load(std::memory_order_relaxed); };
   std::vector<std::uint32_t> ids;
-  if (positions.empty() || positions.size() > 0xffffffffu || !weldPositions(positions, ids))
+  if (positions.empty() || positions.size() > 0xffffffffu || !weldPositions(positions, ids) ||
+    stopped())
   {
     return result;
   }
@@ -202,17 +204,25 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
     const glm::dvec3 c = positions[static_cast<size_t>(t[2])] - origin;
     volume += glm::dot(a, glm::cross(b, c)) / 6.0;
   }
-  if (counted == 0)
+  if (counted == 0 || stopped())
   {
     return result;
   }
   classifyShape(positions, triangles, result);
+  if (stopped())
+  {
+    return SurfaceClosure();
+  }
   if (forward.size() != backward.size())
   {
     return result;
   }
   std::sort(forward.begin(), forward.end());
   std::sort(backward.begin(), backward.end());
+  if (stopped())
+  {
+    return SurfaceClosure();
+  }
   result.closed = forward == backward;
   result.volume = result.closed ? volume : 0.0;
   if (result.closed && result.volume != 0.0 && !result.planar)

@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -56,7 +57,9 @@ bool weldPositions(const std::vector<glm::dvec3>& positions, std::vector<std::ui
 /// (+0 and -0 alike) are one vertex, so meshes whose points were split for normals or texture seams
 /// still close. Triangles with two equal (welded) corners are ignored; an index out of range or a
 /// non-finite position makes the mesh open (the safe answer: both sides are drawn).
+/// stop: once set (by another thread), the work ends early with an open answer.
 SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
-  const std::vector<std::array<std::int64_t, 3>>& triangles);
+  const std::vector<std::array<std::int64_t, 3>>& triangles,
+  const std::atomic<bool>* stop = nullptr);
 
 } // namespace csm

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -164,4 +165,23 @@ TEST(CasterBlocks, TrianglesKeepTheInputOrderWithinABlock)
       EXPECT_EQ(b.triangles[0], (std::array<std::uint32_t, 3>{ 0, 1, 2 }));
     }
   }
+}
+
+// Stopped (another thread set the flag): no blocks; not stopped, the same blocks as without.
+TEST(CasterBlocks, StoppedOrderingGivesNoBlocks)
+{
+  std::vector<glm::vec3> centroids;
+  for (int i = 0; i < 1000; ++i)
+  {
+    centroids.emplace_back(static_cast<float>(i % 37), static_cast<float>(i / 37), 0.0f);
+  }
+  std::atomic<bool> stop(false);
+  const csm::BlockOrder free = csm::orderIntoBlocks(centroids, 100);
+  const csm::BlockOrder going = csm::orderIntoBlocks(centroids, 100, &stop);
+  EXPECT_GT(free.blocks.size(), 1u);
+  EXPECT_EQ(going.blocks, free.blocks);
+  EXPECT_EQ(going.order, free.order);
+  stop = true;
+  const csm::BlockOrder stopped = csm::orderIntoBlocks(centroids, 100, &stop);
+  EXPECT_TRUE(stopped.blocks.empty());
 }

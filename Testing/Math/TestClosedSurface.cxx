@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -229,4 +230,18 @@ TEST(ClosedSurface, PlanesAndConvexSolidsCannotShadowThemselves)
     t = { { 0, 0, 1 } }; // degenerate only
     EXPECT_TRUE(csm::classifySurface(p, t).canShadowItself());
   }
+}
+
+// Stopped (another thread set the flag): the answer is open, the safe one.
+TEST(ClosedSurface, StoppedGivesTheOpenAnswer)
+{
+  std::vector<glm::dvec3> p;
+  Triangles t;
+  box(-1.0, 2.0, false, p, t);
+  std::atomic<bool> stop(false);
+  EXPECT_TRUE(csm::classifySurface(p, t, &stop).closed);
+  stop = true;
+  const csm::SurfaceClosure c = csm::classifySurface(p, t, &stop);
+  EXPECT_FALSE(c.closed);
+  EXPECT_EQ(c.volume, 0.0);
 }
