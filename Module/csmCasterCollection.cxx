@@ -156,18 +156,28 @@ void csmCasterCollection::StartPreparation(
     { return work(copy, cancel.get()); });
 }
 
-bool csmCasterCollection::MayPrepare(
-  vtkPolyData* data, vtkMTimeType& seenTime, long long& seenFrame, int givenUp) const
+bool csmCasterCollection::MayPrepare(vtkPolyData* data, Pace& pace) const
 {
   const vtkMTimeType time = data->GetMTime();
-  if (seenTime != time)
+  const long long wait = 1LL << std::min(pace.ShortLived, 10);
+  if (pace.SeenTime != time)
   {
-    seenTime = time;
-    seenFrame = this->FrameNumber;
+    // A new version: did the last one live long enough for its preparation to pay?
+    if (pace.StartFrame >= 0)
+    {
+      pace.ShortLived = this->FrameNumber - pace.StartFrame <= 2 * wait ? pace.ShortLived + 1 : 0;
+    }
+    pace.SeenTime = time;
+    pace.SeenFrame = this->FrameNumber;
+    pace.StartFrame = -1;
     return false;
   }
-  const long long wait = 1LL << std::min(givenUp, 10);
-  return this->ViewMoved && this->FrameNumber - seenFrame >= wait;
+  if (pace.StartFrame >= 0 || !this->ViewMoved || this->FrameNumber - pace.SeenFrame < wait)
+  {
+    return false;
+  }
+  pace.StartFrame = this->FrameNumber;
+  return true;
 }
 
 double csmCasterCollection::CellsOf(vtkProp* prop)
@@ -342,9 +352,8 @@ const csmCasterCollection::Closure& csmCasterCollection::ClassifiedShape(vtkPoly
       if (closure.Pending.Result.valid())
       {
         this->Retire(closure.Pending); // its data changed
-        ++closure.GivenUp;
       }
-      if (this->MayPrepare(data, closure.SeenTime, closure.SeenFrame, closure.GivenUp))
+      if (this->MayPrepare(data, closure.Paced))
       {
         this->StartPreparation(closure.Pending, data,
           [](vtkPolyData* copy, const std::atomic<bool>* stop)
@@ -362,7 +371,6 @@ const csmCasterCollection::Closure& csmCasterCollection::ClassifiedShape(vtkPoly
     }
     c = closure.Pending.Result.get()->Closure;
     closure.Pending = Preparation<csmPreparedClosure>();
-    closure.GivenUp = 0;
   }
   closure.Time = data->GetMTime();
   closure.Orientation = c.closed && c.volume != 0.0 ? (c.volume > 0.0 ? 1 : -1) : 0;
@@ -434,8 +442,7 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
       this->Retire(blocks.Pending);
       blocks.Window = window;
       blocks.Data = data;
-      blocks.SeenTime = 0;
-      blocks.GivenUp = 0;
+      blocks.Paced = Pace();
     }
     if (triangles <= vtkCascadedShadows::SynchronousPreparationTriangles)
     {
@@ -452,11 +459,10 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
       if (blocks.Pending.Result.valid() && blocks.Pending.Time != dataTime)
       {
         this->Retire(blocks.Pending); // its data changed
-        ++blocks.GivenUp;
       }
       if (!blocks.Pending.Result.valid())
       {
-        if (this->MayPrepare(data, blocks.SeenTime, blocks.SeenFrame, blocks.GivenUp))
+        if (this->MayPrepare(data, blocks.Paced))
         {
           this->StartPreparation(blocks.Pending, data,
             [perBlock](vtkPolyData* copy, const std::atomic<bool>* stop)
@@ -470,7 +476,6 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
       }
       prepared = blocks.Pending.Result.get();
       blocks.Pending = Preparation<csmPreparedBlocks>();
-      blocks.GivenUp = 0;
     }
     if (blocks.Mapper)
     {

@@ -170,12 +170,22 @@ private:
   void Retire(Preparation<T>& preparation);
   /// Drops the retired preparations whose workers stopped.
   void DropStoppedWork();
+  /// When a big mesh is prepared: the data time a frame last saw and since when, the frame its
+  /// last preparation started (-1: none since), and how many versions in a row changed soon
+  /// after their preparation started (its result then serves a frame or two, or none).
+  struct Pace
+  {
+    vtkMTimeType SeenTime = 0;
+    long long SeenFrame = 0;
+    long long StartFrame = -1;
+    int ShortLived = 0;
+  };
   /// May a big mesh's preparation start this frame? Once its data stayed the same since an
-  /// earlier frame and the view moved; a mesh whose preparations were given up because its data
-  /// changed waits twice as many frames each time (a mesh that changes every frame is drawn as
-  /// it is, never prepared).
-  bool MayPrepare(
-    vtkPolyData* data, vtkMTimeType& seenTime, long long& seenFrame, int givenUp) const;
+  /// earlier frame and the view moved; after each version of the data that changed within twice
+  /// that wait of its preparation's start, the wait doubles (a mesh that changes every frame or
+  /// two is drawn as it is, never prepared), and a version that outlived it starts the count
+  /// again.
+  bool MayPrepare(vtkPolyData* data, Pace& pace) const;
   /// The copy of a big mesh's points and cells for this frame's workers (one per data and
   /// frame).
   vtkPolyData* SnapshotOf(vtkPolyData* data);
@@ -193,9 +203,7 @@ private:
     bool Planar = false;
     bool ShadowsItself = true;               ///< csm::SurfaceClosure::canShadowItself
     Preparation<csmPreparedClosure> Pending; ///< a big mesh's, under way
-    vtkMTimeType SeenTime = 0;
-    long long SeenFrame = 0;
-    int GivenUp = 0; ///< preparations given up in a row because the data changed
+    Pace Paced;
   };
   std::map<vtkPolyData*, Closure> Closures;
   /// Compact blocks of a polydata in one window (the mapper holds that context's buffers),
@@ -210,9 +218,7 @@ private:
     std::vector<std::array<double, 6>> Bounds; ///< per block, in the data's coordinates
     std::vector<double> Cells;                 ///< per block: its triangles
     Preparation<csmPreparedBlocks> Pending;
-    vtkMTimeType SeenTime = 0; ///< of the data a frame drew as it is, not yet prepared
-    long long SeenFrame = 0;   ///< that frame
-    int GivenUp = 0;           ///< preparations given up in a row because the data changed
+    Pace Paced;
   };
   std::map<std::pair<vtkWindow*, vtkPolyData*>, CasterBlocks> Blocks;
   /// The actor that draws a prop's blocks in one window (its property, a copy of its matrix).

@@ -179,6 +179,10 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
   size_t counted = 0;
   for (const auto& t : triangles)
   {
+    if ((counted & 0xffff) == 0 && stopped())
+    {
+      return SurfaceClosure();
+    }
     std::uint32_t v[3];
     for (int k = 0; k < 3; ++k)
     {
