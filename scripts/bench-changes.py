@@ -18,12 +18,11 @@ import time
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkFiltersCore import vtkAppendPolyData
-from vtkmodules.vtkFiltersSources import vtkCubeSource, vtkPlaneSource
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkLight, vtkPolyDataMapper, vtkRenderer,
-                                         vtkRenderWindow)
-import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+from vtkmodules.vtkFiltersSources import vtkCubeSource
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer
 
 from cascadedshadows import vtkCascadedShadowMapPass
+from csm_bench_scene import ground_and_light, offscreen_window
 
 CHANGES = ("nothing", "scalars", "colour", "one part moved", "every point moved")
 KINDS = ("unshadowed", "vtk", "ours")
@@ -31,7 +30,6 @@ KINDS = ("unshadowed", "vtk", "ours")
 
 def build_scene():
     renderer = vtkRenderer()
-    renderer.AutomaticLightCreationOff()
     parts, fields = [], []
     for p in range(16):
         append = vtkAppendPolyData()
@@ -53,26 +51,8 @@ def build_scene():
         actor.SetMapper(mapper)
         renderer.AddActor(actor)
         parts.append((actor, data, field))
-    ground = vtkPlaneSource()
-    ground.SetOrigin(-2, 0, -2)
-    ground.SetPoint1(42, 0, -2)
-    ground.SetPoint2(-2, 0, 42)
-    mapper = vtkPolyDataMapper()
-    mapper.SetInputConnection(ground.GetOutputPort())
-    actor = vtkActor()
-    actor.SetMapper(mapper)
-    renderer.AddActor(actor)
-    light = vtkLight()
-    light.SetLightTypeToSceneLight()
-    light.SetPositional(False)
-    light.SetPosition(-3, 10, 2)
-    light.SetFocalPoint(0, 0, 0)
-    renderer.AddLight(light)
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetMultiSamples(0)
-    window.SetSize(800, 600)
-    window.AddRenderer(renderer)
+    ground_and_light(renderer, -2, 42, (-3, 10, 2))
+    window = offscreen_window(renderer, 800, 600)
     camera = renderer.GetActiveCamera()
     camera.SetPosition(20, 30, -15)
     camera.SetFocalPoint(20, 0, 20)

@@ -15,12 +15,11 @@ import statistics
 import time
 
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkFiltersSources import vtkPlaneSource, vtkSphereSource
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkLight, vtkPolyDataMapper, vtkRenderer,
-                                         vtkRenderWindow)
-import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+from vtkmodules.vtkFiltersSources import vtkSphereSource
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer
 
 from cascadedshadows import vtkCascadedShadowMapPass
+from csm_bench_scene import ground_and_light, offscreen_window
 
 
 def run(compact, resolution, frames, every):
@@ -34,31 +33,13 @@ def run(compact, resolution, frames, every):
     points = vtk_to_numpy(data.GetPoints().GetData())
     start = points.copy()
     renderer = vtkRenderer()
-    renderer.AutomaticLightCreationOff()
-    for source in (sphere, None):
-        mapper = vtkPolyDataMapper()
-        if source:
-            mapper.SetInputData(data)
-        else:
-            ground = vtkPlaneSource()
-            ground.SetOrigin(-10, 0, -10)
-            ground.SetPoint1(10, 0, -10)
-            ground.SetPoint2(-10, 0, 10)
-            mapper.SetInputConnection(ground.GetOutputPort())
-        actor = vtkActor()
-        actor.SetMapper(mapper)
-        renderer.AddActor(actor)
-    light = vtkLight()
-    light.SetLightTypeToSceneLight()
-    light.SetPositional(False)
-    light.SetPosition(3, 10, 2)
-    light.SetFocalPoint(0, 0, 0)
-    renderer.AddLight(light)
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetMultiSamples(0)
-    window.SetSize(640, 480)
-    window.AddRenderer(renderer)
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputData(data)
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    renderer.AddActor(actor)
+    ground_and_light(renderer, -10, 10, (3, 10, 2))
+    window = offscreen_window(renderer, 640, 480)
     baker = vtkCascadedShadowMapPass.UseShadowsOn(renderer).GetShadowMapBakerPass()
     baker.SetCompactCasters(compact)
     renderer.ResetCamera()
