@@ -242,7 +242,7 @@ WalkOptions ParseWalk(int argc, char** argv)
         o.Slacks.push_back(std::atof(value.c_str()));
     }
     else if ((f == "--scenes" || f == "--frames" || f == "--rounds" || f == "--out" ||
-               f == "--size") &&
+               f == "--size" || f == "--slack") &&
       !hasValue)
       walkFail(f + " needs a value");
     else if (f == "--scenes")
