@@ -41,9 +41,9 @@ constexpr double kReuseMarginTexels = 0.0;
 /// triangle's edge to the texel centres it covers, never beyond the next texel).
 constexpr int kPatchMarginTexels = 1;
 
-/// A kept map where casters changed (props.Dirty): the texels their boxes cover, drawn again
-/// (MapAction::Patch; a moved map draws them besides its strips); drawn whole where they cover
-/// as many texels as the map.
+/// A map kept as it was where casters changed (props.Dirty; KeptMapServes keeps no other then):
+/// the texels their boxes cover, drawn again (MapAction::Patch); drawn whole where they cover as
+/// many texels as the map.
 void PatchChangedCasters(const csmFrameCasters& props, CascadeMap& map)
 {
   map.Patches.clear();
@@ -64,22 +64,20 @@ void PatchChangedCasters(const csmFrameCasters& props, CascadeMap& map)
   {
     map.Patches.clear();
     map.Action = MapAction::Draw;
-    map.Moved[0] = map.Moved[1] = 0;
   }
-  else if (!map.Patches.empty() && map.Action == MapAction::Keep)
+  else if (!map.Patches.empty())
   {
     map.Action = MapAction::Patch;
   }
 }
 
 /// A light's maps before they are planned: the light as they are rendered for.
-vtkCascadedShadows::LightMaps lightMapsOf(vtkLight* light, int index)
+LightMaps lightMapsOf(vtkLight* light, int index)
 {
-  vtkCascadedShadows::LightMaps maps;
+  LightMaps maps;
   maps.Light = light;
   maps.LightIndex = index;
-  maps.Kind = light->GetPositional() ? vtkCascadedShadows::LightKind::Spot
-                                     : vtkCascadedShadows::LightKind::Directional;
+  maps.Kind = light->GetPositional() ? LightKind::Spot : LightKind::Directional;
   light->GetTransformedPosition(maps.Position);
   light->GetTransformedFocalPoint(maps.FocalPoint);
   maps.ConeAngle = light->GetPositional() ? light->GetConeAngle() : 0.0;
@@ -256,7 +254,10 @@ void csmLightPlanning::PlanLight(vtkRenderer* renderer, csmRendererMaps& state,
       std::copy(old.Resolution, old.Resolution + 2, map.Resolution);
       std::copy(old.Moved, old.Moved + 2, map.Moved);
       map.Action = map.IsMoved() ? MapAction::Move : MapAction::Keep;
-      PatchChangedCasters(props, map);
+      if (map.Action == MapAction::Keep)
+      {
+        PatchChangedCasters(props, map);
+      }
     }
   }
   if (count > 0)
@@ -293,7 +294,7 @@ void csmLightPlanning::PlanCascade(const csmFramePlan& frame, vtkCamera* camera,
   int ceiling[2];
   this->Planner->GetCascadeResolutionCeiling(c, ceiling);
   this->Planner->GetCascadeResolution(
-    c, frame.ImageHeight, vtkCascadedShadows::ResolutionStep, ceiling, map.Resolution);
+    c, frame.ImageHeight, ResolutionStep, ceiling, map.Resolution);
   need.Texels[0] = map.Resolution[0];
   need.Texels[1] = map.Resolution[1];
   this->Planner->GetCascadeResolution(c, frame.ImageHeight, 1, ceiling, need.TargetTexels);

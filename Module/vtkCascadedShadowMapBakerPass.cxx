@@ -541,12 +541,11 @@ void vtkCascadedShadowMapBakerPass::ClearAndMoveMaps(
       if (!csmMapDrawing::MoveMap(window, state.MoveBuffer, maps, c))
       {
         map.Moved[0] = map.Moved[1] = 0;
-        map.Patches.clear();
         map.Action = MapAction::Draw;
         csmMapDrawing::ClearMap(ostate, maps, c, nullptr);
       }
     }
-    if (map.Action == MapAction::Move || map.Action == MapAction::Patch)
+    else if (map.Action == MapAction::Patch)
     {
       for (const std::array<int, 4>& patch : map.Patches)
       {
@@ -588,15 +587,11 @@ void vtkCascadedShadowMapBakerPass::RenderAtlas(vtkOpenGLRenderer* renderer,
     const CascadeMap& map = maps.Cascades[c];
     if (map.Action == MapAction::Move || map.Action == MapAction::Patch)
     {
-      // Kept in part: a moved map's strips, the texels of changed casters.
-      std::vector<csm::TexelRect> rects = map.Patches;
-      if (map.Action == MapAction::Move)
-      {
-        ++this->Statistics.CascadesMoved;
-        const std::vector<csm::TexelRect> strips = csmMapDrawing::MovedStrips(map);
-        rects.insert(rects.end(), strips.begin(), strips.end());
-      }
-      this->Statistics.CascadesPatched += map.Patches.empty() ? 0 : 1;
+      // Kept in part: a moved map's strips, or the texels of changed casters.
+      const bool moved = map.Action == MapAction::Move;
+      ++(moved ? this->Statistics.CascadesMoved : this->Statistics.CascadesPatched);
+      const std::vector<csm::TexelRect> rects =
+        moved ? csmMapDrawing::MovedStrips(map) : map.Patches;
       for (const csm::TexelRect& rect : rects)
       {
         this->NumberOfRenderedProps += this->Drawing->DrawCascade(renderer, state.FrameBuffer, maps,

@@ -74,8 +74,8 @@ struct CascadeMap
   /// kept (a map that follows the view, moved with it: csm::panKeptMap); 0, 0: drawn whole or
   /// kept as it was.
   int Moved[2] = {};
-  /// The texels (x, y, width, height from the map's lower left) a kept map draws again where
-  /// casters changed (MapAction::Patch, or a moved map's besides its strips).
+  /// The texels (x, y, width, height from the map's lower left) a map kept as it was draws again
+  /// where casters changed (MapAction::Patch).
   std::vector<std::array<int, 4>> Patches;
 #if CSM_COMPARISON_TECHNIQUES
   double Planes[16] = {}; ///< a face partition's 4 world half-spaces
