@@ -48,6 +48,12 @@ struct csmRendererMaps
   csm::WindowFootprint VisibleFootprint;
   /// The camera of the last plan (MapSlack: did this frame's camera take a small step?).
   vtkSmartPointer<vtkCamera> LastCamera;
+  /// What else the last plan was made for: the aspect, whether the user interacted, how many
+  /// lights cast shadows, and what the planning found (csmLightPlanning::LastPlanStands).
+  double LastAspect = 0.0;
+  bool LastInteracting = false;
+  int LastShadowingLights = 0;
+  vtkCascadedShadows::FrameStatistics LastPlanStatistics;
 };
 
 /// Were the maps rendered for the same light geometry?

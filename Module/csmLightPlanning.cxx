@@ -23,6 +23,7 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <string>
 #include <utility>
@@ -101,10 +102,66 @@ bool csmLightPlanning::Distributed() const
   return this->Controller && this->Controller->GetNumberOfProcesses() > 1;
 }
 
+bool csmLightPlanning::LastPlanStands(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
+  const csmRendererMaps& state, const csmFrameCasters& props, int maximumLights) const
+{
+  const double aspect = renderer->GetTiledAspectRatio();
+  if (props.Changed || !props.Dirty.empty() || this->Distributed() || !state.LastCamera ||
+    state.Maps.empty() || state.LastAspect != aspect ||
+    state.LastInteracting != csmIsInteracting(window) ||
+    !sameView(state.LastCamera, renderer->GetActiveCamera(), aspect))
+  {
+    return false;
+  }
+  size_t slot = 0;
+  int shadowingLights = 0;
+  int lightIndex = 0;
+  vtkCollectionSimpleIterator lit;
+  renderer->GetLights()->InitTraversal(lit);
+  while (vtkLight* light = renderer->GetLights()->GetNextLight(lit))
+  {
+    if (!light->GetSwitch())
+    {
+      continue;
+    }
+    const int index = lightIndex++;
+    if (!csmLightCastsShadows(light) || ++shadowingLights > maximumLights)
+    {
+      continue;
+    }
+    const LightMaps now = lightMapsOf(light, index);
+    if (slot >= state.Maps.size() || state.Maps[slot].Light != light ||
+      state.Maps[slot].LightIndex != index || !sameLightGeometry(state.Maps[slot], now))
+    {
+      return false;
+    }
+    ++slot;
+  }
+  return slot == state.Maps.size() && shadowingLights == state.LastShadowingLights;
+}
+
 int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
   csmRendererMaps& state, const csmFrameCasters& props, int maximumLights,
   std::vector<LightMaps>& planned)
 {
+  if (this->LastPlanStands(renderer, window, state, props, maximumLights))
+  {
+    planned = state.Maps;
+    for (LightMaps& maps : planned)
+    {
+      for (CascadeMap& map : maps.Cascades)
+      {
+        map.Action = MapAction::Keep;
+        map.Patches.clear();
+        map.Moved[0] = map.Moved[1] = 0;
+      }
+    }
+    this->Statistics.VisibleDepthsUsed = state.LastPlanStatistics.VisibleDepthsUsed;
+    this->Statistics.VisibleFootprintUsed = state.LastPlanStatistics.VisibleFootprintUsed;
+    std::copy(std::begin(state.LastPlanStatistics.KeptError),
+      std::end(state.LastPlanStatistics.KeptError), std::begin(this->Statistics.KeptError));
+    return state.LastShadowingLights;
+  }
   props.FeedPlanner(this->Planner);
   // Plan every shadowed light for this frame, and decide per cascade whether the map kept from
   // an earlier frame still serves (only the camera moved, it covers, its error is bounded).
@@ -159,6 +216,10 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
     state.LastCamera = vtkSmartPointer<vtkCamera>::New();
   }
   state.LastCamera->DeepCopy(renderer->GetActiveCamera());
+  state.LastAspect = frame.Aspect;
+  state.LastInteracting = frame.Interacting;
+  state.LastShadowingLights = shadowingLights;
+  state.LastPlanStatistics = this->Statistics;
   if (this->Distributed())
   {
     this->DrawWhereAnyProcessDraws(planned);

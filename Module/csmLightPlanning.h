@@ -49,6 +49,13 @@ public:
     std::vector<vtkCascadedShadows::LightMaps>& planned);
 
 private:
+  /// Would this frame be planned as the last one was? Nothing of the props changed, the same
+  /// view at the same aspect, the user interacts or not as then, the same shadowed lights where
+  /// they were, one process: every map of the last frame is then kept as it is (the plan of the
+  /// same input is the same) and the planning, which may cost more than the frame's lookup on a
+  /// scene of many props, is not done again.
+  bool LastPlanStands(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
+    const csmRendererMaps& state, const csmFrameCasters& props, int maximumLights) const;
   bool Distributed() const;
   void FeedVisibleDepths(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
     csmRendererMaps& state, const csmFrameCasters& props);

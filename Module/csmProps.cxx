@@ -60,7 +60,12 @@ std::vector<double> csmCastingState(vtkProp* prop)
       static_cast<double>(reinterpret_cast<std::uintptr_t>(mapper)),
       static_cast<double>(reinterpret_cast<std::uintptr_t>(data)), time(data->GetPoints()),
       time(data->GetVerts()), time(data->GetLines()), time(data->GetPolys()),
-      time(data->GetStrips()), prop->HasOpaqueGeometry() ? 1.0 : 0.0,
+      time(data->GetStrips()),
+      // (Counts too: an application may empty or refill an array in place, which need not
+      // touch its MTime.)
+      static_cast<double>(data->GetNumberOfPoints()), static_cast<double>(data->GetNumberOfVerts()),
+      static_cast<double>(data->GetNumberOfLines()), static_cast<double>(data->GetNumberOfPolys()),
+      static_cast<double>(data->GetNumberOfStrips()), prop->HasOpaqueGeometry() ? 1.0 : 0.0,
       static_cast<double>(mapper->GetNumberOfClippingPlanes()) });
   if (vtkPlaneCollection* planes = mapper->GetClippingPlanes())
   {

@@ -16,11 +16,11 @@ class vtkRenderWindow;
 VTKRENDERINGCASCADEDSHADOWS_EXPORT void csmScreenSizes(vtkProp* prop, float sizes[2]);
 
 /// What a prop casts into a shadow map, as numbers that change when it does: where it is, its
-/// visibility, its data's points and cells, the representation, line width, point size and
-/// culling it is drawn with, its clipping planes, whether it is opaque. Colours, scalars,
-/// lookup tables, textures and lighting coefficients are not among them: they change no map.
-/// A prop other than a plain actor of polygonal data counts every change of its own and its
-/// mapper's (GetRedrawMTime).
+/// visibility, its data's points and cells (their MTimes and counts), the representation, line
+/// width, point size and culling it is drawn with, its clipping planes, whether it is opaque.
+/// Colours, scalars, lookup tables, textures and lighting coefficients are not among them: they
+/// change no map. A prop other than a plain actor of polygonal data counts every change of its own
+/// and its mapper's (GetRedrawMTime).
 std::vector<double> csmCastingState(vtkProp* prop);
 
 /// Does VTK shadow this light? Scene and camera lights that are on, directional or spot with

@@ -181,7 +181,8 @@ bool vtkCascadedShadowMapBakerPass::InputsChanged(
   dirty.clear();
   for (size_t i = 0; !changed && i < casting.size(); ++i)
   {
-    if (casting[i] == state.LastCasting[i])
+    // (A box that moved with nothing else seen to change: the data was edited in place.)
+    if (casting[i] == state.LastCasting[i] && boxes[i] == state.LastBounds[i])
     {
       continue;
     }

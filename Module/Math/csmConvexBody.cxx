@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace csm
 {
@@ -74,15 +75,20 @@ void ConvexBody::clip(const Plane& plane, double epsilon)
     const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     const glm::dvec3 u = glm::normalize(glm::cross(n, helper));
     const glm::dvec3 v = glm::cross(n, u);
-    std::sort(cut.begin(), cut.end(),
-      [&](const glm::dvec3& a, const glm::dvec3& b)
-      {
-        return std::atan2(glm::dot(a - centre, v), glm::dot(a - centre, u)) <
-          std::atan2(glm::dot(b - centre, v), glm::dot(b - centre, u));
-      });
-    Polygon face;
+    // (Each point's angle computed once, not in every comparison.)
+    std::vector<std::pair<double, glm::dvec3>> around;
+    around.reserve(cut.size());
     for (const glm::dvec3& p : cut)
     {
+      around.emplace_back(std::atan2(glm::dot(p - centre, v), glm::dot(p - centre, u)), p);
+    }
+    std::sort(around.begin(), around.end(),
+      [](const std::pair<double, glm::dvec3>& a, const std::pair<double, glm::dvec3>& b)
+      { return a.first < b.first; });
+    Polygon face;
+    for (const auto& angleAndPoint : around)
+    {
+      const glm::dvec3& p = angleAndPoint.second;
       if (face.empty() || glm::length(p - face.back()) > epsilon)
       {
         face.push_back(p);

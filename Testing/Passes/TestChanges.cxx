@@ -6,8 +6,10 @@
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
+#include "vtkCellArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkLight.h"
 #include "vtkLookupTable.h"
 #include "vtkMapper.h"
 #include "vtkNew.h"
@@ -145,6 +147,12 @@ TEST(Changes, WhatAPropCastsDrawsTheMapsAgain)
     { "wireframe", [&]() { scene.Box->GetProperty()->SetRepresentationToWireframe(); } },
     { "translucent", [&]() { scene.Box->GetProperty()->SetOpacity(0.5); } },
     { "opaque again", [&]() { scene.Box->GetProperty()->SetOpacity(1.0); } },
+    { "cells emptied in place",
+      [&]()
+      {
+        data->GetPolys()->Initialize();
+        data->Modified();
+      } },
     { "hidden", [&]() { scene.Box->VisibilityOff(); } },
   };
   vtkCascadedShadowMapBakerPass* baker =
@@ -161,6 +169,34 @@ TEST(Changes, WhatAPropCastsDrawsTheMapsAgain)
       statistics.CascadesRendered, statistics.CascadesPatched, statistics.TexelsRendered);
     EXPECT_EQ(DifferingValues(FreshFrame(scene, baker), changed), 0) << name;
   }
+}
+
+// A frame like the last one (the same view, nothing changed; a screenshot's second render):
+// nothing planned, no texel drawn, the same image; a moved light draws its maps again.
+TEST(Changes, AFrameAsTheLastDrawsNothing)
+{
+  BoxOverPlane scene;
+  vtkCascadedShadowMapBakerPass* baker =
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  scene.Frame();
+  scene.Renderer->GetActiveCamera()->Azimuth(20.0);
+  scene.Renderer->ResetCameraClippingRange();
+  auto moved = scene.Frame();
+  ASSERT_GT(
+    baker->GetLastFrameStatistics().CascadesKept + baker->GetLastFrameStatistics().CascadesRendered,
+    0);
+  const int maps =
+    baker->GetLastFrameStatistics().CascadesKept + baker->GetLastFrameStatistics().CascadesRendered;
+  auto again = scene.Render(); // a frame and the screenshot's render of it
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, 0);
+  EXPECT_EQ(baker->GetLastFrameStatistics().TexelsRendered, 0.0);
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesKept, maps);
+  EXPECT_EQ(DifferingValues(moved, again), 0);
+  scene.Light->SetPosition(2.0, 10.0, 0.0);
+  auto lit = scene.Frame();
+  EXPECT_GT(baker->GetLastFrameStatistics().CascadesRendered, 0);
+  vtkCascadedShadowMapBakerPass* fresh = nullptr;
+  EXPECT_EQ(DifferingValues(FreshFrame(scene, fresh), lit), 0);
 }
 
 // An assembly of 16 parts, one of them moved (within the others' extent): the kept map draws

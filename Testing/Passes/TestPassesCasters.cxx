@@ -65,7 +65,7 @@ TEST(Passes, CastersOutsideACascadeAreNotDrawnIntoIt)
   baker->GetPlanner()->SetNumberOfCascades(3);
   baker->GetPlanner()->AdaptiveCascadesOff();
   baker->CullCastersWithoutReceiversOff(); // the ground is counted below
-  scene.Render();
+  scene.Frame();
   ASSERT_EQ(baker->GetLastFrameStatistics().CascadesRendered, 3);
   // 3 casters x 3 cascades would be 9 draws; culling must save some.
   EXPECT_LT(baker->GetLastFrameStatistics().PropsDrawn, 9);
@@ -82,7 +82,7 @@ TEST(Passes, CastersThatShadowNothingAreLeftOutOfTheMaps)
   baker->SetResolution(1024);
   baker->GetPlanner()->SetNumberOfCascades(2);
   baker->GetPlanner()->AdaptiveCascadesOff();
-  auto without = scene.Render();
+  auto without = scene.Frame();
   ASSERT_GT(baker->GetLastFrameStatistics().CascadesRendered, 0);
   // The plane (planar: it cannot shadow itself; the box floats above it) is left out of every
   // cascade, the box is drawn.
@@ -93,7 +93,7 @@ TEST(Passes, CastersThatShadowNothingAreLeftOutOfTheMaps)
   EXPECT_GT(DarkenedPixels(without, plain), 800);
   // The same image as with the plane drawn into the maps.
   baker->CullCastersWithoutReceiversOff();
-  auto with = scene.Render();
+  auto with = scene.Frame();
   EXPECT_EQ(baker->GetLastFrameStatistics().CastersWithoutReceivers, 0);
   EXPECT_EQ(baker->GetLastFrameStatistics().PropsDrawn,
     2 * baker->GetLastFrameStatistics().CascadesRendered);
@@ -104,7 +104,7 @@ TEST(Passes, CastersThatShadowNothingAreLeftOutOfTheMaps)
   deep->SetBounds(-1, 1, -2, 4, -1, 1);
   vtkPolyDataMapper::SafeDownCast(scene.Box->GetMapper())
     ->SetInputConnection(deep->GetOutputPort());
-  scene.Render();
+  scene.Frame();
   EXPECT_EQ(baker->GetLastFrameStatistics().CastersWithoutReceivers, 0);
   // Light from below the plane: the plane shadows the box and is drawn; the box (convex, over
   // nothing else along this light) is left out.
@@ -112,11 +112,11 @@ TEST(Passes, CastersThatShadowNothingAreLeftOutOfTheMaps)
   above->SetBounds(-1, 1, 2, 4, -1, 1);
   vtkPolyDataMapper::SafeDownCast(scene.Box->GetMapper())
     ->SetInputConnection(above->GetOutputPort());
-  scene.Render();
+  scene.Frame();
   EXPECT_EQ(baker->GetLastFrameStatistics().CastersWithoutReceivers,
     baker->GetLastFrameStatistics().CascadesRendered);
   scene.Light->SetPosition(0, -10, 0);
-  scene.Render();
+  scene.Frame();
   EXPECT_GT(baker->GetLastFrameStatistics().CascadesRendered, 0);
   EXPECT_GE(
     baker->GetLastFrameStatistics().CastersWithoutReceivers, 1); // where the box reaches a cascade
@@ -126,7 +126,7 @@ TEST(Passes, CastersThatShadowNothingAreLeftOutOfTheMaps)
   scene.Light->SetPosition(0, 10, 0);
   scene.Light->SetPositional(true);
   scene.Light->SetConeAngle(60.0);
-  scene.Render();
+  scene.Frame();
   EXPECT_GT(baker->GetLastFrameStatistics().CascadesRendered, 0);
   EXPECT_EQ(baker->GetLastFrameStatistics().CastersWithoutReceivers, 0);
 }
@@ -317,13 +317,13 @@ TEST(Passes, BigCastersAreDrawnFromCompactBlocksWithTheSameShadows)
   baker->GetPlanner()->AdaptiveCascadesOff();
   baker->CullCastersWithoutReceiversOff(); // the ground's blocks are counted below
   baker->CompactCastersOff();
-  auto whole = scene.Render();
+  auto whole = scene.Frame();
   EXPECT_EQ(baker->GetLastFrameStatistics().CompactCasters, 0);
   EXPECT_EQ(baker->GetLastFrameStatistics().BlocksDrawn, 0);
   const long wholeDark = DarkenedPixels(whole, plain);
 
   baker->CompactCastersOn();
-  auto blocks = scene.Render();
+  auto blocks = scene.Frame();
   ASSERT_EQ(baker->GetLastFrameStatistics().CascadesRendered, 3);
   EXPECT_EQ(baker->GetLastFrameStatistics().CompactCasters, 3); // the box, the ground, the row
   // Blocks: the box 1, the ground 80,000 / 16,384 -> 8 (median halving), the row 4; drawn into 3
