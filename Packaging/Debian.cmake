@@ -9,7 +9,8 @@
 #
 # <description>: the synopsis, a newline, then the extended description. Every package gets
 # /usr/share/doc/<package>/copyright (from LICENSE) and changelog.gz (Packaging/changelog), and
-# Packaging/lintian/<package> when that file exists. Dependencies on shared libraries come from
+# Packaging/lintian/<package> when that file exists (only in the packages: EXCLUDE_FROM_ALL
+# keeps them out of a plain cmake --install). Dependencies on shared libraries come from
 # dpkg-shlibdeps; DEPENDS adds those the binaries do not show, COMPONENTS the packages of other
 # components of the same build (at this exact version).
 # Then include(CPack) with CPACK_COMPONENTS_ALL set to the components.
@@ -75,10 +76,12 @@ macro(csm_debian_package component package section description)
   list(JOIN csm_deb_SUGGESTS ", " CPACK_DEBIAN_${csm_deb_c}_PACKAGE_SUGGESTS)
   set(CPACK_COMPONENT_${csm_deb_c}_DEPENDS ${csm_deb_COMPONENTS})
   install(FILES "${csm_deb_files}/copyright" "${csm_deb_files}/changelog.gz"
-    DESTINATION "${CMAKE_INSTALL_DATAROOTDIR}/doc/${package}" COMPONENT "${component}")
+    DESTINATION "${CMAKE_INSTALL_DATAROOTDIR}/doc/${package}" COMPONENT "${component}"
+    EXCLUDE_FROM_ALL)
   if(EXISTS "${csm_deb_dir}/lintian/${package}")
     install(FILES "${csm_deb_dir}/lintian/${package}"
-      DESTINATION "${CMAKE_INSTALL_DATAROOTDIR}/lintian/overrides" COMPONENT "${component}")
+      DESTINATION "${CMAKE_INSTALL_DATAROOTDIR}/lintian/overrides" COMPONENT "${component}"
+      EXCLUDE_FROM_ALL)
   endif()
   list(APPEND CPACK_COMPONENTS_ALL "${component}")
 endmacro()
