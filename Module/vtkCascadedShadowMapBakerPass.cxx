@@ -148,7 +148,9 @@ bool vtkCascadedShadowMapBakerPass::InputsChanged(
   // lights follow the camera, so their MTime changes with every camera move. Of the props, only
   // what they cast (csmCastingState): a new colour, scalars or material changes no map, and
   // where only some props' casting changed, their boxes before and after are the dirty part.
-  vtkMTimeType input = std::max(this->GetMTime(), renderer->GetLights()->GetMTime());
+  // (The options: the baker's and its planner's.)
+  vtkMTimeType input =
+    std::max({ this->GetMTime(), this->Planner->GetMTime(), renderer->GetLights()->GetMTime() });
   vtkPropCollection* props = renderer->GetViewProps();
   input = std::max(input, props->GetMTime());
   std::vector<std::vector<double>> casting;
@@ -689,11 +691,6 @@ void vtkCascadedShadowMapBakerPass::SetPlanner(vtkCascadedShadowMapPlanner* plan
 vtkCascadedShadowMapPlanner* vtkCascadedShadowMapBakerPass::GetPlanner()
 {
   return this->Planner;
-}
-
-vtkMTimeType vtkCascadedShadowMapBakerPass::GetMTime()
-{
-  return std::max(this->Superclass::GetMTime(), this->Planner->GetMTime());
 }
 
 void vtkCascadedShadowMapBakerPass::PrintSelf(ostream& os, vtkIndent indent)

@@ -60,8 +60,6 @@ public:
   vtkCascadedShadowMapPlanner* GetPlanner();
   /// Another planner for this pass; null is refused.
   void SetPlanner(vtkCascadedShadowMapPlanner* planner);
-  /// Includes the planner's options.
-  vtkMTimeType GetMTime() override;
 
   /// Texels a side of the largest map that follows the view; a light's atlas holds four such
   /// tiles (more cascades share them, a scene-fitted map alone gets all). 64..8192, 2048.

@@ -59,6 +59,14 @@ csm::AtlasLimits atlasLimits(int atlasResolution, int maximumResolution, int max
 }
 }
 
+void vtkCascadedShadowMapPlanner::PlanAtlas()
+{
+  // Once a plan: the caller allocates and draws into it, and each map is turned to its tile.
+  this->Internal->Atlas =
+    csm::planAtlas(static_cast<int>(this->Internal->Setup.cascades.size()), this->NumberOfCascades,
+      atlasLimits(this->AtlasResolution, this->Internal->MapCeiling, this->MaximumTextureSize));
+}
+
 int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect,
   const double lightDirection[3], const double bounds[6], int imageHeight, int maximumResolution)
 {
@@ -79,6 +87,7 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
     this->Internal->Setup.message = "no camera or no light direction";
     this->Internal->VisibleUsed = false;
     this->Internal->FootprintUsed = false;
+    this->PlanAtlas();
     return;
   }
   csm::Settings settings;
@@ -148,15 +157,12 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   {
     this->Internal->Setup = csm::computeShadowSetup(cam, direction, sceneOrNull, settings, parts);
   }
+  this->PlanAtlas();
   if (maximumResolution > 0)
   {
     // Each map turned to the tile it gets in the atlas (more than csm::kAtlasFullMaps cascades
     // share it in non-square tiles).
-    csm::orientToTile(this->Internal->Setup,
-      csm::planAtlas(static_cast<int>(this->Internal->Setup.cascades.size()),
-        this->NumberOfCascades,
-        atlasLimits(this->AtlasResolution, maximumResolution, this->MaximumTextureSize))
-        .tiles.tile);
+    csm::orientToTile(this->Internal->Setup, this->Internal->Atlas.tiles.tile);
   }
   if (this->Internal->LastCount.size() > 64)
   {
@@ -215,6 +221,7 @@ int vtkCascadedShadowMapPlanner::Plan(vtkCamera* camera, double aspect, vtkLight
       this->CameraSpaceFocus, cam, glm::dvec3(position[0], position[1], position[2]));
 #endif
   }
+  this->PlanAtlas();
 #if CSM_COMPARISON_TECHNIQUES
   this->WarnFocusClamped();
 #endif
@@ -288,10 +295,6 @@ void vtkCascadedShadowMapPlanner::AddCasterLoad(
 int vtkCascadedShadowMapPlanner::Report(const void* light, vtkMTimeType lightTime)
 {
   const csm::ShadowSetup& setup = this->Internal->Setup;
-  // The atlas, planned once for this count (the caller allocates and draws into it).
-  this->Internal->Atlas =
-    csm::planAtlas(static_cast<int>(setup.cascades.size()), this->NumberOfCascades,
-      atlasLimits(this->AtlasResolution, this->Internal->MapCeiling, this->MaximumTextureSize));
   auto& reported = this->Internal->ReportedErrors;
   if (setup.status == csm::Status::InvalidInput)
   {

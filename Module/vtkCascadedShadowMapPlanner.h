@@ -439,6 +439,8 @@ private:
   vtkCascadedShadowMapPlanner(const vtkCascadedShadowMapPlanner&) = delete;
   void operator=(const vtkCascadedShadowMapPlanner&) = delete;
 
+  /// The atlas of the plan just made (Internal->Atlas).
+  void PlanAtlas();
   void PlanDirection(vtkCamera* camera, double aspect, const double lightDirection[3],
     const double bounds[6], const void* light, int imageHeight, int maximumResolution,
     int mostCascades = 0);
