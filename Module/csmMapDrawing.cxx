@@ -472,10 +472,14 @@ struct ViewCasters
   std::map<vtkProp*, unsigned int> CullFaces;
   std::vector<vtkProp*> Drawn;
   std::vector<csm::BoxStandIn> StandIns;
+  bool ScreenSizedDrawn = false;
 };
 
-ViewCasters viewCasters(
-  vtkCamera* camera, double aspect, const csmFrameCasters& props, int width, int height)
+/// The casters the view's depth is drawn with; screenSized: also those drawn wider than their
+/// data (wide lines, big points, tubes, spheres), whose width in the depth cannot match the
+/// mapper's own rasterization to the pixel.
+ViewCasters viewCasters(vtkCamera* camera, double aspect, const csmFrameCasters& props, int width,
+  int height, bool screenSized)
 {
   vtkMatrix4x4* worldToClip = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
   // A closed caster seen from outside only (the near plane reaches no point of its box) shows
@@ -507,11 +511,13 @@ ViewCasters viewCasters(
     }
     float screenSizes[2];
     csmScreenSizes(caster.Prop, screenSizes);
-    const bool screenSized = screenSizes[0] > 1.0f || screenSizes[1] > 1.0f;
-    if (caster.Compact < 0 && standsIn(caster.Bounds, caster.Cells, screenSized))
+    const bool wide = screenSizes[0] > 1.0f || screenSizes[1] > 1.0f;
+    if ((wide && !screenSized) ||
+      (caster.Compact < 0 && standsIn(caster.Bounds, caster.Cells, wide)))
     {
       continue;
     }
+    chosen.ScreenSizedDrawn = chosen.ScreenSizedDrawn || wide;
     const int towardEye = closedFaceTowardViewer(caster.Closure, viewDeterminant);
     if (towardEye != 0 && csmViewSeesOnlyOutsideOf(camera, aspect, caster.Bounds.data()))
     {
@@ -524,7 +530,7 @@ ViewCasters viewCasters(
       for (size_t k = 0; k < compact.Bounds.size(); ++k)
       {
         if (csmCascadeReachesBox(worldToClip->GetData(), compact.Bounds[k].data(), false) &&
-          !standsIn(compact.Bounds[k], compact.Cells[k], screenSized))
+          !standsIn(compact.Bounds[k], compact.Cells[k], wide))
         {
           blocks.push_back(k);
         }
@@ -553,7 +559,8 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   // camera pass set its viewport and scissor and cleared it).
   int width = 0, height = 0, x = 0, y = 0;
   renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
-  ViewCasters casters = viewCasters(camera, aspect, props, width, height);
+  // (Screen-sized casters only where the depths are read: their depth is cleared after.)
+  ViewCasters casters = viewCasters(camera, aspect, props, width, height, depths != nullptr);
   vtkOpenGLState* ostate = window->GetState();
   csmDepthDrawingGuard guard(ostate);
   ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -588,5 +595,13 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   this->CasterPass->DrawCasters(renderer, s->GetFrameBuffer(), casters.Drawn);
   this->CasterPass->EndCascade();
   standInCount = static_cast<int>(casters.StandIns.size());
-  return readWindowDepths(renderer, casters.StandIns, depths, footprint);
+  const bool read = depths && readWindowDepths(renderer, casters.StandIns, depths, footprint);
+  if (casters.ScreenSizedDrawn)
+  {
+    // Their depth, a pixel wider or narrower than the mapper draws them, would let the
+    // background through at their edges: the frame's pass draws without the view's depth.
+    ostate->vtkglClearDepth(1.0);
+    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+  }
+  return read;
 }

@@ -101,7 +101,8 @@ public:
   /// farthest sample (window depths) and where the samples lie on the image by depth
   /// (csm::windowFootprint); false where they cannot be read (a multisampled framebuffer, a GL
   /// error). standInCount: the casters (or blocks) left out, small on the image for their
-  /// triangles, whose boxes stand in for their samples (csm::boxStandIn).
+  /// triangles, whose boxes stand in for their samples (csm::boxStandIn). depths null: the
+  /// depth only, nothing read (a view whose depths are known, or a multisampled framebuffer).
   bool DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
     const csmFrameCasters& props, double depths[2], csm::WindowFootprint& footprint,
     int& standInCount);

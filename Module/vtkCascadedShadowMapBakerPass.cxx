@@ -366,18 +366,25 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
     state.VisibleCamera = nullptr; // each process sees only its own; nothing to see
     return;
   }
-  if (!props.GeometryChanged && state.VisibleCamera && state.VisibleAspect == aspect &&
-    sameView(state.VisibleCamera, camera, aspect))
-  {
-    return; // measured for this very view of this scene
-  }
-  state.VisibleCamera = nullptr;
+  const bool measured = !props.GeometryChanged && state.VisibleCamera &&
+    state.VisibleAspect == aspect && sameView(state.VisibleCamera, camera, aspect);
   GLint sampleBuffers = 0;
   glGetIntegerv(GL_SAMPLE_BUFFERS, &sampleBuffers);
-  if (sampleBuffers > 0)
+  if (measured || sampleBuffers > 0)
   {
-    return; // a multisampled depth buffer cannot be read directly: fitted to the boxes
+    // Measured for this very view of this scene, or not readable (a multisampled depth buffer:
+    // the cascades are fitted to the boxes): the view's depth is drawn all the same, for the
+    // frame's own geometry pass, which then makes the lookup only for the fragments it keeps
+    // (Documentation/Results.md, "A still frame").
+    if (!measured)
+    {
+      state.VisibleCamera = nullptr;
+    }
+    this->Drawing->DrawViewDepth(
+      renderer, s, props, nullptr, state.VisibleFootprint, this->Statistics.DepthPassStandIns);
+    return;
   }
+  state.VisibleCamera = nullptr;
   double samples[2] = { 1.0, 0.0 };
   csm::WindowFootprint footprint;
   const bool read = this->Drawing->DrawViewDepth(
