@@ -1,15 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // csm-bench --walk: the camera paths a user takes through a structure, every frame a normal
-// (not interactive) render: a close orbit of 2 degrees a frame and a dolly of 1 % of the model a
-// frame, at 640x480 with a 60 degree view. Ours at its defaults against VTK's pass as it comes
-// (its default 1024^2 map) and the unshadowed frame, interleaved in rounds in one process;
-// medians of the frame times, and per frame what our maps cost: maps rendered and kept, texels
-// and caster cells drawn.
+// (not interactive) render: a close orbit of 2 degrees a frame, a dolly of 1 % of the model a
+// frame and a still camera at their first view, at 640x480 with a 60 degree view. Ours at its
+// defaults against VTK's pass as it comes (its default 1024^2 map) and the unshadowed frame,
+// interleaved in rounds in one process; medians of the frame times, and per frame what our maps
+// cost: maps rendered and kept, texels and caster cells drawn.
 #include "csmWalk.h"
 
 #include "csmFileChecks.h"
 #include "csmScenes.h"
 #include "csmTechnique.h"
+#include "csmTruth.h"
 
 #include "vtkActor.h"
 #include "vtkAppendPolyData.h"
@@ -17,6 +18,7 @@
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
 #include "vtkCubeSource.h"
+#include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -26,14 +28,17 @@
 #include "vtkRenderPass.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkWindowToImageFilter.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -49,6 +54,7 @@ struct WalkOptions
   bool Variants = false;      ///< also ours with the cascades fitted to the boxes, maps not moved
   std::vector<double> Slacks; ///< also ours with these MapSlack values
   bool Interactive = false;   ///< frames as while the user drags (the interactor's update rate)
+  bool Accuracy = true;       ///< each path's misclassified pixels and flicker against the truth
   std::string Out = "walk.csv";
   std::string Engine;
 };
@@ -118,10 +124,26 @@ struct Pose
   double Eye[3], Focal[3];
 };
 
-/// A path of frames: the close orbit (2 degrees a frame about the vertical through the focal
-/// point) or the dolly (toward the focal point, 1 % of the model's diagonal a frame).
-std::vector<Pose> Path(const csmScenes::Scene& scene, double closeness, bool orbit, int frames)
+/// The paths a walk times.
+enum class PathKind
 {
+  Orbit,
+  Dolly,
+  Still
+};
+
+std::string pathNameOf(PathKind kind)
+{
+  return kind == PathKind::Orbit ? "orbit" : (kind == PathKind::Dolly ? "dolly" : "still");
+}
+
+/// A path of frames: the close orbit (2 degrees a frame about the vertical through the focal
+/// point), the dolly (toward the focal point, 1 % of the model's diagonal a frame) or the still
+/// camera at the paths' first view (every frame drawn again, nothing changed: the floor of the
+/// lookup and the frame's fixed costs).
+std::vector<Pose> Path(const csmScenes::Scene& scene, double closeness, PathKind kind, int frames)
+{
+  const bool orbit = kind == PathKind::Orbit;
   const double* f = scene.FocalPoint;
   double eye[3];
   for (int c = 0; c < 3; ++c)
@@ -137,8 +159,9 @@ std::vector<Pose> Path(const csmScenes::Scene& scene, double closeness, bool orb
   // (A path that would pass the focal point takes smaller steps.)
   const double step = std::min(0.01 * diagonal, 0.8 * distance / std::max(frames, 1));
   std::vector<Pose> poses;
-  for (int i = 0; i < frames; ++i)
+  for (int path = 0; path < frames; ++path)
   {
+    const int i = kind == PathKind::Still ? 0 : path;
     Pose p;
     if (orbit)
     {
@@ -171,6 +194,29 @@ struct Technique
   double Texels = 0.0, Cells = 0.0;
   long long MapsRendered = 0, MapsKept = 0, MapsMoved = 0, Frames = 0;
 };
+
+/// What a path's accuracy pass measures of one technique against the truth.
+struct PathAccuracy
+{
+  csmTruth::Classification Errors;
+  long long FlickerCompared = 0, Flickered = 0;
+  double FlickerPct() const
+  {
+    return FlickerCompared ? 100.0 * double(Flickered) / double(FlickerCompared) : 0.0;
+  }
+};
+
+vtkSmartPointer<vtkImageData> grabFrame(vtkRenderWindow* window)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff();
+  grab->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->DeepCopy(grab->GetOutput());
+  return image;
+}
 
 double median(std::vector<double> v)
 {
@@ -212,6 +258,91 @@ void SetLight(
   light->SetPosition(inCamera[0], inCamera[1], inCamera[2]);
 }
 
+/// The camera at a pose of a path, its clipping range as the timed rounds set it.
+void applyPose(vtkRenderer* renderer, const csmScenes::Scene& scene, const Pose& p)
+{
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(p.Eye);
+  camera->SetFocalPoint(p.Focal);
+  camera->SetViewUp(0, 1, 0);
+  camera->OrthogonalizeViewUp();
+  if (scene.ClippingRange[1] > 0)
+    camera->SetClippingRange(scene.ClippingRange);
+  else
+    renderer->ResetCameraClippingRange();
+}
+
+/// Every frame of a path once more, the props white and diffuse under the walk's light alone
+/// (rays: the scene's triangles): the plain frame, then each technique's (its chain kept across
+/// the frames, as in the timed rounds), against the ray-cast truth: misclassified pixels, and
+/// flicker, the pixels compared in two consecutive frames whose class (shadowed or lit) changes
+/// while the truth's does not (as csm-bench's dolly counts it).
+std::vector<PathAccuracy> measurePathAccuracy(vtkRenderer* renderer, vtkRenderWindow* window,
+  vtkLight* light, const csmScenes::Scene& scene, csmTruth::RayScene& rays,
+  const std::vector<Pose>& poses, double gamma, bool cameraLight,
+  const std::vector<csmScenes::ShadowOptions>& techniques, int width, int height)
+{
+  std::vector<PathAccuracy> result(techniques.size());
+  std::vector<vtkSmartPointer<vtkRenderPass>> chains;
+  for (const csmScenes::ShadowOptions& options : techniques)
+  {
+    csmScenes::Installed installed;
+    chains.push_back(csmScenes::BuildChain(options, installed));
+  }
+  SetLight(light, renderer->GetActiveCamera(), poses.front(), gamma, cameraLight);
+  std::vector<std::vector<char>> lastClass(techniques.size());
+  std::vector<char> lastOccluded;
+  for (int i = -1; i < static_cast<int>(poses.size()); ++i)
+  {
+    applyPose(renderer, scene, poses[std::max(i, 0)]);
+    if (rays.TubesFollowCamera())
+      rays.Build(renderer, height); // tubes as wide as this view draws them
+    renderer->SetPass(nullptr);
+    window->Render();
+    auto plain = grabFrame(window);
+    double position[3], focal[3];
+    light->GetTransformedPosition(position);
+    light->GetTransformedFocalPoint(focal);
+    const double travel[3] = { focal[0] - position[0], focal[1] - position[1],
+      focal[2] - position[2] };
+    const auto surfaces = rays.CastPrimary(renderer->GetActiveCamera(), width, height);
+    const auto comparable = csmTruth::ComparablePixels(surfaces, width, height, travel);
+    std::vector<char> occluded(surfaces.size(), 0);
+    for (size_t k = 0; k < surfaces.size(); ++k)
+      occluded[k] = comparable[k] && rays.Occluded(surfaces[k], travel) ? 1 : 0;
+    for (size_t t = 0; t < techniques.size(); ++t)
+    {
+      renderer->SetPass(chains[t]);
+      window->Render();
+      if (i < 0)
+        continue; // the first view, as in the timed rounds
+      const auto factor = csmTruth::FactorFromRenders(grabFrame(window), plain);
+      const csmTruth::Classification c = csmTruth::Classify(surfaces, comparable, occluded, factor);
+      result[t].Errors.Considered += c.Considered;
+      result[t].Errors.FalseShadow += c.FalseShadow;
+      result[t].Errors.FalseLight += c.FalseLight;
+      std::vector<char> classes(surfaces.size(), -1);
+      for (size_t k = 0; k < surfaces.size(); ++k)
+        if (comparable[k])
+          classes[k] = factor[k] < 0.5f ? 1 : 0;
+      for (size_t k = 0; k < classes.size() && !lastClass[t].empty(); ++k)
+      {
+        if (classes[k] < 0 || lastClass[t][k] < 0)
+          continue;
+        ++result[t].FlickerCompared;
+        result[t].Flickered += classes[k] != lastClass[t][k] && occluded[k] == lastOccluded[k];
+      }
+      lastClass[t] = std::move(classes);
+    }
+    if (i >= 0)
+      lastOccluded = std::move(occluded);
+  }
+  for (auto& chain : chains)
+    chain->ReleaseGraphicsResources(window);
+  renderer->SetPass(nullptr);
+  return result;
+}
+
 WalkOptions ParseWalk(int argc, char** argv)
 {
   WalkOptions o;
@@ -232,6 +363,8 @@ WalkOptions ParseWalk(int argc, char** argv)
       o.PerFrame = true;
     else if (f == "--variants")
       o.Variants = true;
+    else if (f == "--no-accuracy")
+      o.Accuracy = false;
     else if (f == "--interactive")
       o.Interactive = true;
     else if (f == "--slack" && hasValue)
@@ -298,7 +431,8 @@ std::string csmWalk::Usage()
     "csm-bench --walk [--scenes a,b,...] [--frames N] [--rounds N] [--size WxH] [--out FILE.csv]\n"
     "                 [--camera-light] [--per-frame] [--variants] [--slack s,...] [--interactive]\n"
     "The camera paths users take close to a structure (an orbit of 2 degrees and a dolly of 1 %%\n"
-    "of the model a frame, every frame a normal render): VTK's pass as it comes, ours and the\n"
+    "of the model a frame, and a still camera at their first view, every frame a normal\n"
+    "render): VTK's pass as it comes, ours and the\n"
     "unshadowed frame side by side, with the maps drawn and kept and the texels and caster cells\n"
     "drawn a frame.\n"
     "  --scenes      engine, towers, lattice, platform [%s]\n"
@@ -310,7 +444,10 @@ std::string csmWalk::Usage()
     "  --per-frame   each frame's maps, their times and how far a kept map missed\n"
     "  --variants    also ours with the cascades fitted to the boxes and maps not moved\n"
     "  --slack s,... also ours with these MapSlack values\n"
-    "  --interactive frames as while the user drags (the interactor's update rate)\n",
+    "  --interactive frames as while the user drags (the interactor's update rate)\n"
+    "  --no-accuracy without the misclassified pixels and flicker against the ray-cast\n"
+    "                truth (Embree), measured after the timed rounds on every frame of every\n"
+    "                path with white diffuse materials, VTK's pass and ours\n",
     scenes.c_str(), o.Frames, o.Rounds, o.Size[0], o.Size[1], o.Out.c_str());
   return text;
 }
@@ -322,7 +459,8 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
   if (!csv)
     walkFail("cannot write '" + o.Out + "'");
   csv << "scene,path,light,label,median_ms,frames,maps_rendered_per_frame,maps_kept_per_frame,"
-         "texels_per_frame,caster_cells_per_frame,maps_moved_per_frame\n";
+         "texels_per_frame,caster_cells_per_frame,maps_moved_per_frame,misclassified_pct,"
+         "flicker_pct\n";
   std::printf("walk: %dx%d, 60 degree view, %d frames a path, %d rounds; %s light\n", o.Size[0],
     o.Size[1], o.Frames, o.Rounds, o.CameraLight ? "camera" : "scene");
   for (const std::string& name : o.Scenes)
@@ -369,10 +507,14 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
     vtkCamera* camera = renderer->GetActiveCamera();
     camera->SetViewAngle(60.0);
     std::printf("scene %s: %lld triangles\n", name.c_str(), scene.Triangles);
-    for (const bool orbit : { true, false })
+    // The CSV's rows of this scene (label -> row without its accuracy), by path.
+    std::vector<std::vector<std::pair<std::string, std::string>>> rows;
+    const std::vector<PathKind> kinds = { PathKind::Orbit, PathKind::Dolly, PathKind::Still };
+    for (const PathKind kind : kinds)
     {
-      const std::string pathName = orbit ? "orbit" : "dolly";
-      const std::vector<Pose> poses = Path(scene, closeness, orbit, o.Frames);
+      rows.emplace_back();
+      const std::string pathName = pathNameOf(kind);
+      const std::vector<Pose> poses = Path(scene, closeness, kind, o.Frames);
       std::vector<Technique> techniques(3);
       techniques[0].Label = "none";
       techniques[0].Shadow.Technique = "none";
@@ -498,12 +640,56 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
             t.MapsRendered / frames, t.MapsKept / frames, t.MapsMoved / frames,
             1e-6 * t.Texels / frames, 1e-3 * t.Cells / frames);
         std::printf("\n");
-        csv << name << "," << pathName << "," << (o.CameraLight ? "camera" : "scene") << ","
+        std::ostringstream row;
+        row << name << "," << pathName << "," << (o.CameraLight ? "camera" : "scene") << ","
             << t.Label << "," << median(t.Ms) << "," << t.Frames << "," << t.MapsRendered / frames
             << "," << t.MapsKept / frames << "," << t.Texels / frames << "," << t.Cells / frames
-            << "," << t.MapsMoved / frames << "\n";
+            << "," << t.MapsMoved / frames;
+        rows.back().emplace_back(t.Label, row.str());
       }
       std::fflush(stdout);
+    }
+    // Accuracy along every path: VTK's pass as it comes and ours at its defaults.
+    std::map<std::pair<size_t, std::string>, PathAccuracy> accuracy;
+    if (o.Accuracy)
+    {
+      csmTruth::RayScene rays;
+      for (const auto& actor : scene.Actors)
+      {
+        actor->GetProperty()->SetColor(1, 1, 1);
+        actor->GetProperty()->SetAmbient(0.0);
+        actor->GetProperty()->SetDiffuse(1.0);
+        actor->GetProperty()->SetSpecular(0.0);
+      }
+      renderer->SetBackground(0, 0, 0);
+      rays.Build(renderer, o.Size[1]);
+      std::vector<csmScenes::ShadowOptions> measured(2);
+      measured[0].Technique = "vtk";
+      measured[0].Resolution = 1024;
+      const std::string labels[2] = { "vtk default", "default" };
+      for (size_t path = 0; path < kinds.size(); ++path)
+      {
+        const std::vector<PathAccuracy> a = measurePathAccuracy(renderer, window, light, scene,
+          rays, Path(scene, closeness, kinds[path], o.Frames), gamma, o.CameraLight, measured,
+          o.Size[0], o.Size[1]);
+        std::printf("  %-6s %-7s accuracy", name.c_str(), pathNameOf(kinds[path]).c_str());
+        for (size_t t = 0; t < a.size(); ++t)
+        {
+          accuracy[{ path, labels[t] }] = a[t];
+          std::printf("%s %s %.3f %% misclassified, flicker %.3f %%", t ? ";" : ":",
+            labels[t].c_str(), a[t].Errors.MismatchPct(), a[t].FlickerPct());
+        }
+        std::printf("\n");
+      }
+    }
+    for (size_t path = 0; path < rows.size(); ++path)
+    {
+      for (const auto& [label, row] : rows[path])
+      {
+        const auto found = accuracy.find({ path, label });
+        csv << row << "," << (found == accuracy.end() ? NAN : found->second.Errors.MismatchPct())
+            << "," << (found == accuracy.end() ? NAN : found->second.FlickerPct()) << "\n";
+      }
     }
   }
   return 0;
