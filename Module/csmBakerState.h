@@ -53,6 +53,8 @@ struct csmRendererMaps
   double LastAspect = 0.0;
   bool LastInteracting = false;
   int LastShadowingLights = 0;
+  /// Frames in a row in which some casters changed (csmFrameCasters::Dirty).
+  int CastersChangedFrames = 0;
   vtkCascadedShadows::FrameStatistics LastPlanStatistics;
 };
 

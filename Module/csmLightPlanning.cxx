@@ -38,6 +38,11 @@ constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASC
 // fitted to the body, has none either (the lookup clamps its taps to the map).
 constexpr double kReuseMarginTexels = 0.0;
 
+/// Frames in a row with changed casters after which they count as changing every frame
+/// (vtkCascadedShadowMapPlanner::SetCastersChanging): the second such frame, when a map kept
+/// for the next one would be drawn again.
+constexpr int kChangingFrames = 2;
+
 /// Texels around a changed caster's image a kept map draws again (rasterization rounds a
 /// triangle's edge to the texel centres it covers, never beyond the next texel).
 constexpr int kPatchMarginTexels = 1;
@@ -160,9 +165,12 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
     this->Statistics.VisibleFootprintUsed = state.LastPlanStatistics.VisibleFootprintUsed;
     std::copy(std::begin(state.LastPlanStatistics.KeptError),
       std::end(state.LastPlanStatistics.KeptError), std::begin(this->Statistics.KeptError));
+    state.CastersChangedFrames = 0;
     return state.LastShadowingLights;
   }
   props.FeedPlanner(this->Planner);
+  state.CastersChangedFrames = props.Dirty.empty() ? 0 : state.CastersChangedFrames + 1;
+  this->Planner->SetCastersChanging(state.CastersChangedFrames >= kChangingFrames);
   // Plan every shadowed light for this frame, and decide per cascade whether the map kept from
   // an earlier frame still serves (only the camera moved, it covers, its error is bounded).
   // While the user interacts (VTK's convention: the interactor raises the window's desired

@@ -101,7 +101,8 @@ void vtkCascadedShadowMapPlanner::PlanDirection(vtkCamera* camera, double aspect
   // A map fixed in the world pays only while the light stays: not for a light that follows
   // the camera (a camera light or headlight moves with every view).
   const vtkLight* vtkLightOf = static_cast<const vtkLight*>(light);
-  settings.sceneFitted = this->SceneFittedCascades &&
+  // (Nor while the casters change every frame: no map is kept.)
+  settings.sceneFitted = this->SceneFittedCascades && !this->Internal->CastersChanging &&
     (!vtkLightOf || const_cast<vtkLight*>(vtkLightOf)->LightTypeIsSceneLight());
   settings.stableOrthographic = true; // with GetCascadeMatrix(..., resolution)'s snap
   const csm::Bounds scene = csm::Bounds::fromMinMaxPairs(bounds);
@@ -277,6 +278,16 @@ void vtkCascadedShadowMapPlanner::AddReceiverBounds(const double bounds[6])
 void vtkCascadedShadowMapPlanner::ClearCasterLoads()
 {
   this->Internal->Casters.clear();
+}
+
+void vtkCascadedShadowMapPlanner::SetCastersChanging(bool changing)
+{
+  this->Internal->CastersChanging = changing;
+}
+
+bool vtkCascadedShadowMapPlanner::GetCastersChanging() const
+{
+  return this->Internal->CastersChanging;
 }
 
 void vtkCascadedShadowMapPlanner::AddCasterLoad(

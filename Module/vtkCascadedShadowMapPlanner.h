@@ -278,6 +278,19 @@ public:
 
   ///@{
   /**
+   * Do the casters change every frame (a time series, a deforming structure)? Then no map is
+   * kept from one frame to the next, and a scene-fitted map (SceneFittedCascades), which costs
+   * nothing only while it is kept, would draw all the texels of its tile each frame: Plan()
+   * fits the cascades to the view instead, each map sized to what ErrorTarget needs. Like the
+   * caster loads, an input of the frame, not a property (setting it does not modify the
+   * planner). Default false.
+   */
+  void SetCastersChanging(bool changing);
+  bool GetCastersChanging() const;
+  ///@}
+
+  ///@{
+  /**
    * The depths the view really has samples at (Lauritzen's sample distribution; the Vazquez
    * slides' "adjust the depth range to visible objects"): an earlier frame drawn by measuredBy
    * in a viewport of the given aspect had visible samples at window depths windowMin ..

@@ -55,6 +55,8 @@ struct vtkCascadedShadowMapPlannerInternals
   // SetVisibleFootprint(): where that camera's samples lie on its image, by depth.
   csm::WindowFootprint Footprint;
   bool FootprintUsed = false;
+  // SetCastersChanging(): the casters change every frame.
+  bool CastersChanging = false;
 
 #if CSM_COMPARISON_TECHNIQUES
   // The comparison techniques (vtkCascadedShadowMapPlannerComparison.cxx).

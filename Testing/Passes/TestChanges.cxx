@@ -239,3 +239,46 @@ TEST(Changes, OnePartOfSixteenMovedDrawsOnlyItsTexels)
     EXPECT_EQ(DifferingValues(FreshFrame(scene, baker), moved), 0) << step;
   }
 }
+
+// Casters that change every frame (a deforming structure): from the second such frame on, no
+// scene-fitted map (it would draw its whole tile every frame) but maps fitted to the view, sized
+// to what the error target needs, and the frame the one a fresh chain draws of that plan.
+TEST(Changes, CastersChangingEveryFrameGetMapsFittedToTheView)
+{
+  BoxOverPlane scene;
+  vtkPolyData* data = AddField(scene);
+  vtkCascadedShadowMapBakerPass* baker =
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  scene.Frame();
+  const double firstTexels = baker->GetLastFrameStatistics().TexelsRendered;
+  ASSERT_GT(firstTexels, 0.0);
+  EXPECT_FALSE(baker->GetPlanner()->GetCastersChanging());
+  vtkSmartPointer<vtkImageData> deformed;
+  for (int step = 0; step < 4; ++step)
+  {
+    for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      data->GetPoint(i, p);
+      data->GetPoints()->SetPoint(i, p[0], p[1] * (step % 2 ? 1.02 : 0.98), p[2]);
+    }
+    data->GetPoints()->Modified();
+    deformed = scene.Frame();
+    const auto& statistics = baker->GetLastFrameStatistics();
+    std::printf("step %d: maps drawn %d, patched %d, texels %.0f of %.0f\n", step,
+      statistics.CascadesRendered, statistics.CascadesPatched, statistics.TexelsRendered,
+      firstTexels);
+    EXPECT_EQ(baker->GetPlanner()->GetCastersChanging(), step >= 1) << step;
+    if (step >= 2)
+    {
+      EXPECT_GT(statistics.TexelsRendered, 0.0) << step;
+      EXPECT_LT(statistics.TexelsRendered, 0.5 * firstTexels) << step;
+    }
+  }
+  // A still frame after them keeps the maps; the next move plans the scene-fitted map again.
+  scene.Frame();
+  EXPECT_EQ(baker->GetLastFrameStatistics().TexelsRendered, 0.0);
+  scene.Renderer->GetActiveCamera()->Azimuth(2.0);
+  scene.Frame();
+  EXPECT_FALSE(baker->GetPlanner()->GetCastersChanging());
+}
