@@ -19,6 +19,7 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLState.h"
+#include "vtkPropCollection.h"
 #include "vtkProperty.h"
 #include "vtkRenderPassCollection.h"
 #include "vtkRenderState.h"
@@ -32,6 +33,7 @@
 #endif
 
 #include <algorithm>
+#include <functional>
 #include <sstream>
 #include <vector>
 
@@ -114,6 +116,26 @@ void mappersViewToWorld(vtkRenderer* renderer, vtkMatrix4x4* viewToWorld)
     vtkMatrix4x4::Invert(renderer->GetActiveCamera()->GetModelViewTransformMatrix(), viewToWorld);
   }
 }
+
+/// Which of the renderer's props the baker draws from behind (CSM_PLANE_TAPS in their shaders),
+/// as a digest for the shader signature.
+std::string fromBehindDigest(vtkRenderer* renderer, vtkCascadedShadowMapBakerPass* baker)
+{
+  size_t digest = 0, count = 0;
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (baker->DrawsFromBehind(prop))
+    {
+      digest ^=
+        std::hash<const void*>()(prop) + 0x9e3779b97f4a7c15ULL + (digest << 6) + (digest >> 2);
+      ++count;
+    }
+  }
+  return std::to_string(count) + ":" + std::to_string(digest);
+}
 } // namespace
 
 void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
@@ -188,6 +210,7 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   {
     signature += " radius " + std::to_string(this->PCFSize / 2);
   }
+  signature += " from behind " + fromBehindDigest(renderer, baker);
   if (signature != this->ShaderSignature)
   {
     this->ShaderSignature = signature;
@@ -218,7 +241,7 @@ bool vtkCascadedShadowMapPass::PreReplaceShaderValues(
 }
 
 bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
-  std::string&, std::string&, std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp*)
+  std::string&, std::string&, std::string& fragmentShader, vtkAbstractMapper* mapper, vtkProp* prop)
 {
   if (this->Uniforms.Lights() == 0)
   {
@@ -236,6 +259,11 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   std::ostringstream decl;
   decl << vtkCascadedShadowMapPass::GetShaderDefinitions(static_cast<int>(this->Uniforms.Lights()),
     this->PCFKernel, this->DebugMode, this->ConstantKernelSize() ? this->PCFSize / 2 : -1);
+  // Surfaces drawn into the maps from behind compare each texel at its own depth (the signature
+  // of DrawShadowed rebuilds the shaders when that set changes).
+  const bool fromBehind =
+    this->ShadowMapBakerPass && prop && this->ShadowMapBakerPass->DrawsFromBehind(prop);
+  decl << "#define CSM_PLANE_TAPS " << (fromBehind ? 1 : 0) << "\n";
 #if CSM_COMPARISON_TECHNIQUES
   decl << this->ComparisonDefinitions();
 #endif
@@ -424,14 +452,14 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
     program->SetUniformi("csmPCFRadius", this->PCFSize / 2);
   }
   // Per prop: the faces turned toward the light of a closed surface drawn into the maps from
-  // behind need less bias (the lookup tells which way each face turns).
-  const double biasShare =
-    this->ShadowMapBakerPass && this->ShadowMapBakerPass->DrawsFromBehind(prop)
-    ? this->ClosedSurfaceBiasFactor
-    : 1.0;
+  // behind are compared texel by texel with a share of the constant bias (the lookup tells which
+  // way each face turns).
+  const bool fromBehind =
+    this->ShadowMapBakerPass && this->ShadowMapBakerPass->DrawsFromBehind(prop);
   program->SetUniformf("csmConstantBias", static_cast<float>(this->ConstantBias));
   program->SetUniformf("csmSlopeBias", static_cast<float>(this->SlopeBias));
-  program->SetUniformf("csmClosedBiasShare", static_cast<float>(biasShare));
+  program->SetUniformi("csmFromBehind", fromBehind ? 1 : 0);
+  program->SetUniformf("csmClosedBiasShare", static_cast<float>(this->ClosedSurfaceBiasFactor));
   program->SetUniformf("csmBlendBand", static_cast<float>(this->BlendBand));
   const ShaderUniforms& u = this->Uniforms;
   const int lights = static_cast<int>(u.Lights());

@@ -99,16 +99,17 @@ public:
 
   ///@{
   /**
-   * Share of ConstantBias and SlopeBias for the faces turned toward the light of surfaces whose
-   * lit side is not in the maps: closed surfaces that the baker draws with only their faces
-   * turned away from the light (vtkCascadedShadowMapBakerPass::DrawsFromBehind). Those faces
-   * meet only the far side of their own solid in the map, or, along a concave crease or where
-   * parts touch, the face that shadows them: the bias, which exists to keep a surface from
-   * shadowing itself, there only moves the shadow's edge off the crease (a line of light along a
-   * fillet's facets, a bar joint, a part on a floor). The lookup tells the way each face turns;
-   * the faces turned away (lit at the terminator by an interpolated normal) meet their own depth
-   * and take the full bias. 1: the same bias for every face. Default 0.25
-   * (Documentation/Tried.md, "Closed casters").
+   * Share of ConstantBias for the faces turned toward the light of surfaces whose lit side is
+   * not in the maps: closed surfaces that the baker draws with only their faces turned away
+   * from the light (vtkCascadedShadowMapBakerPass::DrawsFromBehind). Those faces never meet
+   * their own depth in the map, only the far side of their own solid or, along a concave crease
+   * or where parts touch, the face that shadows them, which meets them there: a bias only moves
+   * the shadow's edge off the crease (a line of light along a fillet's facets, a bar joint, a
+   * part on a floor). They take no slope-scaled bias: their lookup compares each texel with the
+   * receiver plane's depth at that texel's centre. The share keeps coplanar contact (a part's
+   * bottom on another's top) lit against rounding. The lookup tells the way each face turns; the
+   * faces turned away (lit at the terminator by an interpolated normal) meet their own depth and
+   * take both biases in full. Default 0.01 (Documentation/Tried.md, "Closed casters").
    */
   vtkSetFiniteClampMacro(ClosedSurfaceBiasFactor, double, 0.0, 1.0);
   vtkGetMacro(ClosedSurfaceBiasFactor, double);
@@ -169,7 +170,7 @@ protected:
   int PCFKernel = KERNEL_GRID;
   double ConstantBias = 0.002;
   double SlopeBias = 1.5;
-  double ClosedSurfaceBiasFactor = 0.25;
+  double ClosedSurfaceBiasFactor = 0.01;
   double BlendBand = 0.05;
   double ShadowDarkness = 1.0;
   int DebugMode = DEBUG_OFF;

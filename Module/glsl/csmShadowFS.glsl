@@ -8,11 +8,16 @@
 // (CSM_KERNEL_GRID or CSM_KERNEL_JITTERED), CSM_DEBUG (0 off, or CSM_DEBUG_CASCADES, _ERROR,
 // _FACTOR), CSM_LIGHTS, CSM_MAX_CASCADES, and CSM_PCF_RADIUS when few lights are shadowed; in a
 // build with the comparison techniques, CSM_FACES and CSM_CAMERA_SPACE where a light's maps need
-// their lookup (csmComparisonFS.glsl, which the pass puts before this file). Every
+// their lookup (csmComparisonFS.glsl, which the pass puts before this file); CSM_PLANE_TAPS 1 in
+// the shaders of surfaces drawn into the maps from behind (each texel compared at its own
+// receiver-plane depth), 0 or undefined elsewhere. Every
 // fragment makes one map lookup: a software rasterizer runs both sides of a branch, so options
 // that a uniform would switch at run time are compiled in or out instead. The kernel radius is a
 // constant where it can be (the loops unroll, the tap weights fold); with many shadowed lights the
 // unrolled taps would make a shader too large to compile, so there it stays a uniform.
+#ifndef CSM_PLANE_TAPS
+#define CSM_PLANE_TAPS 0
+#endif
 #ifndef CSM_PCF_RADIUS
 uniform int csmPCFRadius;      // kernel of 2 r + 1 texels a side
 #define CSM_PCF_RADIUS csmPCFRadius
@@ -20,8 +25,11 @@ uniform int csmPCFRadius;      // kernel of 2 r + 1 texels a side
 
 uniform float csmConstantBias; // in the map's [0,1] depth
 uniform float csmSlopeBias;    // times the receiver-plane depth change over one texel
-// Share of both biases for the faces turned toward the light of a surface drawn into the maps
-// from behind (vtkCascadedShadowMapPass::ClosedSurfaceBiasFactor); 1 for every other surface.
+// 1 for a surface drawn into the maps from behind (a closed surface, only its faces turned away
+// from the light: vtkCascadedShadowMapBakerPass::DrawsFromBehind), 0 for every other surface.
+uniform int csmFromBehind;
+// Share of the constant bias for the faces of such a surface turned toward the light, which take
+// no slope-scaled bias (vtkCascadedShadowMapPass::ClosedSurfaceBiasFactor).
 uniform float csmClosedBiasShare;
 uniform float csmBlendBand;    // share of a cascade's depth range blended into the next
 
@@ -37,13 +45,43 @@ float csmTap(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float z)
   return textureLod(map, vec3(tile.xy + inside * tile.zw, z), 0.0);
 }
 
+// A bilinear compare at uv whose four texels each compare the receiver plane's depth at their own
+// centre (z at uv, dz its change per unit of uv). One hardware compare takes z for all four and
+// misses the plane's change over the half texel to each centre: enough, on a face nearly along
+// the light, to light it where the face shadowing it meets it (a concave crease) or to shadow it
+// where its own solid's far side meets it (a convex edge).
+float csmPlaneTap(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float z, vec2 dz,
+  float maxStep)
+{
+  vec2 t = uv / texel - 0.5;
+  vec2 base = floor(t);
+  vec2 f = t - base;
+  float s[4];
+  for (int k = 0; k < 4; ++k)
+  {
+    vec2 centre = (base + vec2(float(k & 1), float(k >> 1)) + 0.5) * texel;
+    s[k] = csmTap(map, tile, texel, centre, z + clamp(dot(dz, centre - uv), -maxStep, maxStep));
+  }
+  return mix(mix(s[0], s[1], f.x), mix(s[2], s[3], f.x), f.y);
+}
+
+// One compare of a kernel's tap: the hardware's bilinear compare at the tap's own depth, or, for
+// a face whose own depth is not in the map (exact), the compare with each texel's own depth.
+float csmKernelTap(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float z, vec2 dz,
+  float maxStep, bool exact)
+{
+  return exact ? csmPlaneTap(map, tile, texel, uv, z, dz, maxStep)
+               : csmTap(map, tile, texel, uv, z);
+}
+
 // Texel-space PCF over (2r+1) x (2r+1) texels (r = CSM_PCF_RADIUS): the mean of (2r+1)^2 hardware
 // bilinear compares one texel apart around uv, taken with (r+1)^2 taps. Along each axis those
 // compares weigh the 2r+2 texels they touch [1-f, 1, ..., 1, f] (f: uv's fraction between texel
 // centres); each adjacent pair of texels is one bilinear tap of weight w0 + w1 placed w1/(w0+w1)
 // past the first (the "optimized PCF" of The Witness / Castano 2013, exact for the box of
 // bilinear compares). Every tap keeps its own receiver-plane depth (Barroso & Celes 2007, §2.2).
-float csmGridPCF(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float zRef, vec2 dz)
+float csmGridPCF(
+  sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float zRef, vec2 dz, bool exact)
 {
   int r = CSM_PCF_RADIUS;
   float maxStep = 0.05; // keep grazing receivers from throwing the taps far off their plane
@@ -65,7 +103,8 @@ float csmGridPCF(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float zRef
       float py = base.y - float(r) + 2.0 * float(k) + w1y / wy;
       vec2 tap = (vec2(px, py) + 0.5) * texel;
       vec2 o = tap - uv;
-      sum += wx * wy * csmTap(map, tile, texel, tap, zRef + clamp(dot(dz, o), -maxStep, maxStep));
+      float z = zRef + clamp(dot(dz, o), -maxStep, maxStep);
+      sum += wx * wy * csmKernelTap(map, tile, texel, tap, z, dz, maxStep, exact);
     }
   }
   float n = float(2 * r + 1);
@@ -74,7 +113,8 @@ float csmGridPCF(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float zRef
 
 // Jittered circular kernel of radius r + 0.5 texels: as many bilinear taps as the grid kernel,
 // on a spiral rotated per pixel, so that the taps stay unaligned (Barroso & Celes 2007, §2.2).
-float csmJitteredPCF(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float zRef, vec2 dz)
+float csmJitteredPCF(
+  sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float zRef, vec2 dz, bool exact)
 {
   int r = CSM_PCF_RADIUS;
   int n = (r + 1) * (r + 1);
@@ -86,7 +126,8 @@ float csmJitteredPCF(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float 
     float radius = sqrt((float(i) + 0.5) / float(n)) * (float(r) + 0.5);
     float angle = float(i) * 2.3999632 + turn;
     vec2 o = radius * vec2(cos(angle), sin(angle)) * texel;
-    sum += csmTap(map, tile, texel, uv + o, zRef + clamp(dot(dz, o), -maxStep, maxStep));
+    float z = zRef + clamp(dot(dz, o), -maxStep, maxStep);
+    sum += csmKernelTap(map, tile, texel, uv + o, z, dz, maxStep, exact);
   }
   return sum / float(n);
 }
@@ -134,16 +175,23 @@ float csmVisibility(sampler2DShadow map, vec4 tile, vec2 texel, vec4 h, vec4 hx,
   // outward on a closed surface), so cross(dx, dy).z = det is the outward normal's z times the
   // sign of the map's Jacobian, which is the sign of the map matrix's determinant (handedness).
   // A face turned toward the light on a surface drawn from behind never meets its own depth in
-  // the map, only the far side of its solid or, at a concave crease, the face that shadows it:
-  // it takes csmClosedBiasShare of the bias; a face turned away (lit by an interpolated normal
-  // at the terminator) meets its own depth and takes all of it.
-  float share = det * handedness < 0.0 ? csmClosedBiasShare : 1.0;
-  float zRef = p.z - share * (biasScale * csmConstantBias + csmSlopeBias * zSlopePerTexel);
+  // the map, only the far side of its solid (behind it, meeting it at a convex edge) or the face
+  // that shadows it (in front of it, meeting it along a concave crease or where parts touch):
+  // a bias would light the crease, so it takes no slope bias and csmClosedBiasShare of the
+  // constant one (coplanar contact against rounding), and each texel is compared with the plane
+  // at its own centre (exact). A face turned away (lit by an interpolated normal at the
+  // terminator) meets its own depth and takes both biases (compared texel by texel as well).
+  // The per-texel compares are compiled in for such surfaces only (CSM_PLANE_TAPS): a software
+  // rasterizer would pay for both sides of a branch in every fragment.
+  bool facesLight = det * handedness < 0.0 && csmFromBehind != 0;
+  float zRef = p.z - (facesLight ? csmClosedBiasShare * biasScale * csmConstantBias
+                                 : biasScale * csmConstantBias + csmSlopeBias * zSlopePerTexel);
+  bool exact = CSM_PLANE_TAPS != 0;
 #if CSM_KERNEL == CSM_KERNEL_GRID
-  return csmGridPCF(map, tile, texel, p.xy, zRef, dz);
+  return csmGridPCF(map, tile, texel, p.xy, zRef, dz, exact);
 #else
-  return CSM_PCF_RADIUS == 0 ? csmGridPCF(map, tile, texel, p.xy, zRef, dz)
-                           : csmJitteredPCF(map, tile, texel, p.xy, zRef, dz);
+  return CSM_PCF_RADIUS == 0 ? csmGridPCF(map, tile, texel, p.xy, zRef, dz, exact)
+                           : csmJitteredPCF(map, tile, texel, p.xy, zRef, dz, exact);
 #endif
 }
 

@@ -4,6 +4,7 @@
 // Each test renders the scene with our shadows and compares it against its committed baseline
 // (vtkTesting), then renders it again without shadows and counts the pixels the shadows
 // darkened: a scene where shadows must appear must have at least the expected count.
+#include "csmPartFamily.h"
 #include "csmScenes.h"
 #include "csmTechnique.h"
 #include "csmTestHelpers.h"
@@ -503,6 +504,40 @@ std::map<std::string, std::function<void(Test&)>> Cases()
   {
     SphereField(t, 30.0);
     t.MinShadowPixels = 3000;
+  };
+  // Two parts of the crease family close up under a light low over the horizon: the shadows of
+  // their upright faces fill the inner corners up to the creases, with no line of light along
+  // them (accuracy.CreaseFamily measures the same against the ray-cast truth).
+  auto creases = [](Test& t, const char* name, double elevation, double azimuth)
+  {
+    for (const auto& member : csmPartFamily::Members())
+      if (member.Name == name)
+      {
+        csmPartFamily::View view;
+        view.Close = true;
+        view.Elevation = elevation;
+        view.Azimuth = azimuth;
+        for (const auto& actor : member.Actors)
+        {
+          actor->GetProperty()->SetColor(0.8, 0.8, 0.82);
+          t.Renderer->AddActor(actor);
+        }
+        csmPartFamily::PlaceCamera(view, member, t.Renderer);
+        double d[3];
+        csmPartFamily::LightDirection(view, d);
+        AddDirectional(t.Renderer, d, 0.85);
+        AddFill(t.Renderer, kPlatformFill);
+      }
+  };
+  cases["TestCreasesTProfile"] = [creases](Test& t)
+  {
+    creases(t, "t-profile", 8.0, 20.0);
+    t.MinShadowPixels = 20000;
+  };
+  cases["TestCreasesLOnBase"] = [creases](Test& t)
+  {
+    creases(t, "l-on-base", 12.0, 60.0);
+    t.MinShadowPixels = 20000;
   };
   cases["TestEngineCAD"] = [](Test& t)
   {

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The lookup's filter on a synthetic shadow map, in a real GL context: the (r+1)^2-tap grid
 // kernel (csmGridPCF in Module/glsl/csmShadowFS.glsl) equals the (2r+1)^2 hardware bilinear
-// compares one texel apart that it stands for, within 1/255.
+// compares one texel apart that it stands for, within 1/255; with a tilted receiver plane and
+// each texel compared at its own depth (a face whose own depth is not in the map), it equals
+// the same compares made texel by texel at the plane's depth at each texel's centre.
 #include "csmShadowFS.h" // the GLSL under test
 
 #include "vtkCascadedShadowMapPass.h"
@@ -54,13 +56,33 @@ std::string fragmentShader(int constantRadius)
     "  vec2 texel = vec2(1.0 / " +
     std::to_string(kMapWidth) + ".0, 1.0 / " + std::to_string(kMapHeight) +
     ".0);\n"
-    "  float fast = csmGridPCF(map, tile, texel, uv, zRef, vec2(0.0));\n"
+    "  float fast = csmGridPCF(map, tile, texel, uv, zRef, vec2(0.0), false);\n"
+    "  // A receiver plane across the kernel: each texel compared with the plane at its centre.\n"
+    "  vec2 dz = vec2(0.25, -0.15);\n"
+    "  float exact = csmGridPCF(map, tile, texel, uv, zRef, dz, true);\n"
+    "  float shared = csmGridPCF(map, tile, texel, uv, zRef, dz, false);\n"
+    "  float perTexel = 0.0;\n"
+    "  for (int i = -r; i <= r; ++i)\n"
+    "    for (int k = -r; k <= r; ++k)\n"
+    "    {\n"
+    "      vec2 t = (uv + vec2(i, k) * texel) / texel - 0.5;\n"
+    "      vec2 f = t - floor(t);\n"
+    "      for (int c = 0; c < 4; ++c)\n"
+    "      {\n"
+    "        vec2 corner = vec2(float(c & 1), float(c >> 1));\n"
+    "        vec2 centre = (floor(t) + corner + 0.5) * texel;\n"
+    "        vec2 w = mix(vec2(1.0) - f, f, corner);\n"
+    "        perTexel += w.x * w.y * csmTap(map, tile, texel, centre, zRef + dot(dz, centre - "
+    "uv));\n"
+    "      }\n"
+    "    }\n"
+    "  perTexel /= float((2 * r + 1) * (2 * r + 1));\n"
     "  float reference = 0.0;\n"
     "  for (int i = -r; i <= r; ++i)\n"
     "    for (int k = -r; k <= r; ++k)\n"
     "      reference += csmTap(map, tile, texel, uv + vec2(i, k) * texel, zRef);\n"
     "  reference /= float((2 * r + 1) * (2 * r + 1));\n"
-    "  gl_FragData[0] = vec4(fast, reference, 0.0, 1.0);\n"
+    "  gl_FragData[0] = vec4(fast, reference, exact - perTexel, shared - perTexel);\n"
     "}\n";
 }
 }
@@ -76,11 +98,12 @@ TEST(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
   ASSERT_NE(gl, nullptr);
   gl->MakeCurrent();
 
-  // A random depth map: each texel in front of (0.25) or behind (0.75) the reference depth.
+  // A random depth map around the reference depth 0.5, within the receiver plane's change over
+  // the kernel: each texel in front of or behind it, and for a tilted receiver so per texel.
   std::mt19937 random(7);
   std::vector<float> depth(kMapWidth * kMapHeight);
   for (float& d : depth)
-    d = random() % 3 == 0 ? 0.25f : 0.75f;
+    d = 0.47f + 0.06f * static_cast<float>(random() % 1000) / 999.0f;
   vtkNew<vtkTextureObject> map;
   map->SetContext(gl);
   map->SetWrapS(vtkTextureObject::ClampToEdge);
@@ -127,19 +150,26 @@ TEST(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
     map->Deactivate();
     std::vector<float> pixels(4 * kSamples * kSamples);
     glReadPixels(0, 0, kSamples, kSamples, GL_RGBA, GL_FLOAT, pixels.data());
-    long differing = 0, penumbra = 0;
+    long differing = 0, penumbra = 0, differingExact = 0, differingShared = 0;
     double worst = 0.0;
     for (int i = 0; i < kSamples * kSamples; ++i)
     {
       const double difference = std::abs(pixels[4 * i] - pixels[4 * i + 1]);
       worst = std::max(worst, difference);
       differing += difference > 1.0 / 255.0;
+      differingExact += std::abs(pixels[4 * i + 2]) > 1.0 / 255.0;
+      differingShared += std::abs(pixels[4 * i + 3]) > 1.0 / 255.0;
       penumbra +=
         pixels[4 * i + 1] > 0.05f && pixels[4 * i + 1] < 0.95f; // neither lit nor shadowed
     }
-    std::printf("r = %d (%s): largest difference %.2e, %ld of %d samples in a penumbra\n", r,
-      constant ? "compiled in" : "uniform", worst, penumbra, kSamples * kSamples);
+    std::printf("r = %d (%s): largest difference %.2e, %ld of %d samples in a penumbra, %ld "
+                "with a tilted receiver differ at the taps' own depths\n",
+      r, constant ? "compiled in" : "uniform", worst, penumbra, kSamples * kSamples,
+      differingShared);
     EXPECT_EQ(differing, 0) << "r = " << r;
+    EXPECT_EQ(differingExact, 0) << "r = " << r;
+    // The hardware's compares at each tap's own depth miss the plane's change within a texel.
+    EXPECT_GT(differingShared, kSamples * kSamples / 10) << "r = " << r;
     // The map is random: most samples see both depths (the comparison is not of constants).
     EXPECT_GT(penumbra, kSamples * kSamples / 2) << "r = " << r;
   }

@@ -141,7 +141,7 @@ TEST(Passes, ClosedSurfacesDrawnFromBehindTakeAShareOfTheBias)
   auto plain = scene.Render();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
-  EXPECT_EQ(pass->GetClosedSurfaceBiasFactor(), 0.25);
+  EXPECT_EQ(pass->GetClosedSurfaceBiasFactor(), 0.01);
   pass->SetSlopeBias(0.0);
   pass->SetConstantBias(0.9);
   EXPECT_LT(DarkenedPixels(scene.Render(), plain), 50);
