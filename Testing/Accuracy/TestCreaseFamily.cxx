@@ -16,6 +16,7 @@
 // CSM_FAMILY_VIEWS=<member-camera-elevation-azimuth,...> (l-on-base-close-5-270) measures only
 // those views.
 #include "csmPartFamily.h"
+#include "csmTestHelpers.h"
 #include "csmTruth.h"
 
 #include "vtkActor.h"
@@ -28,7 +29,6 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <gtest/gtest.h>
 
@@ -52,16 +52,10 @@ struct Measure
   long FalseLightWithoutShadows = 0;
 };
 
+/// A frame and its image (the grab renders it again).
 vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
 {
-  window->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->DeepCopy(grab->GetOutput());
-  return image;
+  return csmTest::Grab(window, true);
 }
 
 /// The longest side of the bounding boxes of the groups of marked pixels connected within `reach`

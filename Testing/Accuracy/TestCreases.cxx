@@ -7,6 +7,7 @@
 // facets and the holes' walls, where a depth offset or bias on either side lets light through in
 // lines one pixel wide.
 #include "csmScenes.h"
+#include "csmTestHelpers.h"
 #include "csmTruth.h"
 
 #include "vtkActor.h"
@@ -20,7 +21,6 @@
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <gtest/gtest.h>
 
@@ -31,16 +31,10 @@ namespace
 {
 constexpr int W = 640, H = 480;
 
+/// A frame and its image (the grab renders it again).
 vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
 {
-  window->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->DeepCopy(grab->GetOutput());
-  return image;
+  return csmTest::Grab(window, true);
 }
 
 /// The bracket at its default view, plain white with diffuse light only (the truth's factor is
