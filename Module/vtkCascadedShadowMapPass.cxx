@@ -26,6 +26,8 @@
 #include "vtkSequencePass.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
+#include "vtkTextureUnitManager.h"
+#include "vtk_glew.h"
 
 #include "csmShadowFS.h" // the GLSL of Module/glsl/csmShadowFS.glsl
 #if CSM_COMPARISON_TECHNIQUES
@@ -197,6 +199,8 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
 #endif
     maps.Atlas->Activate();
     u.TextureUnit.push_back(maps.Atlas->GetTextureUnit());
+    u.NearestUnit.push_back(this->BindNearest(
+      static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow()), maps.Atlas));
     signature += std::to_string(maps.LightIndex) + ";";
   }
   // The kernel, its size (for few lights) and the debug view are compiled into the lookup (see
@@ -220,11 +224,60 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   this->PreRender(s);
   this->UpdateGeometry(renderer, s->GetFrameBuffer());
   this->PostRender(s);
+  this->UnbindNearest(static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow()));
   for (const auto& maps : baker->GetLightMaps(renderer))
   {
     maps.Atlas->Deactivate();
   }
   vtkOpenGLCheckErrorMacro("failed after rendering with cascaded shadows");
+}
+
+int vtkCascadedShadowMapPass::BindNearest(vtkOpenGLRenderWindow* window, vtkTextureObject* atlas)
+{
+  // The atlas on a second unit with a sampler object that reads one texel a compare (nearest):
+  // the per-texel compares at texel centres then cost a read each, not a bilinear compare's four.
+  vtkTextureUnitManager* units = window ? window->GetTextureUnitManager() : nullptr;
+  const int unit = units && (GLEW_VERSION_3_3 || GLEW_ARB_sampler_objects) ? units->Allocate() : -1;
+  if (unit < 0)
+  {
+    return atlas->GetTextureUnit();
+  }
+  if (!this->NearestSampler)
+  {
+    GLuint sampler = 0;
+    glGenSamplers(1, &sampler);
+    glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glSamplerParameteri(sampler, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glSamplerParameteri(sampler, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    this->NearestSampler = sampler;
+  }
+  window->GetState()->vtkglActiveTexture(GL_TEXTURE0 + unit);
+  glBindTexture(GL_TEXTURE_2D, atlas->GetHandle());
+  glBindSampler(static_cast<GLuint>(unit), this->NearestSampler);
+  this->NearestUnits.push_back(unit);
+  return unit;
+}
+
+void vtkCascadedShadowMapPass::UnbindNearest(vtkOpenGLRenderWindow* window)
+{
+  for (const int unit : this->NearestUnits)
+  {
+    glBindSampler(static_cast<GLuint>(unit), 0);
+    window->GetState()->vtkglActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    window->GetTextureUnitManager()->Free(unit);
+  }
+  this->NearestUnits.clear();
+  if (this->NearestSampler)
+  {
+    // (One a frame: a sampler object belongs to the context of the frame.)
+    GLuint sampler = this->NearestSampler;
+    glDeleteSamplers(1, &sampler);
+    this->NearestSampler = 0;
+  }
 }
 
 bool vtkCascadedShadowMapPass::PreReplaceShaderValues(
@@ -279,6 +332,7 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
   {
     decl << "uniform sampler2DShadow csmMap" << j << ";\n";
+    decl << "uniform sampler2DShadow csmNearest" << j << ";\n";
   }
   const std::string mapperName = mapper ? mapper->GetClassName() : "a mapper";
   if (!vtkShaderProgram::Substitute(fragmentShader, kShadowDec, decl.str(), false))
@@ -303,7 +357,8 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   {
     const std::string k = std::to_string(this->Uniforms.LightIndex[j]);
     const std::string result = "csmResult" + std::to_string(j);
-    const std::string map = "csmMap" + std::to_string(j) + ", " + std::to_string(j);
+    const std::string map =
+      "csmMap" + std::to_string(j) + ", csmNearest" + std::to_string(j) + ", " + std::to_string(j);
     const std::string lookup = result +
       (impostor ? " = csmImpostorShadow(" + map + ", vertexVC, normalVCVSOutput);"
                 : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
@@ -466,6 +521,10 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   for (int j = 0; j < lights; ++j)
   {
     program->SetUniformi(indexed("csmMap", j).c_str(), u.TextureUnit[j]);
+    if (program->IsUniformUsed(indexed("csmNearest", j).c_str()))
+    {
+      program->SetUniformi(indexed("csmNearest", j).c_str(), u.NearestUnit[j]);
+    }
   }
   program->SetUniformMatrix4x4v(
     "csmToMap", lights * kMaxCascades, const_cast<float*>(u.ToMap.data()));

@@ -36,7 +36,9 @@
 
 #include "vtkCascadedShadowMapBakerPass.h" // for GetShadowMapBakerPass() options
 class vtkMatrix4x4;
+class vtkOpenGLRenderWindow;
 class vtkRenderer;
+class vtkTextureObject;
 
 class VTKRENDERINGCASCADEDSHADOWS_EXPORT vtkCascadedShadowMapPass : public vtkOpenGLRenderPass
 {
@@ -179,8 +181,11 @@ protected:
   /// 8 j + c): filled once per frame in Render(), only uploaded per draw.
   struct ShaderUniforms
   {
-    std::vector<int> LightIndex;               ///< per light: index among the switched-on lights
-    std::vector<int> TextureUnit;              ///< per light: its atlas
+    std::vector<int> LightIndex;  ///< per light: index among the switched-on lights
+    std::vector<int> TextureUnit; ///< per light: its atlas
+    /// per light: its atlas again, read a texel a compare (the per-texel compares of surfaces
+    /// drawn from behind); the atlas's own unit where no sampler object or unit is free
+    std::vector<int> NearestUnit;
     std::vector<int> Count;                    ///< per light: cascades
     std::vector<float> SplitNear, Attenuation; ///< per light
     std::vector<float> ToMap;                  ///< per cascade: view -> map, 16 floats column-major
@@ -198,6 +203,11 @@ protected:
 #endif
   };
   ShaderUniforms Uniforms;
+  /// The units Render() bound the atlases to for NearestUnit, and their sampler object.
+  std::vector<int> NearestUnits;
+  unsigned int NearestSampler = 0;
+  int BindNearest(vtkOpenGLRenderWindow* window, vtkTextureObject* atlas);
+  void UnbindNearest(vtkOpenGLRenderWindow* window);
   /// Render() with the baker's maps: the uniforms, then the renderer's geometry.
   void DrawShadowed(const vtkRenderState* s);
   std::string ShaderSignature;    // what the injected code is compiled for (lights, kernel, debug)

@@ -50,7 +50,7 @@ float csmTap(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float z)
 // misses the plane's change over the half texel to each centre: enough, on a face nearly along
 // the light, to light it where the face shadowing it meets it (a concave crease) or to shadow it
 // where its own solid's far side meets it (a convex edge).
-float csmPlaneTap(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float z, vec2 dz,
+float csmPlaneTap(sampler2DShadow nearest, vec4 tile, vec2 texel, vec2 uv, float z, vec2 dz,
   float maxStep)
 {
   vec2 t = uv / texel - 0.5;
@@ -60,17 +60,17 @@ float csmPlaneTap(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float z, 
   for (int k = 0; k < 4; ++k)
   {
     vec2 centre = (base + vec2(float(k & 1), float(k >> 1)) + 0.5) * texel;
-    s[k] = csmTap(map, tile, texel, centre, z + clamp(dot(dz, centre - uv), -maxStep, maxStep));
+    s[k] = csmTap(nearest, tile, texel, centre, z + clamp(dot(dz, centre - uv), -maxStep, maxStep));
   }
   return mix(mix(s[0], s[1], f.x), mix(s[2], s[3], f.x), f.y);
 }
 
 // One compare of a kernel's tap: the hardware's bilinear compare at the tap's own depth, or, for
 // a face whose own depth is not in the map (exact), the compare with each texel's own depth.
-float csmKernelTap(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float z, vec2 dz,
-  float maxStep, bool exact)
+float csmKernelTap(sampler2DShadow map, sampler2DShadow nearest, vec4 tile, vec2 texel, vec2 uv,
+  float z, vec2 dz, float maxStep, bool exact)
 {
-  return exact ? csmPlaneTap(map, tile, texel, uv, z, dz, maxStep)
+  return exact ? csmPlaneTap(nearest, tile, texel, uv, z, dz, maxStep)
                : csmTap(map, tile, texel, uv, z);
 }
 
@@ -81,7 +81,8 @@ float csmKernelTap(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float z,
 // past the first (the "optimized PCF" of The Witness / Castano 2013, exact for the box of
 // bilinear compares). Every tap keeps its own receiver-plane depth (Barroso & Celes 2007, §2.2).
 float csmGridPCF(
-  sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float zRef, vec2 dz, bool exact)
+  sampler2DShadow map, sampler2DShadow nearest, vec4 tile, vec2 texel, vec2 uv, float zRef,
+  vec2 dz, bool exact)
 {
   int r = CSM_PCF_RADIUS;
   float maxStep = 0.05; // keep grazing receivers from throwing the taps far off their plane
@@ -104,7 +105,7 @@ float csmGridPCF(
       vec2 tap = (vec2(px, py) + 0.5) * texel;
       vec2 o = tap - uv;
       float z = zRef + clamp(dot(dz, o), -maxStep, maxStep);
-      sum += wx * wy * csmKernelTap(map, tile, texel, tap, z, dz, maxStep, exact);
+      sum += wx * wy * csmKernelTap(map, nearest, tile, texel, tap, z, dz, maxStep, exact);
     }
   }
   float n = float(2 * r + 1);
@@ -114,7 +115,8 @@ float csmGridPCF(
 // Jittered circular kernel of radius r + 0.5 texels: as many bilinear taps as the grid kernel,
 // on a spiral rotated per pixel, so that the taps stay unaligned (Barroso & Celes 2007, §2.2).
 float csmJitteredPCF(
-  sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float zRef, vec2 dz, bool exact)
+  sampler2DShadow map, sampler2DShadow nearest, vec4 tile, vec2 texel, vec2 uv, float zRef,
+  vec2 dz, bool exact)
 {
   int r = CSM_PCF_RADIUS;
   int n = (r + 1) * (r + 1);
@@ -127,7 +129,7 @@ float csmJitteredPCF(
     float angle = float(i) * 2.3999632 + turn;
     vec2 o = radius * vec2(cos(angle), sin(angle)) * texel;
     float z = zRef + clamp(dot(dz, o), -maxStep, maxStep);
-    sum += csmKernelTap(map, tile, texel, uv + o, z, dz, maxStep, exact);
+    sum += csmKernelTap(map, nearest, tile, texel, uv + o, z, dz, maxStep, exact);
   }
   return sum / float(n);
 }
@@ -149,8 +151,8 @@ vec4 csmDisplacement(mat4 toMap, vec3 d)
 // Visibility (1 lit, 0 shadowed) of a point given in a cascade's homogeneous map coordinates h,
 // with the screen derivatives hx, hy of those coordinates (exact for the projective map); the
 // aliasing error m there for the error view (Lloyd et al. 2006, Eq. 1).
-float csmVisibility(sampler2DShadow map, vec4 tile, vec2 texel, vec4 h, vec4 hx, vec4 hy,
-  float biasScale, float handedness, out float m)
+float csmVisibility(sampler2DShadow map, sampler2DShadow nearest, vec4 tile, vec2 texel, vec4 h,
+  vec4 hx, vec4 hy, float biasScale, float handedness, out float m)
 {
   vec3 p = h.xyz / h.w;
   vec3 dx = (hx.xyz - p * hx.w) / h.w;
@@ -188,10 +190,10 @@ float csmVisibility(sampler2DShadow map, vec4 tile, vec2 texel, vec4 h, vec4 hx,
                                  : biasScale * csmConstantBias + csmSlopeBias * zSlopePerTexel);
   bool exact = CSM_PLANE_TAPS != 0;
 #if CSM_KERNEL == CSM_KERNEL_GRID
-  return csmGridPCF(map, tile, texel, p.xy, zRef, dz, exact);
+  return csmGridPCF(map, nearest, tile, texel, p.xy, zRef, dz, exact);
 #else
-  return CSM_PCF_RADIUS == 0 ? csmGridPCF(map, tile, texel, p.xy, zRef, dz, exact)
-                           : csmJitteredPCF(map, tile, texel, p.xy, zRef, dz, exact);
+  return CSM_PCF_RADIUS == 0 ? csmGridPCF(map, nearest, tile, texel, p.xy, zRef, dz, exact)
+                           : csmJitteredPCF(map, nearest, tile, texel, p.xy, zRef, dz, exact);
 #endif
 }
 
@@ -266,7 +268,8 @@ int csmChoose(int c, int next, bool blend, vec4 hThis, vec4 hNext)
 // Shadow of light j from the chosen cascade (-1: none), given the point's map coordinates there
 // and their screen derivatives: x = light factor (1 lit .. 1 - attenuation), y = cascade index
 // (-1: none), z = aliasing error m (error view only), w = visibility.
-vec4 csmShadowIn(sampler2DShadow map, int j, int chosen, vec4 h, vec4 hx, vec4 hy)
+vec4 csmShadowIn(
+  sampler2DShadow map, sampler2DShadow nearest, int j, int chosen, vec4 h, vec4 hx, vec4 hy)
 {
   if (chosen < 0)
   {
@@ -279,13 +282,14 @@ vec4 csmShadowIn(sampler2DShadow map, int j, int chosen, vec4 h, vec4 hx, vec4 h
   biasScale = csmDepthBiasScale(cascade, h); // camera space maps (csmComparisonFS.glsl)
 #endif
   float visibility = csmVisibility(
-    map, csmTile[cascade], csmTexel[cascade], h, hx, hy, biasScale, csmHandedness[cascade], m);
+    map, nearest, csmTile[cascade], csmTexel[cascade], h, hx, hy, biasScale,
+    csmHandedness[cascade], m);
   return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), float(chosen), m, visibility);
 }
 
 // Shadow of light j at view position vc with screen derivatives dvcdx, dvcdy (w = 0): the map
 // coordinates of the two candidate cascades by matrix products in the fragment.
-vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
+vec4 csmShadow(sampler2DShadow map, sampler2DShadow nearest, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
 {
   int c, next;
   bool blend;
@@ -298,7 +302,7 @@ vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
   int chosen = inside ? csmChoose(c, next, blend, hThis, hNext) : -1;
   bool takeNext = chosen == next && next > c;
   mat4 toChosen = takeNext ? toNext : toThis;
-  return csmShadowIn(map, j, chosen, takeNext ? hNext : hThis,
+  return csmShadowIn(map, nearest, j, chosen, takeNext ? hNext : hThis,
     csmDisplacement(toChosen, dvcdx.xyz), csmDisplacement(toChosen, dvcdy.xyz));
 }
 
@@ -312,7 +316,7 @@ vec4 csmShadow(sampler2DShadow map, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
 // receiver plane (screen derivatives of the axis point say nothing across the tube). The maps
 // hold the casters' centre depth, which the lit side of this surface lies in front of.
 uniform vec2 csmImpostorPixels; // the diameters VTK draws, in pixels: line width, point size
-vec4 csmImpostorShadow(sampler2DShadow map, int j, vec4 vc, vec3 normalVC)
+vec4 csmImpostorShadow(sampler2DShadow map, sampler2DShadow nearest, int j, vec4 vc, vec3 normalVC)
 {
   float r = ZCalcR * (cameraParallel == 1 ? 1.0 : -vc.z);
   vec3 n = normalize(normalVC);
@@ -323,7 +327,7 @@ vec4 csmImpostorShadow(sampler2DShadow map, int j, vec4 vc, vec3 normalVC)
 #else
   float pixel = 2.0 * r / max(csmImpostorPixels.x, 1.0);
 #endif
-  return csmShadow(map, j, vec4(vc.xyz + r * n, vc.w), vec4(t1 * pixel, 0.0),
+  return csmShadow(map, nearest, j, vec4(vc.xyz + r * n, vc.w), vec4(t1 * pixel, 0.0),
     vec4(t2 * pixel, 0.0));
 }
 #endif

@@ -56,11 +56,11 @@ std::string fragmentShader(int constantRadius)
     "  vec2 texel = vec2(1.0 / " +
     std::to_string(kMapWidth) + ".0, 1.0 / " + std::to_string(kMapHeight) +
     ".0);\n"
-    "  float fast = csmGridPCF(map, tile, texel, uv, zRef, vec2(0.0), false);\n"
+    "  float fast = csmGridPCF(map, map, tile, texel, uv, zRef, vec2(0.0), false);\n"
     "  // A receiver plane across the kernel: each texel compared with the plane at its centre.\n"
     "  vec2 dz = vec2(0.25, -0.15);\n"
-    "  float exact = csmGridPCF(map, tile, texel, uv, zRef, dz, true);\n"
-    "  float shared = csmGridPCF(map, tile, texel, uv, zRef, dz, false);\n"
+    "  float exact = csmGridPCF(map, map, tile, texel, uv, zRef, dz, true);\n"
+    "  float shared = csmGridPCF(map, map, tile, texel, uv, zRef, dz, false);\n"
     "  float perTexel = 0.0;\n"
     "  for (int i = -r; i <= r; ++i)\n"
     "    for (int k = -r; k <= r; ++k)\n"
