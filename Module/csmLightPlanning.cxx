@@ -77,6 +77,31 @@ void PatchChangedCasters(const csmFrameCasters& props, CascadeMap& map)
   }
 }
 
+/// Calls shadowed(light, index) for each light of the renderer that gets maps this frame, in
+/// order, with its index among the switched-on lights (the mappers number those only); returns
+/// how many lights cast shadows (more than maximumLights: the others are not shadowed).
+template <typename F>
+int forEachShadowedLight(vtkRenderer* renderer, int maximumLights, F&& shadowed)
+{
+  int shadowingLights = 0;
+  int lightIndex = 0;
+  vtkCollectionSimpleIterator lit;
+  renderer->GetLights()->InitTraversal(lit);
+  while (vtkLight* light = renderer->GetLights()->GetNextLight(lit))
+  {
+    if (!light->GetSwitch())
+    {
+      continue;
+    }
+    const int index = lightIndex++;
+    if (csmLightCastsShadows(light) && ++shadowingLights <= maximumLights)
+    {
+      shadowed(light, index);
+    }
+  }
+  return shadowingLights;
+}
+
 /// A light's maps before they are planned: the light as they are rendered for.
 LightMaps lightMapsOf(vtkLight* light, int index)
 {
@@ -119,30 +144,16 @@ bool csmLightPlanning::LastPlanStands(vtkRenderer* renderer, vtkOpenGLRenderWind
     return false;
   }
   size_t slot = 0;
-  int shadowingLights = 0;
-  int lightIndex = 0;
-  vtkCollectionSimpleIterator lit;
-  renderer->GetLights()->InitTraversal(lit);
-  while (vtkLight* light = renderer->GetLights()->GetNextLight(lit))
-  {
-    if (!light->GetSwitch())
+  bool same = true;
+  const int shadowingLights = forEachShadowedLight(renderer, maximumLights,
+    [&](vtkLight* light, int index)
     {
-      continue;
-    }
-    const int index = lightIndex++;
-    if (!csmLightCastsShadows(light) || ++shadowingLights > maximumLights)
-    {
-      continue;
-    }
-    const LightMaps now = lightMapsOf(light, index);
-    if (slot >= state.Maps.size() || state.Maps[slot].Light != light ||
-      state.Maps[slot].LightIndex != index || !sameLightGeometry(state.Maps[slot], now))
-    {
-      return false;
-    }
-    ++slot;
-  }
-  return slot == state.Maps.size() && shadowingLights == state.LastShadowingLights;
+      same = same && slot < state.Maps.size() && state.Maps[slot].Light == light &&
+        state.Maps[slot].LightIndex == index &&
+        sameLightGeometry(state.Maps[slot], lightMapsOf(light, index));
+      ++slot;
+    });
+  return same && slot == state.Maps.size() && shadowingLights == state.LastShadowingLights;
 }
 
 int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
@@ -202,23 +213,9 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
   frame.CastersChanged = !props.Dirty.empty();
   csmMapDrawing::MainView(renderer, renderer->GetActiveCamera(), frame.ViewKey);
   this->FeedVisibleDepths(renderer, window, state, props);
-  int shadowingLights = 0;
-  int lightIndex = 0;
-  vtkCollectionSimpleIterator lit;
-  renderer->GetLights()->InitTraversal(lit);
-  while (vtkLight* light = renderer->GetLights()->GetNextLight(lit))
-  {
-    if (!light->GetSwitch())
-    {
-      continue; // the mapper numbers switched-on lights only
-    }
-    const int index = lightIndex++;
-    if (!csmLightCastsShadows(light) || ++shadowingLights > maximumLights)
-    {
-      continue;
-    }
-    this->PlanLight(renderer, state, props, frame, light, index, planned);
-  }
+  const int shadowingLights = forEachShadowedLight(renderer, maximumLights,
+    [&](vtkLight* light, int index)
+    { this->PlanLight(renderer, state, props, frame, light, index, planned); });
   if (!state.LastCamera)
   {
     state.LastCamera = vtkSmartPointer<vtkCamera>::New();

@@ -349,18 +349,6 @@ bool WriteErrorImage(const std::string& file, vtkImageData* plain,
   return true;
 }
 
-vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
-{
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  grab->ShouldRerenderOff();
-  grab->Update();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->DeepCopy(grab->GetOutput());
-  return image;
-}
-
 /// Texels per pixel of the map at a point: max(m_x, m_z) of Lloyd Eq. 2-4, scaled to the map
 /// and image resolutions.
 double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[3],
@@ -934,7 +922,7 @@ int main(int argc, char** argv)
         rays.Build(renderer, o.Height); // tubes as wide as this view draws them
       renderer->SetPass(nullptr);
       window->Render();
-      auto plain = Grab(window);
+      auto plain = csmWalk::GrabFrame(window);
       const auto surfaces = rays.CastPrimary(renderer->GetActiveCamera(), o.Width, o.Height);
       const auto comparable = csmTruth::ComparablePixels(surfaces, o.Width, o.Height, v.Light);
       std::vector<char> occluded(surfaces.size(), 0);
@@ -944,7 +932,7 @@ int main(int argc, char** argv)
       {
         renderer->SetPass(t.Chain);
         window->Render();
-        auto shadowed = Grab(window);
+        auto shadowed = csmWalk::GrabFrame(window);
         const auto factor = csmTruth::FactorFromRenders(shadowed, plain);
         const csmTruth::Classification c =
           csmTruth::Classify(surfaces, comparable, occluded, factor);
@@ -1022,7 +1010,7 @@ int main(int argc, char** argv)
           rays.Build(renderer, o.Height);
         renderer->SetPass(nullptr);
         window->Render();
-        auto plain = Grab(window);
+        auto plain = csmWalk::GrabFrame(window);
         const auto surfaces = rays.CastPrimary(renderer->GetActiveCamera(), o.Width, o.Height);
         const auto comparable = csmTruth::ComparablePixels(surfaces, o.Width, o.Height, v.Light);
         std::vector<char> occluded(surfaces.size(), -1);
@@ -1033,7 +1021,7 @@ int main(int argc, char** argv)
         {
           renderer->SetPass(t.Chain);
           window->Render();
-          auto shadowed = Grab(window);
+          auto shadowed = csmWalk::GrabFrame(window);
           const auto factor = csmTruth::FactorFromRenders(shadowed, plain);
           std::vector<char> classes(surfaces.size(), -1);
           for (size_t k = 0; k < surfaces.size(); ++k)

@@ -206,18 +206,6 @@ struct PathAccuracy
   }
 };
 
-vtkSmartPointer<vtkImageData> grabFrame(vtkRenderWindow* window)
-{
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  grab->ShouldRerenderOff();
-  grab->Update();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->DeepCopy(grab->GetOutput());
-  return image;
-}
-
 double median(std::vector<double> v)
 {
   if (v.empty())
@@ -299,7 +287,7 @@ std::vector<PathAccuracy> measurePathAccuracy(vtkRenderer* renderer, vtkRenderWi
       rays.Build(renderer, height); // tubes as wide as this view draws them
     renderer->SetPass(nullptr);
     window->Render();
-    auto plain = grabFrame(window);
+    auto plain = csmWalk::GrabFrame(window);
     double position[3], focal[3];
     light->GetTransformedPosition(position);
     light->GetTransformedFocalPoint(focal);
@@ -316,7 +304,7 @@ std::vector<PathAccuracy> measurePathAccuracy(vtkRenderer* renderer, vtkRenderWi
       window->Render();
       if (i < 0)
         continue; // the first view, as in the timed rounds
-      const auto factor = csmTruth::FactorFromRenders(grabFrame(window), plain);
+      const auto factor = csmTruth::FactorFromRenders(csmWalk::GrabFrame(window), plain);
       const csmTruth::Classification c = csmTruth::Classify(surfaces, comparable, occluded, factor);
       result[t].Errors.Considered += c.Considered;
       result[t].Errors.FalseShadow += c.FalseShadow;
@@ -554,15 +542,7 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
             baker->MeasureTimesOn(); // (glFinish between the steps: per-frame times only)
           for (int i = -1; i < static_cast<int>(poses.size()); ++i)
           {
-            const Pose& p = poses[std::max(i, 0)]; // (-1: the first view, not timed)
-            camera->SetPosition(p.Eye);
-            camera->SetFocalPoint(p.Focal);
-            camera->SetViewUp(0, 1, 0);
-            camera->OrthogonalizeViewUp();
-            if (scene.ClippingRange[1] > 0)
-              camera->SetClippingRange(scene.ClippingRange);
-            else
-              renderer->ResetCameraClippingRange();
+            applyPose(renderer, scene, poses[std::max(i, 0)]); // (-1: the first view, not timed)
             const auto start = std::chrono::steady_clock::now();
             window->Render();
             window->WaitForCompletion();
@@ -693,4 +673,16 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
     }
   }
   return 0;
+}
+
+vtkSmartPointer<vtkImageData> csmWalk::GrabFrame(vtkRenderWindow* window)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff();
+  grab->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->DeepCopy(grab->GetOutput());
+  return image;
 }

@@ -2,7 +2,12 @@
 // csm-bench --walk: smooth camera paths close to the geometry, every frame a normal render.
 #pragma once
 
+#include "vtkImageData.h"    // for GrabFrame
+#include "vtkSmartPointer.h" // for GrabFrame
+
 #include <string>
+
+class vtkRenderWindow;
 
 namespace csmWalk
 {
@@ -11,4 +16,7 @@ namespace csmWalk
 int Run(int argc, char** argv, const std::string& engineModel);
 /// The walk's usage: its options with their defaults.
 std::string Usage();
+/// The image of the frame the window just rendered (not rendered again), as both modes of
+/// csm-bench measure it against the truth.
+vtkSmartPointer<vtkImageData> GrabFrame(vtkRenderWindow* window);
 }
