@@ -172,6 +172,7 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
         map.Moved[0] = map.Moved[1] = 0;
       }
     }
+    this->Statistics.AsLastFrame = true;
     this->Statistics.VisibleDepthsUsed = state.LastPlanStatistics.VisibleDepthsUsed;
     this->Statistics.VisibleFootprintUsed = state.LastPlanStatistics.VisibleFootprintUsed;
     std::copy(std::begin(state.LastPlanStatistics.KeptError),

@@ -347,6 +347,11 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   vtkOpenGLCheckErrorMacro("failed after rendering the cascaded shadow maps");
 }
 
+void vtkCascadedShadowMapBakerPass::SetFactorsHeldFor(vtkRenderer* renderer)
+{
+  this->FactorsHeldFor = renderer;
+}
+
 void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* renderer,
   const vtkRenderState* s, csmRendererMaps& state, const csmFrameCasters& props)
 {
@@ -370,6 +375,12 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
     state.VisibleAspect == aspect && sameView(state.VisibleCamera, camera, aspect);
   GLint sampleBuffers = 0;
   glGetIntegerv(GL_SAMPLE_BUFFERS, &sampleBuffers);
+  if (measured && sampleBuffers == 0 && this->FactorsHeldFor == renderer && !props.Changed &&
+    props.Dirty.empty())
+  {
+    return; // the frame reads the factors its last frame held at its pixels: no lookup to spare
+  }
+  this->Statistics.ViewDepthDrawn = true;
   if (measured || sampleBuffers > 0)
   {
     // Measured for this very view of this scene, or not readable (a multisampled depth buffer:

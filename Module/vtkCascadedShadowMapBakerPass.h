@@ -170,6 +170,11 @@ public:
   /// The shadowed lights of a renderer as of its last Render() (null: the last renderer).
   const std::vector<LightMaps>& GetLightMaps(vtkRenderer* renderer = nullptr) const;
 
+  /// The renderer whose last frame's shadow factors vtkCascadedShadowMapPass holds at its
+  /// pixels (null: none; the pass sets it after each frame): a frame of it planned as that one
+  /// reads them and makes no lookup, so the view's depth is not drawn for the lookups' sake.
+  void SetFactorsHeldFor(vtkRenderer* renderer);
+
   /// Is the prop's lit side out of the maps (a closed surface drawn from behind)?
   bool DrawsFromBehind(vtkProp* prop) { return this->ClosureOf(prop) != 0; }
 
@@ -192,6 +197,8 @@ public:
   vtkCascadedShadowsStatisticMacro(VisibleDepthsUsed, bool);
   vtkCascadedShadowsStatisticMacro(VisibleDepthsMeasured, bool);
   vtkCascadedShadowsStatisticMacro(VisibleFootprintUsed, bool);
+  vtkCascadedShadowsStatisticMacro(ViewDepthDrawn, bool);
+  vtkCascadedShadowsStatisticMacro(AsLastFrame, bool);
   vtkCascadedShadowsStatisticMacro(DepthPassStandIns, int);
   vtkCascadedShadowsStatisticMacro(PlanSeconds, double);
   vtkCascadedShadowsStatisticMacro(MapSeconds, double);
@@ -241,6 +248,7 @@ protected:
 
   std::vector<std::unique_ptr<csmRendererMaps>> Renderers;
   vtkWeakPointer<vtkRenderer> LastRenderer;
+  vtkWeakPointer<vtkRenderer> FactorsHeldFor;
   vtkSmartPointer<vtkCascadedShadowMapPlanner> Planner;
   vtkMultiProcessController* Controller = nullptr;
   FrameStatistics Statistics;

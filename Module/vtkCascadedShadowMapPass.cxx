@@ -3,6 +3,7 @@
 
 #include "csmAtlas.h" // csm::kAtlasFullMaps
 #include "csmProps.h" // csmScreenSizes
+#include "csmScreenCache.h"
 
 #include "vtkAbstractMapper.h"
 #include "vtkActor.h"
@@ -13,6 +14,7 @@
 #include "vtkLight.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLCamera.h"
 #include "vtkOpenGLError.h"
@@ -48,13 +50,41 @@ const char* const kVertexVC = "vec4 vertexVC = vertexVCVSOutput;";
 constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASCADES;
 const char* const kShadowDec = "//CSM::Shadow::Dec";
 
+const char* const kSystemDec = "//VTK::System::Dec";
+const char* const kLightImpl = "//VTK::Light::Impl";
+
 std::string indexed(const char* name, size_t j)
 {
   return std::string(name) + std::to_string(j);
 }
+
+size_t occurrences(const std::string& text, const char* word)
+{
+  size_t n = 0;
+  for (size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1))
+  {
+    ++n;
+  }
+  return n;
+}
+
+/// Can a prop's fragments take their factors from the pixel (csmScreenCache)? Opaque, and shaded
+/// only where the depth test passed them: no depth of their own, no discard but VTK's of a fully
+/// transparent colour (which an opaque prop does not have); and VTK's tags where the extension
+/// and the store go.
+bool screenCapable(const std::string& fragmentShader, vtkProp* prop)
+{
+  return prop && !prop->HasTranslucentPolygonalGeometry() &&
+    fragmentShader.find("gl_FragDepth =") == std::string::npos &&
+    occurrences(fragmentShader, "discard;") ==
+    occurrences(fragmentShader, "gl_FragData[0].a <= 0.0") &&
+    fragmentShader.find(kSystemDec) != std::string::npos &&
+    fragmentShader.find(kLightImpl) != std::string::npos;
+}
 }
 
 vtkCascadedShadowMapPass::vtkCascadedShadowMapPass()
+  : ScreenCache(new csmScreenCache)
 {
   this->ShadowMapBakerPass = vtkCascadedShadowMapBakerPass::New();
 }
@@ -83,6 +113,7 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
 {
   vtkOpenGLClearErrorMacro();
   this->NumberOfRenderedProps = 0;
+  this->ScreenMode = csmScreenCache::OFF;
   vtkRenderer* renderer = s->GetRenderer();
   this->ClearLights(renderer);
   this->UpdateLightGeometry(renderer);
@@ -119,9 +150,9 @@ void mappersViewToWorld(vtkRenderer* renderer, vtkMatrix4x4* viewToWorld)
   }
 }
 
-/// Which of the renderer's props the baker draws from behind (CSM_PLANE_TAPS in their shaders),
-/// as a digest for the shader signature.
-std::string fromBehindDigest(vtkRenderer* renderer, vtkCascadedShadowMapBakerPass* baker)
+/// Which of the renderer's props are so (for their shaders: drawn into the maps from behind,
+/// CSM_PLANE_TAPS; translucent, no CSM_SCREEN), as a digest for the shader signature.
+std::string propDigest(vtkRenderer* renderer, const std::function<bool(vtkProp*)>& so)
 {
   size_t digest = 0, count = 0;
   vtkPropCollection* props = renderer->GetViewProps();
@@ -129,7 +160,7 @@ std::string fromBehindDigest(vtkRenderer* renderer, vtkCascadedShadowMapBakerPas
   props->InitTraversal(it);
   while (vtkProp* prop = props->GetNextProp(it))
   {
-    if (baker->DrawsFromBehind(prop))
+    if (so(prop))
     {
       digest ^=
         std::hash<const void*>()(prop) + 0x9e3779b97f4a7c15ULL + (digest << 6) + (digest >> 2);
@@ -140,6 +171,54 @@ std::string fromBehindDigest(vtkRenderer* renderer, vtkCascadedShadowMapBakerPas
 }
 } // namespace
 
+void vtkCascadedShadowMapPass::PackMaps(
+  const vtkCascadedShadowMapBakerPass::LightMaps& maps, vtkMatrix4x4* viewToWorld)
+{
+  const double toUnit[16] = { 0.5, 0, 0, 0.5, 0, 0.5, 0, 0.5, 0, 0, 0.5, 0.5, 0, 0, 0, 1 };
+  ShaderUniforms& u = this->Uniforms;
+  u.LightIndex.push_back(maps.LightIndex);
+  u.Count.push_back(maps.GetNumberOfCascades());
+  u.SplitNear.push_back(static_cast<float>(maps.SplitNear));
+  u.Attenuation.push_back(
+    static_cast<float>(this->ShadowDarkness * maps.Light->GetShadowAttenuation()));
+  const int count = maps.GetNumberOfCascades();
+  const double atlasWidth = std::max(1, maps.AtlasSize[0]);
+  const double atlasHeight = std::max(1, maps.AtlasSize[1]);
+  for (int c = 0; c < kMaxCascades; ++c)
+  {
+    static const vtkCascadedShadowMapBakerPass::CascadeMap none;
+    const vtkCascadedShadowMapBakerPass::CascadeMap& map = c < count ? maps.Cascades[c] : none;
+    double clipFromView[16], mapFromView[16];
+    if (c < count)
+    {
+      vtkMatrix4x4::Multiply4x4(map.WorldToMap, viewToWorld->GetData(), clipFromView);
+      vtkMatrix4x4::Multiply4x4(toUnit, clipFromView, mapFromView);
+    }
+    else
+    {
+      vtkMatrix4x4::Identity(mapFromView);
+    }
+    for (int column = 0; column < 4; ++column)
+    {
+      for (int row = 0; row < 4; ++row)
+      {
+        u.ToMap.push_back(static_cast<float>(mapFromView[4 * row + column]));
+      }
+    }
+    u.Handedness.push_back(vtkMatrix4x4::Determinant(mapFromView) < 0.0 ? -1.0f : 1.0f);
+    // The map's rectangle in the atlas (the lower left of its tile), in [0, 1].
+    u.Tile.push_back(static_cast<float>(map.Tile[0] / atlasWidth));
+    u.Tile.push_back(static_cast<float>(map.Tile[1] / atlasHeight));
+    u.Tile.push_back(static_cast<float>(map.Resolution[0] / atlasWidth));
+    u.Tile.push_back(static_cast<float>(map.Resolution[1] / atlasHeight));
+    u.SplitFar.push_back(static_cast<float>(map.SplitFar));
+    for (int axis = 0; axis < 2; ++axis)
+    {
+      u.Texel.push_back(1.0f / static_cast<float>(std::max(1, map.Resolution[axis])));
+    }
+  }
+}
+
 void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
 {
   vtkRenderer* renderer = s->GetRenderer();
@@ -147,53 +226,12 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   // View space -> map coordinates in [0,1]^3, composed in double, uploaded as float.
   vtkNew<vtkMatrix4x4> viewToWorld;
   mappersViewToWorld(renderer, viewToWorld);
-  const double toUnit[16] = { 0.5, 0, 0, 0.5, 0, 0.5, 0, 0.5, 0, 0, 0.5, 0.5, 0, 0, 0, 1 };
   std::string signature;
   ShaderUniforms& u = this->Uniforms;
   u = ShaderUniforms();
   for (const auto& maps : baker->GetLightMaps(renderer))
   {
-    u.LightIndex.push_back(maps.LightIndex);
-    u.Count.push_back(maps.GetNumberOfCascades());
-    u.SplitNear.push_back(static_cast<float>(maps.SplitNear));
-    u.Attenuation.push_back(
-      static_cast<float>(this->ShadowDarkness * maps.Light->GetShadowAttenuation()));
-    const int count = maps.GetNumberOfCascades();
-    const double atlasWidth = std::max(1, maps.AtlasSize[0]);
-    const double atlasHeight = std::max(1, maps.AtlasSize[1]);
-    for (int c = 0; c < kMaxCascades; ++c)
-    {
-      static const vtkCascadedShadowMapBakerPass::CascadeMap none;
-      const vtkCascadedShadowMapBakerPass::CascadeMap& map = c < count ? maps.Cascades[c] : none;
-      double clipFromView[16], mapFromView[16];
-      if (c < count)
-      {
-        vtkMatrix4x4::Multiply4x4(map.WorldToMap, viewToWorld->GetData(), clipFromView);
-        vtkMatrix4x4::Multiply4x4(toUnit, clipFromView, mapFromView);
-      }
-      else
-      {
-        vtkMatrix4x4::Identity(mapFromView);
-      }
-      for (int column = 0; column < 4; ++column)
-      {
-        for (int row = 0; row < 4; ++row)
-        {
-          u.ToMap.push_back(static_cast<float>(mapFromView[4 * row + column]));
-        }
-      }
-      u.Handedness.push_back(vtkMatrix4x4::Determinant(mapFromView) < 0.0 ? -1.0f : 1.0f);
-      // The map's rectangle in the atlas (the lower left of its tile), in [0, 1].
-      u.Tile.push_back(static_cast<float>(map.Tile[0] / atlasWidth));
-      u.Tile.push_back(static_cast<float>(map.Tile[1] / atlasHeight));
-      u.Tile.push_back(static_cast<float>(map.Resolution[0] / atlasWidth));
-      u.Tile.push_back(static_cast<float>(map.Resolution[1] / atlasHeight));
-      u.SplitFar.push_back(static_cast<float>(map.SplitFar));
-      for (int axis = 0; axis < 2; ++axis)
-      {
-        u.Texel.push_back(1.0f / static_cast<float>(std::max(1, map.Resolution[axis])));
-      }
-    }
+    this->PackMaps(maps, viewToWorld);
 #if CSM_COMPARISON_TECHNIQUES
     this->PackComparison(maps, viewToWorld);
 #endif
@@ -214,7 +252,27 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   {
     signature += " radius " + std::to_string(this->PCFSize / 2);
   }
-  signature += " from behind " + fromBehindDigest(renderer, baker);
+  signature += " from behind " +
+    propDigest(renderer, [baker](vtkProp* prop) { return baker->DrawsFromBehind(prop); });
+  signature += " translucent " +
+    propDigest(
+      renderer, [](vtkProp* prop) { return prop->HasTranslucentPolygonalGeometry() != 0; });
+  // A frame drawn as the last one reads the factors that frame stored at its pixels: the same
+  // shaders, options and shadow darkness.
+  std::ostringstream key;
+  key << signature << " options " << this->GetMTime();
+  for (const float attenuation : u.Attenuation)
+  {
+    key << " " << attenuation;
+  }
+  vtkOpenGLRenderWindow* window = static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow());
+  // (With several processes no frame is planned as the last one: each sees only its own props.)
+  vtkMultiProcessController* controller = baker->GetController();
+  const bool distributed = controller && controller->GetNumberOfProcesses() > 1;
+  this->ScreenMode = this->ScreenCache->Begin(renderer, window,
+    baker->GetLastFrameStatistics().AsLastFrame, static_cast<int>(u.Lights()),
+    this->ReuseShadowFactors && this->DebugMode == DEBUG_OFF && !distributed, key.str());
+  signature += " screen " + std::to_string(this->ScreenMode);
   if (signature != this->ShaderSignature)
   {
     this->ShaderSignature = signature;
@@ -224,7 +282,8 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   this->PreRender(s);
   this->UpdateGeometry(renderer, s->GetFrameBuffer());
   this->PostRender(s);
-  this->UnbindNearest(static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow()));
+  baker->SetFactorsHeldFor(this->ScreenCache->End() ? renderer : nullptr);
+  this->UnbindNearest(window);
   for (const auto& maps : baker->GetLightMaps(renderer))
   {
     maps.Atlas->Deactivate();
@@ -317,6 +376,9 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   const bool fromBehind =
     this->ShadowMapBakerPass && prop && this->ShadowMapBakerPass->DrawsFromBehind(prop);
   decl << "#define CSM_PLANE_TAPS " << (fromBehind ? 1 : 0) << "\n";
+  const int screen =
+    impostor || !screenCapable(fragmentShader, prop) ? csmScreenCache::OFF : this->ScreenMode;
+  decl << "#define CSM_SCREEN " << screen << "\n";
 #if CSM_COMPARISON_TECHNIQUES
   decl << this->ComparisonDefinitions();
 #endif
@@ -342,12 +404,33 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
       "drawn without shadows");
     return true;
   }
+  this->InjectLookups(fragmentShader, mapperName, impostor, screen);
+  if (this->DebugMode != DEBUG_OFF)
+  {
+    vtkShaderProgram::Substitute(fragmentShader, kLightImpl,
+      "//VTK::Light::Impl\n  gl_FragData[0] = csmDebugColor(gl_FragData[0], csmResult0);\n", false);
+  }
+  return true;
+}
+
+void vtkCascadedShadowMapPass::InjectLookups(
+  std::string& fragmentShader, const std::string& mapperName, bool impostor, int screen)
+{
   // Screen derivatives where control flow is still uniform; the lookup itself only where the
   // light reaches the surface (df > 0: behind it, diffuse and specular are 0 anyway), or always
   // for the debug views.
   const std::string reaches = this->DebugMode == DEBUG_OFF ? "df > 0.0" : "true";
+  if (screen != csmScreenCache::OFF)
+  {
+    // (Right after the #version VTK puts there.)
+    vtkShaderProgram::Substitute(fragmentShader, kSystemDec,
+      std::string(kSystemDec) + "\n#extension GL_ARB_shader_image_load_store : require\n", false);
+  }
   std::ostringstream impl;
-  impl << kVertexVC << "\n  vec4 csmDVCdx = dFdx(vertexVC);\n  vec4 csmDVCdy = dFdy(vertexVC);\n";
+  impl << kVertexVC
+       << (screen == csmScreenCache::READ
+              ? "\n  vec4 csmCached = imageLoad(csmScreen, csmScreenPixel());\n"
+              : "\n  vec4 csmDVCdx = dFdx(vertexVC);\n  vec4 csmDVCdy = dFdy(vertexVC);\n");
   for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
   {
     impl << "  vec4 csmResult" << j << " = vec4(1.0, -1.0, 0.0, 1.0);\n";
@@ -360,8 +443,10 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
     const std::string map =
       "csmMap" + std::to_string(j) + ", csmNearest" + std::to_string(j) + ", " + std::to_string(j);
     const std::string lookup = result +
-      (impostor ? " = csmImpostorShadow(" + map + ", vertexVC, normalVCVSOutput);"
-                : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
+      (screen == csmScreenCache::READ
+          ? " = vec4(csmCached[" + std::to_string(j) + "], -1.0, 0.0, 1.0);"
+          : impostor ? " = csmImpostorShadow(" + map + ", vertexVC, normalVCVSOutput);"
+                     : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
     const std::string factor = result + ".x * ";
     // Phong-style lighting (diffuse and specular), or PBR (radiance, directional or positional).
     const bool phong =
@@ -382,12 +467,18 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
         "'s fragment shader: it is drawn without that light's shadow");
     }
   }
-  if (this->DebugMode != DEBUG_OFF)
+  if (screen == csmScreenCache::STORE)
   {
-    vtkShaderProgram::Substitute(fragmentShader, "//VTK::Light::Impl",
-      "//VTK::Light::Impl\n  gl_FragData[0] = csmDebugColor(gl_FragData[0], csmResult0);\n", false);
+    std::string factors = "vec4(";
+    for (size_t j = 0; j < static_cast<size_t>(csmScreenCache::MAXIMUM_LIGHTS); ++j)
+    {
+      factors += (j ? ", " : "") +
+        (j < this->Uniforms.Lights() ? "csmResult" + std::to_string(j) + ".x" : std::string("1.0"));
+    }
+    vtkShaderProgram::Substitute(fragmentShader, kLightImpl,
+      std::string(kLightImpl) + "\n  imageStore(csmScreen, csmScreenPixel(), " + factors + "));\n",
+      false);
   }
-  return true;
 }
 
 std::string vtkCascadedShadowMapPass::GetShaderDefinitions(
@@ -403,7 +494,10 @@ std::string vtkCascadedShadowMapPass::GetShaderDefinitions(
        << "#define CSM_DEBUG_CASCADES " << DEBUG_CASCADES << "\n"
        << "#define CSM_DEBUG_ERROR " << DEBUG_ERROR << "\n"
        << "#define CSM_DEBUG_FACTOR " << DEBUG_FACTOR << "\n"
-       << "#define CSM_DEBUG " << debugMode << "\n";
+       << "#define CSM_DEBUG " << debugMode << "\n"
+       << "#define CSM_SCREEN_OFF " << csmScreenCache::OFF << "\n"
+       << "#define CSM_SCREEN_STORE " << csmScreenCache::STORE << "\n"
+       << "#define CSM_SCREEN_READ " << csmScreenCache::READ << "\n";
   if (pcfRadius >= 0)
   {
     decl << "#define CSM_PCF_RADIUS " << pcfRadius << "\n";
@@ -476,6 +570,11 @@ void vtkCascadedShadowMapPass::SetComparisonUniforms(vtkShaderProgram* program) 
 }
 #endif
 
+bool vtkCascadedShadowMapPass::GetLastFrameReusedShadowFactors() const
+{
+  return this->ScreenMode == csmScreenCache::READ;
+}
+
 bool vtkCascadedShadowMapPass::ConstantKernelSize() const
 {
   return this->Uniforms.Lights() <= static_cast<size_t>(MAXIMUM_LIGHTS_WITH_CONSTANT_KERNEL);
@@ -492,6 +591,11 @@ void vtkCascadedShadowMapPass::ReportOnce(const std::string& message)
 bool vtkCascadedShadowMapPass::SetShaderParameters(
   vtkShaderProgram* program, vtkAbstractMapper*, vtkProp* prop, vtkOpenGLVertexArrayObject*)
 {
+  if (this->Uniforms.Lights() > 0 && program->IsUniformUsed("csmScreenOrigin"))
+  {
+    program->SetUniformi("csmScreen", this->ScreenCache->GetImageUnit());
+    program->SetUniform2i("csmScreenOrigin", this->ScreenCache->GetOrigin());
+  }
   if (this->Uniforms.Lights() == 0 || !program->IsUniformUsed("csmToMap"))
   {
     return true;
@@ -569,6 +673,7 @@ void vtkCascadedShadowMapPass::UseShadowsOff(vtkRenderer* renderer)
 
 void vtkCascadedShadowMapPass::ReleaseGraphicsResources(vtkWindow* w)
 {
+  this->ScreenCache->ReleaseGraphicsResources(w);
   if (this->ShadowMapBakerPass)
   {
     this->ShadowMapBakerPass->ReleaseGraphicsResources(w);
@@ -586,6 +691,7 @@ void vtkCascadedShadowMapPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BlendBand: " << this->BlendBand << "\n";
   os << indent << "ShadowDarkness: " << this->ShadowDarkness << "\n";
   os << indent << "DebugMode: " << this->DebugMode << "\n";
+  os << indent << "ReuseShadowFactors: " << (this->ReuseShadowFactors ? "on" : "off") << "\n";
   os << indent << "ShadowMapBakerPass: " << this->ShadowMapBakerPass << "\n";
   if (this->ShadowMapBakerPass)
   {

@@ -30,11 +30,13 @@
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 #include "vtkSmartPointer.h"                   // for members
 
+#include <memory> // for members
 #include <set>    // for members
 #include <string> // for members
 #include <vector> // for members
 
 #include "vtkCascadedShadowMapBakerPass.h" // for GetShadowMapBakerPass() options
+class csmScreenCache;
 class vtkMatrix4x4;
 class vtkOpenGLRenderWindow;
 class vtkRenderer;
@@ -131,6 +133,18 @@ public:
   vtkGetMacro(ShadowDarkness, double);
   ///@}
 
+  ///@{
+  /// A frame drawn as the last one (the same camera, viewport, props, lights and maps: colours,
+  /// scalars or materials may have changed) reads each pixel's shadow factors from that frame
+  /// instead of making the lookup again, on opaque surfaces of a single-sampled framebuffer
+  /// with at most four shadowed lights (GL_ARB_shader_image_load_store). The same image. On.
+  vtkSetMacro(ReuseShadowFactors, bool);
+  vtkGetMacro(ReuseShadowFactors, bool);
+  vtkBooleanMacro(ReuseShadowFactors, bool);
+  ///@}
+  /// Did the last frame read its shadow factors from the frame before it (no lookup)?
+  bool GetLastFrameReusedShadowFactors() const;
+
   enum DebugModes
   {
     DEBUG_OFF = 0,
@@ -176,6 +190,7 @@ protected:
   double BlendBand = 0.05;
   double ShadowDarkness = 1.0;
   int DebugMode = DEBUG_OFF;
+  bool ReuseShadowFactors = true;
 
   /// What the shader needs this frame, packed as its uniform arrays (light j's cascade c at
   /// 8 j + c): filled once per frame in Render(), only uploaded per draw.
@@ -210,11 +225,21 @@ protected:
   void UnbindNearest(vtkOpenGLRenderWindow* window);
   /// Render() with the baker's maps: the uniforms, then the renderer's geometry.
   void DrawShadowed(const vtkRenderState* s);
+  /// One light's maps packed into Uniforms (view -> map matrices composed in double).
+  void PackMaps(const vtkCascadedShadowMapBakerPass::LightMaps& maps, vtkMatrix4x4* viewToWorld);
+  /// The lookup (or the factors read at the pixel, CSM_SCREEN) put into a fragment shader
+  /// whose declarations are in: where each light's shading is, and the factors' store.
+  void InjectLookups(
+    std::string& fragmentShader, const std::string& mapperName, bool impostor, int screen);
   std::string ShaderSignature;    // what the injected code is compiled for (lights, kernel, debug)
   std::set<std::string> Reported; // warnings said already: once each
   void ReportOnce(const std::string& message);
   bool ConstantKernelSize() const; // is the PCF radius compiled in (few lights)?
   vtkTimeStamp ShaderTime;
+  /// The last frame's factors at its pixels (ReuseShadowFactors) and what this frame's opaque
+  /// surfaces do with them (csmScreenCache::Mode).
+  std::unique_ptr<csmScreenCache> ScreenCache;
+  int ScreenMode = 0;
 #if CSM_COMPARISON_TECHNIQUES
   /// The comparison techniques: a light's planes and w packed into Uniforms, the #defines and
   /// GLSL of their lookup (Module/glsl/csmComparisonFS.glsl; empty where no map needs it), and

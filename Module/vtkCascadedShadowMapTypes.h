@@ -127,6 +127,10 @@ struct FrameStatistics
   int CastersWithoutReceivers = 0;               ///< casters (or blocks) left out of a map
   bool VisibleDepthsUsed = false, VisibleDepthsMeasured = false; ///< measured in this frame
   bool VisibleFootprintUsed = false; ///< a light's cascades were fitted to the footprint
+  bool ViewDepthDrawn = false;       ///< the view's depth was drawn (measured or not)
+  /// Planned as the last frame: the same view, lights and props (colours, scalars and
+  /// materials aside), every map kept as it was (csmLightPlanning::LastPlanStands).
+  bool AsLastFrame = false;
   /// Casters (or blocks) the visible-depth pass left out, small on the image for their
   /// triangles: their boxes stand in for their samples (csm::boxStandIn).
   int DepthPassStandIns = 0;

@@ -6,17 +6,39 @@
 
 // Compile-time choices, #defined by the pass (vtkCascadedShadowMapPass): CSM_KERNEL
 // (CSM_KERNEL_GRID or CSM_KERNEL_JITTERED), CSM_DEBUG (0 off, or CSM_DEBUG_CASCADES, _ERROR,
-// _FACTOR), CSM_LIGHTS, CSM_MAX_CASCADES, and CSM_PCF_RADIUS when few lights are shadowed; in a
-// build with the comparison techniques, CSM_FACES and CSM_CAMERA_SPACE where a light's maps need
-// their lookup (csmComparisonFS.glsl, which the pass puts before this file); CSM_PLANE_TAPS 1 in
-// the shaders of surfaces drawn into the maps from behind (each texel compared at its own
-// receiver-plane depth), 0 or undefined elsewhere. Every
+// _FACTOR), CSM_SCREEN (below), CSM_LIGHTS, CSM_MAX_CASCADES, and CSM_PCF_RADIUS when few
+// lights are shadowed; in a build with the comparison techniques, CSM_FACES and
+// CSM_CAMERA_SPACE where a light's maps need their lookup (csmComparisonFS.glsl, which the pass
+// puts before this file); CSM_PLANE_TAPS 1 in the shaders of surfaces drawn into the maps from
+// behind (each texel compared at its own receiver-plane depth), 0 or undefined elsewhere. Every
 // fragment makes one map lookup: a software rasterizer runs both sides of a branch, so options
 // that a uniform would switch at run time are compiled in or out instead. The kernel radius is a
 // constant where it can be (the loops unroll, the tap weights fold); with many shadowed lights the
 // unrolled taps would make a shader too large to compile, so there it stays a uniform.
 #ifndef CSM_PLANE_TAPS
 #define CSM_PLANE_TAPS 0
+#endif
+
+// The factors at the fragment's pixel (csmScreenCache.h), CSM_SCREEN: CSM_SCREEN_OFF the lookup
+// alone; CSM_SCREEN_STORE the lookup, each light's factor written at the pixel (the fragment is
+// shaded only once it passed the depth test, so the last one written at a pixel is the surface
+// the frame shows); CSM_SCREEN_READ the factors the last frame wrote there, no lookup (a frame
+// drawn as that one). The pass enables GL_ARB_shader_image_load_store where it is not OFF.
+#ifndef CSM_SCREEN
+#define CSM_SCREEN CSM_SCREEN_OFF
+#endif
+#if CSM_SCREEN == CSM_SCREEN_STORE
+layout(early_fragment_tests) in;
+layout(rgba32f) writeonly uniform image2D csmScreen;
+#elif CSM_SCREEN == CSM_SCREEN_READ
+layout(rgba32f) readonly uniform image2D csmScreen;
+#endif
+#if CSM_SCREEN != CSM_SCREEN_OFF
+uniform ivec2 csmScreenOrigin; // the viewport's lower left, in window pixels
+ivec2 csmScreenPixel()
+{
+  return ivec2(gl_FragCoord.xy) - csmScreenOrigin;
+}
 #endif
 #ifndef CSM_PCF_RADIUS
 uniform int csmPCFRadius;      // kernel of 2 r + 1 texels a side

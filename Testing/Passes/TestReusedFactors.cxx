@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A frame drawn as the last one reads each pixel's shadow factors from that frame
+// (vtkCascadedShadowMapPass::ReuseShadowFactors): no lookup, no view depth, and the image the
+// lookup draws; whatever moves a shadow or a surface makes the lookup again.
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkCascadedShadowMapPass.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkNew.h"
+#include "vtkProperty.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+
+#include "csmTestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace
+{
+using csmTest::BoxOverPlane;
+using csmTest::DifferingValues;
+
+/// The same frame with every lookup made (ReuseShadowFactors off for one frame).
+vtkSmartPointer<vtkImageData> LookedUp(BoxOverPlane& scene, vtkCascadedShadowMapPass* pass)
+{
+  pass->ReuseShadowFactorsOff();
+  auto image = scene.Frame();
+  EXPECT_FALSE(pass->GetLastFrameReusedShadowFactors());
+  pass->ReuseShadowFactorsOn();
+  return image;
+}
+
+/// A box over the ground with three more boxes beside it.
+void AddBoxes(BoxOverPlane& scene)
+{
+  for (int i = 0; i < 3; ++i)
+  {
+    const double x = -5.0 + 4.0 * i;
+    scene.Renderer->AddActor(csmTest::BoxActor(x - 0.5, x + 0.5, 0.0, 2.0 + i, 3.0, 4.0));
+  }
+}
+} // namespace
+
+// Still frames after the first read the factors: no view depth drawn, no map, and the image of
+// the lookup to the level (with the shadows in it: darker than the frame without shadows).
+TEST(ReusedFactors, AStillFrameReadsTheLastFramesFactors)
+{
+  BoxOverPlane scene;
+  AddBoxes(scene);
+  auto plain = scene.Frame();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  auto first = scene.Frame();
+  EXPECT_FALSE(pass->GetLastFrameReusedShadowFactors());
+  EXPECT_GT(csmTest::DarkenedPixels(first, plain), 500);
+  for (int still = 0; still < 3; ++still)
+  {
+    auto again = scene.Frame();
+    EXPECT_TRUE(pass->GetLastFrameReusedShadowFactors()) << still;
+    EXPECT_TRUE(baker->GetLastFrameStatistics().AsLastFrame) << still;
+    EXPECT_FALSE(baker->GetLastFrameStatistics().ViewDepthDrawn) << still;
+    EXPECT_EQ(baker->GetLastFrameStatistics().TexelsRendered, 0.0) << still;
+    EXPECT_EQ(DifferingValues(again, first, 0), 0) << still;
+  }
+  EXPECT_EQ(DifferingValues(LookedUp(scene, pass), first, 0), 0);
+}
+
+// Colours and materials keep the factors; a moved camera, light or box, edited points, another
+// darkness, bias or window size, a light's shadow attenuation, a box made translucent make the
+// lookup again. Each frame is the image of the lookup to the level.
+TEST(ReusedFactors, OnlyChangesOfColourOrMaterialKeepTheFactors)
+{
+  BoxOverPlane scene;
+  AddBoxes(scene);
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  scene.Frame();
+  scene.Frame();
+  ASSERT_TRUE(pass->GetLastFrameReusedShadowFactors());
+  struct Change
+  {
+    std::string Name;
+    bool Keeps;
+    std::function<void()> Apply;
+  };
+  const std::vector<Change> changes = {
+    { "colour", true, [&]() { scene.Box->GetProperty()->SetColor(0.2, 0.8, 0.3); } },
+    { "specular", true, [&]() { scene.Ground->GetProperty()->SetSpecular(0.5); } },
+    { "camera", false,
+      [&]()
+      {
+        scene.Renderer->GetActiveCamera()->Azimuth(3.0);
+        scene.Renderer->ResetCameraClippingRange();
+      } },
+    { "light", false, [&]() { scene.Light->SetPosition(1.0, 10.0, 0.5); } },
+    { "box moved", false, [&]() { scene.Box->SetPosition(0.4, 0.0, 0.0); } },
+    { "darkness", false, [&]() { pass->SetShadowDarkness(0.6); } },
+    { "bias", false, [&]() { pass->SetConstantBias(0.004); } },
+    { "attenuation", false, [&]() { scene.Light->SetShadowAttenuation(0.5f); } },
+    { "window size", false, [&]() { scene.Window->SetSize(300, 220); } },
+    { "translucent", false, [&]() { scene.Box->GetProperty()->SetOpacity(0.5); } },
+  };
+  for (const Change& change : changes)
+  {
+    change.Apply();
+    auto changed = scene.Frame();
+    EXPECT_EQ(pass->GetLastFrameReusedShadowFactors(), change.Keeps) << change.Name;
+    EXPECT_EQ(DifferingValues(LookedUp(scene, pass), changed, 0), 0) << change.Name;
+    scene.Frame();
+    auto still = scene.Frame(); // (after the lookup's frame: stored, then read)
+    EXPECT_TRUE(pass->GetLastFrameReusedShadowFactors()) << change.Name;
+    EXPECT_EQ(DifferingValues(still, changed, 0), 0) << change.Name;
+  }
+}
+
+// A translucent box in front of the shadowed ground makes its own lookup: the frame that reads
+// the factors of the opaque surfaces behind it is the lookup's image.
+TEST(ReusedFactors, TranslucentPropsMakeTheirOwnLookup)
+{
+  BoxOverPlane scene;
+  vtkSmartPointer<vtkActor> glass = csmTest::BoxActor(-3.0, 3.0, 0.5, 1.5, 2.0, 6.0);
+  glass->GetProperty()->SetOpacity(0.4);
+  scene.Renderer->AddActor(glass);
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  scene.Frame();
+  auto read = scene.Frame();
+  ASSERT_TRUE(pass->GetLastFrameReusedShadowFactors());
+  EXPECT_EQ(DifferingValues(LookedUp(scene, pass), read, 0), 0);
+}
+
+// Two renderers side by side sharing one pass chain: each frame is the lookup's image, whose
+// factors each renderer reads or makes.
+TEST(ReusedFactors, TwoRenderersSharingAPass)
+{
+  BoxOverPlane scene;
+  AddBoxes(scene);
+  vtkNew<vtkRenderer> right;
+  right->SetViewport(0.5, 0.0, 1.0, 1.0);
+  scene.Renderer->SetViewport(0.0, 0.0, 0.5, 1.0);
+  right->AutomaticLightCreationOff();
+  right->AddLight(scene.Light);
+  right->AddActor(scene.Box);
+  right->AddActor(scene.Ground);
+  right->SetActiveCamera(scene.Renderer->GetActiveCamera());
+  scene.Window->AddRenderer(right);
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  right->SetPass(scene.Renderer->GetPass());
+  scene.Frame();
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    auto image = scene.Frame();
+    EXPECT_EQ(DifferingValues(LookedUp(scene, pass), image, 0), 0) << frame;
+    scene.Frame();
+  }
+}
+
+// A multisampled framebuffer shades a pixel once for several surfaces' samples: every frame
+// makes the lookup.
+TEST(ReusedFactors, AMultisampledWindowMakesTheLookup)
+{
+  BoxOverPlane scene;
+  scene.Window->SetMultiSamples(4);
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  auto first = scene.Frame();
+  auto again = scene.Frame();
+  EXPECT_FALSE(pass->GetLastFrameReusedShadowFactors());
+  EXPECT_TRUE(pass->GetShadowMapBakerPass()->GetLastFrameStatistics().ViewDepthDrawn);
+  EXPECT_EQ(DifferingValues(again, first, 0), 0);
+}
