@@ -6,77 +6,114 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include <algorithm>
+
+csmScreenCache::csmScreenCache() = default;
+csmScreenCache::~csmScreenCache() = default;
+
 csmScreenCache::Mode csmScreenCache::Begin(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
   bool asLastFrame, int lights, bool enabled, const std::string& key)
 {
-  this->Current = OFF;
-  this->CurrentRenderer = renderer;
+  this->CurrentMode = OFF;
+  this->Current = nullptr;
+  // Renderers gone take their images with them.
+  this->Entries.erase(std::remove_if(this->Entries.begin(), this->Entries.end(),
+                        [](const Entry& entry) { return !entry.Renderer; }),
+    this->Entries.end());
+  auto found = std::find_if(this->Entries.begin(), this->Entries.end(),
+    [renderer](const Entry& entry) { return entry.Renderer == renderer; });
+  if (found == this->Entries.end())
+  {
+    this->Entries.emplace_back();
+    this->Entries.back().Renderer = renderer;
+    found = this->Entries.end() - 1;
+  }
+  Entry& entry = *found;
+  this->Current = &entry;
   int viewport[4] = { 0, 0, 0, 0 };
   renderer->GetTiledSizeAndOrigin(viewport + 2, viewport + 3, viewport, viewport + 1);
   // A multisampled framebuffer shades a pixel once for the samples of several surfaces: one
   // factor a pixel would give the samples of one surface another's.
   GLint samples = 0;
   glGetIntegerv(GL_SAMPLES, &samples);
+  const bool holds =
+    entry.Holds && std::equal(viewport, viewport + 4, entry.Viewport) && entry.Key == key;
   if (!enabled || lights < 1 || lights > MAXIMUM_LIGHTS || samples > 1 || viewport[2] < 1 ||
-    viewport[3] < 1 || !(GLEW_VERSION_4_2 || GLEW_ARB_shader_image_load_store))
+    viewport[3] < 1 || !GLEW_ARB_shader_image_load_store || (!asLastFrame && !entry.StoreRead))
   {
     return OFF;
   }
-  const bool holds = this->Renderer == renderer && this->Image &&
-    std::equal(viewport, viewport + 4, this->Viewport) && this->Key == key;
-  if (!this->Image)
+  if (entry.Image && entry.Window != window)
   {
-    this->Image = vtkSmartPointer<vtkTextureObject>::New();
+    // (The renderer went to another window: the image was of the other context.)
+    if (entry.Window)
+    {
+      entry.Image->ReleaseGraphicsResources(entry.Window);
+    }
+    entry.Image = nullptr;
   }
-  this->Image->SetContext(window);
-  if (static_cast<int>(this->Image->GetWidth()) != viewport[2] ||
-    static_cast<int>(this->Image->GetHeight()) != viewport[3] || !this->Image->GetHandle())
+  if (!entry.Image)
   {
-    this->Image->Allocate2D(viewport[2], viewport[3], 4, VTK_FLOAT);
+    entry.Image = vtkSmartPointer<vtkTextureObject>::New();
+    entry.Image->SetContext(window);
+    entry.Window = window;
   }
-  if (!this->Image->GetHandle())
+  if (static_cast<int>(entry.Image->GetWidth()) != viewport[2] ||
+    static_cast<int>(entry.Image->GetHeight()) != viewport[3] || !entry.Image->GetHandle())
+  {
+    entry.Image->Allocate2D(viewport[2], viewport[3], 4, VTK_FLOAT);
+  }
+  if (!entry.Image->GetHandle())
   {
     return OFF;
   }
-  this->Current = holds && asLastFrame ? READ : STORE;
-  std::copy(viewport, viewport + 4, this->Viewport);
-  glBindImageTexture(static_cast<GLuint>(this->GetImageUnit()), this->Image->GetHandle(), 0,
-    GL_FALSE, 0, this->Current == READ ? GL_READ_ONLY : GL_WRITE_ONLY, GL_RGBA32F);
-  if (this->Current == STORE)
-  {
-    // Until the frame is drawn, the image holds no frame's factors.
-    this->Renderer = nullptr;
-    this->Key = key;
-  }
-  return this->Current;
+  this->CurrentMode = holds && asLastFrame ? READ : STORE;
+  std::copy(viewport, viewport + 4, entry.Viewport);
+  entry.Key = key;
+  glBindImageTexture(static_cast<GLuint>(this->GetImageUnit()), entry.Image->GetHandle(), 0,
+    GL_FALSE, 0, this->CurrentMode == READ ? GL_READ_ONLY : GL_WRITE_ONLY, GL_RGBA32F);
+  return this->CurrentMode;
 }
 
 bool csmScreenCache::End()
 {
-  if (this->Current == OFF)
+  Entry* entry = this->Current;
+  this->Current = nullptr;
+  if (!entry)
   {
-    if (this->Renderer == this->CurrentRenderer)
-    {
-      this->Renderer = nullptr; // this renderer's last frame is not the image's
-    }
+    return false;
+  }
+  if (this->CurrentMode == OFF)
+  {
+    entry->Holds = false; // the renderer's last frame is not the image's
     return false;
   }
   glBindImageTexture(
     static_cast<GLuint>(this->GetImageUnit()), 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-  if (this->Current == STORE)
+  if (this->CurrentMode == STORE)
   {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    this->Renderer = this->CurrentRenderer;
   }
-  this->Current = OFF;
+  entry->Holds = true;
+  entry->StoreRead = this->CurrentMode == READ;
+  this->CurrentMode = OFF;
   return true;
+}
+
+const int* csmScreenCache::GetOrigin() const
+{
+  static const int none[4] = { 0, 0, 0, 0 };
+  return this->Current ? this->Current->Viewport : none;
 }
 
 void csmScreenCache::ReleaseGraphicsResources(vtkWindow* window)
 {
-  if (this->Image)
+  for (Entry& entry : this->Entries)
   {
-    this->Image->ReleaseGraphicsResources(window);
+    if (entry.Image)
+    {
+      entry.Image->ReleaseGraphicsResources(window);
+    }
+    entry.Holds = false;
   }
-  this->Renderer = nullptr;
 }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The shadow factors of the last frame at its pixels, for a frame drawn as that one
+// The shadow factors of a renderer's last frame at its pixels, for a frame drawn as that one
 // (vtkCascadedShadowMapPass, internal).
 //
 // A frame that shows the same surfaces from the same camera under the same maps (the baker
@@ -8,6 +8,9 @@
 // stores them makes its lookup as usual and writes each light's factor at the fragment's pixel
 // (a fragment that passes the depth test before it is shaded: the last one at a pixel is the
 // surface the frame shows); the frames after it read the factor there instead of the lookup.
+// The store costs a frame about a sixth (Results.md, "A still frame"): a renderer whose last
+// stored factors went unread (the view or the scene keeps changing) stores again only in a
+// frame planned as its last one.
 #ifndef csmScreenCache_h
 #define csmScreenCache_h
 
@@ -15,6 +18,7 @@
 #include "vtkWeakPointer.h"
 
 #include <string>
+#include <vector>
 
 class vtkOpenGLRenderWindow;
 class vtkRenderer;
@@ -34,26 +38,37 @@ public:
   /// The most shadowed lights whose factors a pixel holds (one channel each).
   static constexpr int MAXIMUM_LIGHTS = 4;
 
-  /// This frame's mode, its image bound for it: READ where the image holds this renderer's
-  /// factors of its last frame, drawn as this one (asLastFrame, the same viewport and key: the
-  /// shader, the options and the lights' attenuations), STORE where it can hold them, OFF
-  /// where it cannot (a multisampled framebuffer, more lights, no image load/store, debug).
+  csmScreenCache();
+  ~csmScreenCache();
+
+  /// This frame's mode, its renderer's image bound for it: READ where the image holds the
+  /// factors of the renderer's last frame, drawn as this one (asLastFrame, the same viewport
+  /// and key: the shader, the options and the lights' attenuations); STORE where it can hold
+  /// them and they may be read; OFF where they cannot be (a multisampled framebuffer, more
+  /// lights, no image load/store, not enabled) or the last ones went unread.
   Mode Begin(vtkRenderer* renderer, vtkOpenGLRenderWindow* window, bool asLastFrame, int lights,
     bool enabled, const std::string& key);
   /// After the frame's geometry: the image unbound; does it hold this frame's factors?
   bool End();
-  /// The viewport's lower left in window pixels (csmScreenOrigin) and the image unit.
-  const int* GetOrigin() const { return this->Viewport; }
+  /// The frame's viewport's lower left in window pixels (csmScreenOrigin) and the image unit.
+  const int* GetOrigin() const;
   int GetImageUnit() const { return 0; }
   void ReleaseGraphicsResources(vtkWindow* window);
 
 private:
-  vtkSmartPointer<vtkTextureObject> Image;
-  vtkWeakPointer<vtkRenderer> Renderer; ///< whose factors the image holds (null: none)
-  int Viewport[4] = { 0, 0, 0, 0 };     ///< x, y, width, height of its frame
-  std::string Key;
-  Mode Current = OFF;
-  vtkRenderer* CurrentRenderer = nullptr;
+  struct Entry
+  {
+    vtkWeakPointer<vtkRenderer> Renderer;
+    vtkWeakPointer<vtkOpenGLRenderWindow> Window; ///< the context of the image
+    vtkSmartPointer<vtkTextureObject> Image;
+    int Viewport[4] = { 0, 0, 0, 0 }; ///< x, y, width, height of the frame it holds
+    std::string Key;
+    bool Holds = false;    ///< the factors of the renderer's last frame
+    bool StoreRead = true; ///< the last factors stored were read (or none were stored)
+  };
+  std::vector<Entry> Entries; ///< per renderer
+  Entry* Current = nullptr;   ///< this frame's, between Begin() and End()
+  Mode CurrentMode = OFF;
 };
 
 #endif

@@ -575,6 +575,11 @@ bool vtkCascadedShadowMapPass::GetLastFrameReusedShadowFactors() const
   return this->ScreenMode == csmScreenCache::READ;
 }
 
+bool vtkCascadedShadowMapPass::GetLastFrameStoredShadowFactors() const
+{
+  return this->ScreenMode == csmScreenCache::STORE;
+}
+
 bool vtkCascadedShadowMapPass::ConstantKernelSize() const
 {
   return this->Uniforms.Lights() <= static_cast<size_t>(MAXIMUM_LIGHTS_WITH_CONSTANT_KERNEL);

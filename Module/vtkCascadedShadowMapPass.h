@@ -142,8 +142,11 @@ public:
   vtkGetMacro(ReuseShadowFactors, bool);
   vtkBooleanMacro(ReuseShadowFactors, bool);
   ///@}
-  /// Did the last frame read its shadow factors from the frame before it (no lookup)?
+  /// Did the last frame read its shadow factors from the frame before it (no lookup)? Did it
+  /// store them for the next (which a renderer whose stored factors went unread does only in a
+  /// frame drawn as its last one)?
   bool GetLastFrameReusedShadowFactors() const;
+  bool GetLastFrameStoredShadowFactors() const;
 
   enum DebugModes
   {

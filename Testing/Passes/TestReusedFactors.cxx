@@ -134,8 +134,35 @@ TEST(ReusedFactors, TranslucentPropsMakeTheirOwnLookup)
   EXPECT_EQ(DifferingValues(LookedUp(scene, pass), read, 0), 0);
 }
 
-// Two renderers side by side sharing one pass chain: each frame is the lookup's image, whose
-// factors each renderer reads or makes.
+// A camera path: the first moved frame stores its factors, which the next frame (moved again)
+// cannot read; the frames after it make the lookup alone until the view stands (a frame drawn as
+// the last one stores, the next reads). Each frame is the lookup's image.
+TEST(ReusedFactors, APathStoresOnceUntilTheViewStands)
+{
+  BoxOverPlane scene;
+  AddBoxes(scene);
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  scene.Frame();
+  scene.Frame();
+  ASSERT_TRUE(pass->GetLastFrameReusedShadowFactors());
+  for (int step = 0; step < 4; ++step)
+  {
+    scene.Renderer->GetActiveCamera()->Azimuth(2.0);
+    scene.Renderer->ResetCameraClippingRange();
+    auto moved = scene.Frame();
+    EXPECT_FALSE(pass->GetLastFrameReusedShadowFactors()) << step;
+    EXPECT_EQ(pass->GetLastFrameStoredShadowFactors(), step == 0) << step;
+    EXPECT_EQ(DifferingValues(LookedUp(scene, pass), moved, 0), 0) << step;
+  }
+  auto stands = scene.Frame();
+  EXPECT_TRUE(pass->GetLastFrameStoredShadowFactors());
+  auto still = scene.Frame();
+  EXPECT_TRUE(pass->GetLastFrameReusedShadowFactors());
+  EXPECT_EQ(DifferingValues(still, stands, 0), 0);
+}
+
+// Two renderers side by side sharing one pass chain: each keeps its own factors, and each frame
+// is the lookup's image.
 TEST(ReusedFactors, TwoRenderersSharingAPass)
 {
   BoxOverPlane scene;
@@ -155,7 +182,14 @@ TEST(ReusedFactors, TwoRenderersSharingAPass)
   for (int frame = 0; frame < 3; ++frame)
   {
     auto image = scene.Frame();
+    EXPECT_TRUE(pass->GetLastFrameReusedShadowFactors()) << frame; // (the right one's frame)
     EXPECT_EQ(DifferingValues(LookedUp(scene, pass), image, 0), 0) << frame;
+    scene.Frame();
+    scene.Renderer->GetActiveCamera()->Azimuth(5.0); // (the camera both renderers share)
+    scene.Renderer->ResetCameraClippingRange();
+    right->ResetCameraClippingRange();
+    auto moved = scene.Frame();
+    EXPECT_EQ(DifferingValues(LookedUp(scene, pass), moved, 0), 0) << frame;
     scene.Frame();
   }
 }
