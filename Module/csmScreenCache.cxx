@@ -32,14 +32,18 @@ csmScreenCache::Mode csmScreenCache::Begin(vtkRenderer* renderer, vtkOpenGLRende
   this->Current = &entry;
   int viewport[4] = { 0, 0, 0, 0 };
   renderer->GetTiledSizeAndOrigin(viewport + 2, viewport + 3, viewport, viewport + 1);
-  // A multisampled framebuffer shades a pixel once for the samples of several surfaces: one
-  // factor a pixel would give the samples of one surface another's.
+  // A multisampled framebuffer shades a pixel once for the samples of several surfaces: each
+  // sample holds the factors of its own (and the depth that names it).
   GLint samples = 0;
   glGetIntegerv(GL_SAMPLES, &samples);
-  const bool holds =
-    entry.Holds && std::equal(viewport, viewport + 4, entry.Viewport) && entry.Key == key;
-  if (!enabled || lights < 1 || lights > MAXIMUM_LIGHTS || samples > 1 || viewport[2] < 1 ||
-    viewport[3] < 1 || !GLEW_ARB_shader_image_load_store || (!asLastFrame && !entry.StoreRead))
+  this->Samples = std::max(1, static_cast<int>(samples));
+  const bool multisampled = this->Samples > 1;
+  const bool holds = entry.Holds && std::equal(viewport, viewport + 4, entry.Viewport) &&
+    entry.Key == key && entry.Samples == this->Samples;
+  if (!enabled || lights < 1 || lights > MAXIMUM_LIGHTS - (multisampled ? 1 : 0) ||
+    viewport[2] < 1 || viewport[3] < 1 || !GLEW_ARB_shader_image_load_store ||
+    (multisampled && !(GLEW_ARB_post_depth_coverage && GLEW_ARB_gpu_shader5)) ||
+    (!asLastFrame && !entry.StoreRead))
   {
     return OFF;
   }
@@ -59,9 +63,14 @@ csmScreenCache::Mode csmScreenCache::Begin(vtkRenderer* renderer, vtkOpenGLRende
     entry.Window = window;
   }
   if (static_cast<int>(entry.Image->GetWidth()) != viewport[2] ||
-    static_cast<int>(entry.Image->GetHeight()) != viewport[3] || !entry.Image->GetHandle())
+    static_cast<int>(entry.Image->GetHeight()) != viewport[3] || entry.Samples != this->Samples ||
+    !entry.Image->GetHandle())
   {
+    entry.Image->ReleaseGraphicsResources(window);
+    entry.Image->SetContext(window);
+    entry.Image->SetSamples(static_cast<unsigned int>(multisampled ? this->Samples : 0));
     entry.Image->Allocate2D(viewport[2], viewport[3], 4, VTK_FLOAT);
+    entry.Samples = this->Samples;
   }
   if (!entry.Image->GetHandle())
   {

@@ -35,7 +35,9 @@ public:
     STORE = 1, ///< the lookup, its factors written at the pixel
     READ = 2   ///< the factors the last frame wrote at the pixel, no lookup
   };
-  /// The most shadowed lights whose factors a pixel holds (one channel each).
+  /// The most shadowed lights whose factors a pixel holds (one channel each); in a
+  /// multisampled framebuffer one fewer (a channel holds the depth that tells the surfaces of a
+  /// pixel apart).
   static constexpr int MAXIMUM_LIGHTS = 4;
 
   csmScreenCache();
@@ -44,14 +46,17 @@ public:
   /// This frame's mode, its renderer's image bound for it: READ where the image holds the
   /// factors of the renderer's last frame, drawn as this one (asLastFrame, the same viewport
   /// and key: the shader, the options and the lights' attenuations); STORE where it can hold
-  /// them and they may be read; OFF where they cannot be (a multisampled framebuffer, more
-  /// lights, no image load/store, not enabled) or the last ones went unread.
+  /// them and they may be read; OFF where they cannot be (more lights, no image load/store,
+  /// not enabled) or the last ones went unread. A multisampled
+  /// framebuffer needs GL_ARB_post_depth_coverage and GL_ARB_gpu_shader5 (gl_SampleMaskIn).
   Mode Begin(vtkRenderer* renderer, vtkOpenGLRenderWindow* window, bool asLastFrame, int lights,
     bool enabled, const std::string& key);
   /// After the frame's geometry: the image unbound; does it hold this frame's factors?
   bool End();
-  /// The frame's viewport's lower left in window pixels (csmScreenOrigin) and the image unit.
+  /// The frame's viewport's lower left in window pixels (csmScreenOrigin), its framebuffer's
+  /// samples (CSM_SCREEN_SAMPLES: 1 single-sampled) and the image unit.
   const int* GetOrigin() const;
+  int GetSamples() const { return this->Samples; }
   int GetImageUnit() const { return 0; }
   void ReleaseGraphicsResources(vtkWindow* window);
 
@@ -63,12 +68,14 @@ private:
     vtkSmartPointer<vtkTextureObject> Image;
     int Viewport[4] = { 0, 0, 0, 0 }; ///< x, y, width, height of the frame it holds
     std::string Key;
+    int Samples = 1;
     bool Holds = false;    ///< the factors of the renderer's last frame
     bool StoreRead = true; ///< the last factors stored were read (or none were stored)
   };
   std::vector<Entry> Entries; ///< per renderer
   Entry* Current = nullptr;   ///< this frame's, between Begin() and End()
   Mode CurrentMode = OFF;
+  int Samples = 1;
 };
 
 #endif

@@ -371,15 +371,15 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
     state.VisibleCamera = nullptr; // each process sees only its own; nothing to see
     return;
   }
+  if (this->FactorsHeldFor == renderer && !props.Changed && props.Dirty.empty() &&
+    state.LastCamera && state.LastAspect == aspect && sameView(state.LastCamera, camera, aspect))
+  {
+    return; // the frame reads the factors its last frame held at its pixels: no lookup to spare
+  }
   const bool measured = !props.GeometryChanged && state.VisibleCamera &&
     state.VisibleAspect == aspect && sameView(state.VisibleCamera, camera, aspect);
   GLint sampleBuffers = 0;
   glGetIntegerv(GL_SAMPLE_BUFFERS, &sampleBuffers);
-  if (measured && sampleBuffers == 0 && this->FactorsHeldFor == renderer && !props.Changed &&
-    props.Dirty.empty())
-  {
-    return; // the frame reads the factors its last frame held at its pixels: no lookup to spare
-  }
   this->Statistics.ViewDepthDrawn = true;
   if (measured || sampleBuffers > 0)
   {

@@ -272,7 +272,8 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   this->ScreenMode = this->ScreenCache->Begin(renderer, window,
     baker->GetLastFrameStatistics().AsLastFrame, static_cast<int>(u.Lights()),
     this->ReuseShadowFactors && this->DebugMode == DEBUG_OFF && !distributed, key.str());
-  signature += " screen " + std::to_string(this->ScreenMode);
+  signature += " screen " + std::to_string(this->ScreenMode) + " samples " +
+    std::to_string(this->ScreenCache->GetSamples());
   if (signature != this->ShaderSignature)
   {
     this->ShaderSignature = signature;
@@ -378,7 +379,8 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   decl << "#define CSM_PLANE_TAPS " << (fromBehind ? 1 : 0) << "\n";
   const int screen =
     impostor || !screenCapable(fragmentShader, prop) ? csmScreenCache::OFF : this->ScreenMode;
-  decl << "#define CSM_SCREEN " << screen << "\n";
+  decl << "#define CSM_SCREEN " << screen << "\n"
+       << "#define CSM_SCREEN_SAMPLES " << this->ScreenCache->GetSamples() << "\n";
 #if CSM_COMPARISON_TECHNIQUES
   decl << this->ComparisonDefinitions();
 #endif
@@ -424,12 +426,16 @@ void vtkCascadedShadowMapPass::InjectLookups(
   {
     // (Right after the #version VTK puts there.)
     vtkShaderProgram::Substitute(fragmentShader, kSystemDec,
-      std::string(kSystemDec) + "\n#extension GL_ARB_shader_image_load_store : require\n", false);
+      std::string(kSystemDec) + "\n#extension GL_ARB_shader_image_load_store : require\n" +
+        (this->ScreenCache->GetSamples() > 1 ? "#extension GL_ARB_post_depth_coverage : require\n"
+                                               "#extension GL_ARB_gpu_shader5 : require\n"
+                                             : ""),
+      false);
   }
   std::ostringstream impl;
   impl << kVertexVC
        << (screen == csmScreenCache::READ
-              ? "\n  vec4 csmCached = imageLoad(csmScreen, csmScreenPixel());\n"
+              ? "\n  vec4 csmCached = csmScreenRead();\n"
               : "\n  vec4 csmDVCdx = dFdx(vertexVC);\n  vec4 csmDVCdy = dFdy(vertexVC);\n");
   for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
   {
@@ -476,8 +482,7 @@ void vtkCascadedShadowMapPass::InjectLookups(
         (j < this->Uniforms.Lights() ? "csmResult" + std::to_string(j) + ".x" : std::string("1.0"));
     }
     vtkShaderProgram::Substitute(fragmentShader, kLightImpl,
-      std::string(kLightImpl) + "\n  imageStore(csmScreen, csmScreenPixel(), " + factors + "));\n",
-      false);
+      std::string(kLightImpl) + "\n  csmScreenStore(" + factors + "));\n", false);
   }
 }
 

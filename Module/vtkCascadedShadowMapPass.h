@@ -136,8 +136,9 @@ public:
   ///@{
   /// A frame drawn as the last one (the same camera, viewport, props, lights and maps: colours,
   /// scalars or materials may have changed) reads each pixel's shadow factors from that frame
-  /// instead of making the lookup again, on opaque surfaces of a single-sampled framebuffer
-  /// with at most four shadowed lights (GL_ARB_shader_image_load_store). The same image. On.
+  /// instead of making the lookup again, on opaque surfaces, with at most four shadowed lights
+  /// (three in a multisampled framebuffer; GL_ARB_shader_image_load_store, and there
+  /// GL_ARB_post_depth_coverage and GL_ARB_gpu_shader5). The same image. On.
   vtkSetMacro(ReuseShadowFactors, bool);
   vtkGetMacro(ReuseShadowFactors, bool);
   vtkBooleanMacro(ReuseShadowFactors, bool);

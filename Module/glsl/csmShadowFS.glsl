@@ -24,20 +24,79 @@
 // shaded only once it passed the depth test, so the last one written at a pixel is the surface
 // the frame shows); CSM_SCREEN_READ the factors the last frame wrote there, no lookup (a frame
 // drawn as that one). The pass enables GL_ARB_shader_image_load_store where it is not OFF.
+// In a framebuffer of CSM_SCREEN_SAMPLES > 1 samples a pixel is shaded once for the samples of
+// several surfaces: each fragment writes its factors and its depth at the pixel's centre (its
+// identity there) into the samples it covers after the depth test (GL_ARB_post_depth_coverage),
+// so each sample ends with the surface it shows, and reads them back from a sample that holds
+// its own depth (the pass enables GL_ARB_post_depth_coverage and GL_ARB_gpu_shader5 there).
 #ifndef CSM_SCREEN
 #define CSM_SCREEN CSM_SCREEN_OFF
 #endif
-#if CSM_SCREEN == CSM_SCREEN_STORE
-layout(early_fragment_tests) in;
-layout(rgba32f) writeonly uniform image2D csmScreen;
-#elif CSM_SCREEN == CSM_SCREEN_READ
-layout(rgba32f) readonly uniform image2D csmScreen;
+#ifndef CSM_SCREEN_SAMPLES
+#define CSM_SCREEN_SAMPLES 1
 #endif
 #if CSM_SCREEN != CSM_SCREEN_OFF
+#if CSM_SCREEN_SAMPLES > 1
+layout(early_fragment_tests) in;
+layout(post_depth_coverage) in;
+#define csmScreenImage image2DMS
+#elif CSM_SCREEN == CSM_SCREEN_STORE
+layout(early_fragment_tests) in;
+#define csmScreenImage image2D
+#else
+#define csmScreenImage image2D
+#endif
+#if CSM_SCREEN == CSM_SCREEN_STORE
+layout(rgba32f) writeonly uniform csmScreenImage csmScreen;
+#else
+layout(rgba32f) readonly uniform csmScreenImage csmScreen;
+#endif
 uniform ivec2 csmScreenOrigin; // the viewport's lower left, in window pixels
 ivec2 csmScreenPixel()
 {
   return ivec2(gl_FragCoord.xy) - csmScreenOrigin;
+}
+#endif
+
+#if CSM_SCREEN == CSM_SCREEN_STORE
+// Each light's factor (x, y, z, w: lights 0-3; 0-2 with samples, w then the depth) at the pixel.
+void csmScreenStore(vec4 factors)
+{
+#if CSM_SCREEN_SAMPLES > 1
+  vec4 held = vec4(factors.xyz, gl_FragCoord.z);
+  for (int s = 0; s < CSM_SCREEN_SAMPLES; ++s)
+  {
+    if ((gl_SampleMaskIn[0] & (1 << s)) != 0)
+    {
+      imageStore(csmScreen, csmScreenPixel(), s, held);
+    }
+  }
+#else
+  imageStore(csmScreen, csmScreenPixel(), factors);
+#endif
+}
+#elif CSM_SCREEN == CSM_SCREEN_READ
+// The factors the last frame stored at the pixel for this fragment's surface.
+vec4 csmScreenRead()
+{
+#if CSM_SCREEN_SAMPLES > 1
+  // The covered samples from the first: inside a surface the first holds it, and a software
+  // rasterizer leaves the loop once every pixel of a block found its own.
+  int covered = gl_SampleMaskIn[0];
+  vec4 held = vec4(1.0);
+  for (int k = 0; k < CSM_SCREEN_SAMPLES && covered != 0; ++k)
+  {
+    held = imageLoad(csmScreen, csmScreenPixel(), findLSB(covered));
+    covered &= covered - 1;
+    if (held.w == gl_FragCoord.z)
+    {
+      break; // (a fragment that shows in no sample is drawn over: any value serves)
+    }
+  }
+  return held;
+#else
+  return imageLoad(csmScreen, csmScreenPixel());
+#endif
 }
 #endif
 #ifndef CSM_PCF_RADIUS

@@ -194,16 +194,46 @@ TEST(ReusedFactors, TwoRenderersSharingAPass)
   }
 }
 
-// A multisampled framebuffer shades a pixel once for several surfaces' samples: every frame
-// makes the lookup.
-TEST(ReusedFactors, AMultisampledWindowMakesTheLookup)
+// A multisampled framebuffer shades a pixel once for the samples of several surfaces: each
+// sample keeps the factors of the surface it shows, and the frame that reads them is the
+// lookup's image to the level, edges of the boxes over their shadows included.
+TEST(ReusedFactors, AMultisampledWindowKeepsEachSamplesSurface)
 {
   BoxOverPlane scene;
+  AddBoxes(scene);
   scene.Window->SetMultiSamples(4);
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
-  auto first = scene.Frame();
-  auto again = scene.Frame();
-  EXPECT_FALSE(pass->GetLastFrameReusedShadowFactors());
-  EXPECT_TRUE(pass->GetShadowMapBakerPass()->GetLastFrameStatistics().ViewDepthDrawn);
-  EXPECT_EQ(DifferingValues(again, first, 0), 0);
+  scene.Frame();
+  EXPECT_TRUE(pass->GetLastFrameStoredShadowFactors());
+  auto read = scene.Frame();
+  EXPECT_TRUE(pass->GetLastFrameReusedShadowFactors());
+  EXPECT_FALSE(pass->GetShadowMapBakerPass()->GetLastFrameStatistics().ViewDepthDrawn);
+  EXPECT_EQ(DifferingValues(LookedUp(scene, pass), read, 0), 0);
+}
+
+// Up to four shadowed lights keep their factors (three in a multisampled framebuffer, where a
+// channel holds the depth that tells a pixel's surfaces apart); more make the lookup.
+TEST(ReusedFactors, FourLightsOrThreeWithSamples)
+{
+  for (const int samples : { 0, 4 })
+  {
+    BoxOverPlane scene;
+    scene.Window->SetMultiSamples(samples);
+    vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+    for (int lights = 2; lights <= 5; ++lights)
+    {
+      vtkNew<vtkLight> light;
+      light->SetLightTypeToSceneLight();
+      light->SetPositional(false);
+      light->SetPosition(2.0 * lights - 6.0, 10.0, 1.0);
+      light->SetFocalPoint(0.0, 0.0, 0.0);
+      light->SetIntensity(0.3);
+      scene.Renderer->AddLight(light);
+      scene.Frame();
+      auto read = scene.Frame();
+      const bool keeps = lights <= (samples > 1 ? 3 : 4);
+      EXPECT_EQ(pass->GetLastFrameReusedShadowFactors(), keeps) << samples << " " << lights;
+      EXPECT_EQ(DifferingValues(LookedUp(scene, pass), read, 0), 0) << samples << " " << lights;
+    }
+  }
 }
