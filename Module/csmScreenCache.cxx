@@ -11,8 +11,30 @@
 csmScreenCache::csmScreenCache() = default;
 csmScreenCache::~csmScreenCache() = default;
 
+bool csmScreenCache::Compiles(
+  vtkOpenGLRenderWindow* window, const std::function<bool(int)>& compiles)
+{
+  this->Probes.erase(std::remove_if(this->Probes.begin(), this->Probes.end(),
+                       [](const Probe& probe) { return !probe.Window; }),
+    this->Probes.end());
+  for (const Probe& probe : this->Probes)
+  {
+    if (probe.Window == window && probe.Samples == this->Samples)
+    {
+      return probe.Compiles;
+    }
+  }
+  Probe probe;
+  probe.Window = window;
+  probe.Samples = this->Samples;
+  probe.Compiles = compiles(this->Samples);
+  this->Probes.push_back(probe);
+  return probe.Compiles;
+}
+
 csmScreenCache::Mode csmScreenCache::Begin(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
-  bool asLastFrame, int lights, bool enabled, const std::string& key)
+  bool asLastFrame, int lights, bool enabled, const std::string& key,
+  const std::function<bool(int samples)>& compiles)
 {
   this->CurrentMode = OFF;
   this->Current = nullptr;
@@ -43,7 +65,7 @@ csmScreenCache::Mode csmScreenCache::Begin(vtkRenderer* renderer, vtkOpenGLRende
   if (!enabled || lights < 1 || lights > MAXIMUM_LIGHTS - (multisampled ? 1 : 0) ||
     viewport[2] < 1 || viewport[3] < 1 || !GLEW_ARB_shader_image_load_store ||
     (multisampled && !(GLEW_ARB_post_depth_coverage && GLEW_ARB_gpu_shader5)) ||
-    (!asLastFrame && !entry.StoreRead))
+    (!asLastFrame && !entry.StoreRead) || !this->Compiles(window, compiles))
   {
     return OFF;
   }

@@ -17,6 +17,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkWeakPointer.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -49,8 +50,10 @@ public:
   /// them and they may be read; OFF where they cannot be (more lights, no image load/store,
   /// not enabled) or the last ones went unread. A multisampled
   /// framebuffer needs GL_ARB_post_depth_coverage and GL_ARB_gpu_shader5 (gl_SampleMaskIn).
+  /// compiles(samples) says whether the shaders that store and read compile in this context
+  /// (asked once per window and sample count; OFF where they do not).
   Mode Begin(vtkRenderer* renderer, vtkOpenGLRenderWindow* window, bool asLastFrame, int lights,
-    bool enabled, const std::string& key);
+    bool enabled, const std::string& key, const std::function<bool(int samples)>& compiles);
   /// After the frame's geometry: the image unbound; does it hold this frame's factors?
   bool End();
   /// The frame's viewport's lower left in window pixels (csmScreenOrigin), its framebuffer's
@@ -73,7 +76,15 @@ private:
     bool StoreRead = true; ///< the last factors stored were read (or none were stored)
   };
   std::vector<Entry> Entries; ///< per renderer
-  Entry* Current = nullptr;   ///< this frame's, between Begin() and End()
+  struct Probe
+  {
+    vtkWeakPointer<vtkOpenGLRenderWindow> Window;
+    int Samples = 1;
+    bool Compiles = false;
+  };
+  std::vector<Probe> Probes; ///< what compiles(samples) said, per window and sample count
+  bool Compiles(vtkOpenGLRenderWindow* window, const std::function<bool(int)>& compiles);
+  Entry* Current = nullptr; ///< this frame's, between Begin() and End()
   Mode CurrentMode = OFF;
   int Samples = 1;
 };

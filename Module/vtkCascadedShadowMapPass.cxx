@@ -20,6 +20,7 @@
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
+#include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkPropCollection.h"
 #include "vtkProperty.h"
@@ -271,7 +272,8 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   const bool distributed = controller && controller->GetNumberOfProcesses() > 1;
   this->ScreenMode = this->ScreenCache->Begin(renderer, window,
     baker->GetLastFrameStatistics().AsLastFrame, static_cast<int>(u.Lights()),
-    this->ReuseShadowFactors && this->DebugMode == DEBUG_OFF && !distributed, key.str());
+    this->ReuseShadowFactors && this->DebugMode == DEBUG_OFF && !distributed, key.str(),
+    [this, window](int samples) { return this->ScreenShadersCompile(window, samples); });
   signature += " screen " + std::to_string(this->ScreenMode) + " samples " +
     std::to_string(this->ScreenCache->GetSamples());
   if (signature != this->ShaderSignature)
@@ -426,10 +428,8 @@ void vtkCascadedShadowMapPass::InjectLookups(
   {
     // (Right after the #version VTK puts there.)
     vtkShaderProgram::Substitute(fragmentShader, kSystemDec,
-      std::string(kSystemDec) + "\n#extension GL_ARB_shader_image_load_store : require\n" +
-        (this->ScreenCache->GetSamples() > 1 ? "#extension GL_ARB_post_depth_coverage : require\n"
-                                               "#extension GL_ARB_gpu_shader5 : require\n"
-                                             : ""),
+      std::string(kSystemDec) + "\n" +
+        vtkCascadedShadowMapPass::ScreenExtensions(this->ScreenCache->GetSamples()),
       false);
   }
   std::ostringstream impl;
@@ -484,6 +484,45 @@ void vtkCascadedShadowMapPass::InjectLookups(
     vtkShaderProgram::Substitute(fragmentShader, kLightImpl,
       std::string(kLightImpl) + "\n  csmScreenStore(" + factors + "));\n", false);
   }
+}
+
+std::string vtkCascadedShadowMapPass::ScreenExtensions(int samples)
+{
+  return std::string("#extension GL_ARB_shader_image_load_store : require\n") +
+    (samples > 1 ? "#extension GL_ARB_post_depth_coverage : require\n"
+                   "#extension GL_ARB_gpu_shader5 : require\n"
+                 : "");
+}
+
+bool vtkCascadedShadowMapPass::ScreenShadersCompile(vtkOpenGLRenderWindow* window, int samples)
+{
+  // The lookup with its store, and the read, each in a program of its own: a driver that names
+  // the extensions but does not compile the shaders gets the lookup alone (a mapper whose
+  // shader does not compile draws nothing, or worse).
+  const char* const vertex = "//VTK::System::Dec\nin vec4 vertexMC;\n"
+                             "void main() { gl_Position = vertexMC; }\n";
+  for (const int mode : { csmScreenCache::STORE, csmScreenCache::READ })
+  {
+    std::ostringstream fragment;
+    fragment << kSystemDec << "\n"
+             << vtkCascadedShadowMapPass::ScreenExtensions(samples)
+             << vtkCascadedShadowMapPass::GetShaderDefinitions(1, KERNEL_GRID, DEBUG_OFF, 1)
+             << "#define CSM_SCREEN " << mode << "\n#define CSM_SCREEN_SAMPLES " << samples << "\n"
+             << csmShadowFS << "\nuniform sampler2DShadow csmMap0;\n"
+             << "uniform sampler2DShadow csmNearest0;\n//VTK::Output::Dec\nvoid main()\n{\n"
+             << (mode == csmScreenCache::STORE
+                    ? "  csmScreenStore(csmShadow(csmMap0, csmNearest0, 0, vec4(0.0, 0.0, -1.0, "
+                      "1.0), vec4(0.0), vec4(0.0)));\n  gl_FragData[0] = vec4(1.0);\n"
+                    : "  gl_FragData[0] = csmScreenRead();\n")
+             << "}\n";
+    if (!window->GetShaderCache()->ReadyShaderProgram(vertex, fragment.str().c_str(), ""))
+    {
+      this->ReportOnce("the shaders that keep a frame's shadow factors for the next do not "
+                       "compile here: every frame makes the lookup (ReuseShadowFactors)");
+      return false;
+    }
+  }
+  return true;
 }
 
 std::string vtkCascadedShadowMapPass::GetShaderDefinitions(

@@ -235,6 +235,10 @@ protected:
   /// whose declarations are in: where each light's shading is, and the factors' store.
   void InjectLookups(
     std::string& fragmentShader, const std::string& mapperName, bool impostor, int screen);
+  /// The #extension lines of shaders that keep the factors (ReuseShadowFactors) for a
+  /// framebuffer of `samples`, and whether such shaders compile in the window's context.
+  static std::string ScreenExtensions(int samples);
+  bool ScreenShadersCompile(vtkOpenGLRenderWindow* window, int samples);
   std::string ShaderSignature;    // what the injected code is compiled for (lights, kernel, debug)
   std::set<std::string> Reported; // warnings said already: once each
   void ReportOnce(const std::string& message);
