@@ -167,6 +167,8 @@ void usage()
     "  --blend F          cascade blend band, 0..0.5 [%g]\n"
     "  --depth-clamp on|off [%s]      --darkness D  0..1 [%g]\n"
     "  --debug D          off | cascades | error | factor [%s]\n"
+    "  --reuse-factors on|off  a frame drawn as the last one reads each pixel's shadow\n"
+    "                     factors from it instead of the lookup [%s]\n"
     "  --light X,Y,Z      direction the light travels (world) [%g,%g,%g]\n"
     "  --gamma DEG        light at this angle to the view (0 behind, 90 overhead, 180 facing)\n"
     "  --size WxH         window size [%dx%d]\n"
@@ -191,7 +193,7 @@ void usage()
     d.SceneFittedCascades ? "on" : "off", d.MoveKeptMaps ? "on" : "off", d.Alpha, d.Resolution,
     d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias, d.SlopeBias,
     d.ClosedSurfaceBiasFactor, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug],
-    o.Light[0], o.Light[1], o.Light[2], o.Width, o.Height,
+    d.ReuseShadowFactors ? "on" : "off", o.Light[0], o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
                              : "needs an X display: xvfb-run -a",
     o.Orbit);
@@ -328,6 +330,12 @@ Options parse(int argc, char** argv)
     {
       const char* const names[] = { "off", "on" };
       o.Shadow.VisibleFootprintFit = choice(f, v, names, 2) == 1;
+      next();
+    }
+    else if (f == "--reuse-factors")
+    {
+      const char* const names[] = { "off", "on" };
+      o.Shadow.ReuseShadowFactors = choice(f, v, names, 2) == 1;
       next();
     }
     else if (f == "--move-maps")

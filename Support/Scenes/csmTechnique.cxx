@@ -59,6 +59,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->Blend = pass->GetBlendBand();
   this->Darkness = pass->GetShadowDarkness();
   this->Debug = pass->GetDebugMode();
+  this->ReuseShadowFactors = pass->GetReuseShadowFactors();
 }
 
 void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
@@ -93,6 +94,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   pass->SetBlendBand(o.Blend);
   pass->SetShadowDarkness(o.Darkness);
   pass->SetDebugMode(o.Debug);
+  pass->SetReuseShadowFactors(o.ReuseShadowFactors);
 }
 
 vtkSmartPointer<vtkRenderPass> BuildChain(const ShadowOptions& o, Installed& installed)

@@ -60,7 +60,8 @@ struct ShadowOptions
   double Blend;
   bool DepthClamp;
   double Darkness;
-  int Debug; ///< vtkCascadedShadowMapPass::DebugModes
+  int Debug;               ///< vtkCascadedShadowMapPass::DebugModes
+  bool ReuseShadowFactors; ///< a frame drawn as the last one reads its factors
 };
 
 struct Installed
