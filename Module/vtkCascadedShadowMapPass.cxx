@@ -77,6 +77,7 @@ bool screenCapable(const std::string& fragmentShader, vtkProp* prop)
 {
   return prop && !prop->HasTranslucentPolygonalGeometry() &&
     fragmentShader.find("gl_FragDepth =") == std::string::npos &&
+    fragmentShader.find("gl_FragDepth=") == std::string::npos &&
     occurrences(fragmentShader, "discard;") ==
     occurrences(fragmentShader, "gl_FragData[0].a <= 0.0") &&
     fragmentShader.find(kSystemDec) != std::string::npos &&

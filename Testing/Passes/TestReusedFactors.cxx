@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <functional>
 #include <string>
 #include <utility>
@@ -131,6 +132,22 @@ TEST(ReusedFactors, TranslucentPropsMakeTheirOwnLookup)
   scene.Frame();
   auto read = scene.Frame();
   ASSERT_TRUE(pass->GetLastFrameReusedShadowFactors());
+  EXPECT_EQ(DifferingValues(LookedUp(scene, pass), read, 0), 0);
+}
+
+// Tubes and wide lines (VTK's impostors and screen-sized lines) beside surfaces that read their
+// factors: the impostors make their own lookup, and the frame is the lookup's image.
+TEST(ReusedFactors, ImpostorsBesideSurfacesThatRead)
+{
+  BoxOverPlane scene;
+  const std::vector<std::array<double, 6>> bars = { { -4, 3, -4, 4, 3, -4 }, { -4, 3, 4, 4, 3, 4 },
+    { -4, 2, -4, -4, 2, 4 } };
+  scene.Renderer->AddActor(csmTest::SegmentsActor(bars, 6.0f, true));
+  scene.Renderer->AddActor(csmTest::SegmentsActor({ { 4, 2.5, -4, 4, 2.5, 4 } }, 3.0f, false));
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  scene.Frame();
+  auto read = scene.Frame();
+  EXPECT_TRUE(pass->GetLastFrameReusedShadowFactors());
   EXPECT_EQ(DifferingValues(LookedUp(scene, pass), read, 0), 0);
 }
 
