@@ -38,6 +38,25 @@ vtkSmartPointer<vtkImageData> LookedUp(BoxOverPlane& scene, vtkCascadedShadowMap
   return image;
 }
 
+/// A frame that stores the factors and one that reads them (true: it did), the second's image.
+vtkSmartPointer<vtkImageData> StoredThenRead(
+  BoxOverPlane& scene, vtkCascadedShadowMapPass* pass, bool& read)
+{
+  scene.Frame();
+  auto image = scene.Frame();
+  read = pass->GetLastFrameReusedShadowFactors();
+  return image;
+}
+
+/// Does a frame that reads the factors give the lookup's image to the level?
+void ExpectTheLookupsImage(BoxOverPlane& scene, vtkCascadedShadowMapPass* pass, bool reads = true)
+{
+  bool read = false;
+  auto image = StoredThenRead(scene, pass, read);
+  EXPECT_EQ(read, reads);
+  EXPECT_EQ(DifferingValues(LookedUp(scene, pass), image, 0), 0);
+}
+
 /// A box over the ground with three more boxes beside it.
 void AddBoxes(BoxOverPlane& scene)
 {
@@ -46,6 +65,16 @@ void AddBoxes(BoxOverPlane& scene)
     const double x = -5.0 + 4.0 * i;
     scene.Renderer->AddActor(csmTest::BoxActor(x - 0.5, x + 0.5, 0.0, 2.0 + i, 3.0, 4.0));
   }
+}
+
+/// The boxes with shadows, after a frame that stored the factors and one that read them.
+vtkCascadedShadowMapPass* BoxesThatRead(BoxOverPlane& scene)
+{
+  AddBoxes(scene);
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  bool read = false;
+  StoredThenRead(scene, pass, read);
+  return pass;
 }
 } // namespace
 
@@ -79,10 +108,7 @@ TEST(ReusedFactors, AStillFrameReadsTheLastFramesFactors)
 TEST(ReusedFactors, OnlyChangesOfColourOrMaterialKeepTheFactors)
 {
   BoxOverPlane scene;
-  AddBoxes(scene);
-  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
-  scene.Frame();
-  scene.Frame();
+  vtkCascadedShadowMapPass* pass = BoxesThatRead(scene);
   ASSERT_TRUE(pass->GetLastFrameReusedShadowFactors());
   struct Change
   {
@@ -128,11 +154,7 @@ TEST(ReusedFactors, TranslucentPropsMakeTheirOwnLookup)
   vtkSmartPointer<vtkActor> glass = csmTest::BoxActor(-3.0, 3.0, 0.5, 1.5, 2.0, 6.0);
   glass->GetProperty()->SetOpacity(0.4);
   scene.Renderer->AddActor(glass);
-  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
-  scene.Frame();
-  auto read = scene.Frame();
-  ASSERT_TRUE(pass->GetLastFrameReusedShadowFactors());
-  EXPECT_EQ(DifferingValues(LookedUp(scene, pass), read, 0), 0);
+  ExpectTheLookupsImage(scene, vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer));
 }
 
 // Tubes and wide lines (VTK's impostors and screen-sized lines) beside surfaces that read their
@@ -144,11 +166,7 @@ TEST(ReusedFactors, ImpostorsBesideSurfacesThatRead)
     { -4, 2, -4, -4, 2, 4 } };
   scene.Renderer->AddActor(csmTest::SegmentsActor(bars, 6.0f, true));
   scene.Renderer->AddActor(csmTest::SegmentsActor({ { 4, 2.5, -4, 4, 2.5, 4 } }, 3.0f, false));
-  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
-  scene.Frame();
-  auto read = scene.Frame();
-  EXPECT_TRUE(pass->GetLastFrameReusedShadowFactors());
-  EXPECT_EQ(DifferingValues(LookedUp(scene, pass), read, 0), 0);
+  ExpectTheLookupsImage(scene, vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer));
 }
 
 // A camera path: the first moved frame stores its factors, which the next frame (moved again)
@@ -157,10 +175,7 @@ TEST(ReusedFactors, ImpostorsBesideSurfacesThatRead)
 TEST(ReusedFactors, APathStoresOnceUntilTheViewStands)
 {
   BoxOverPlane scene;
-  AddBoxes(scene);
-  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
-  scene.Frame();
-  scene.Frame();
+  vtkCascadedShadowMapPass* pass = BoxesThatRead(scene);
   ASSERT_TRUE(pass->GetLastFrameReusedShadowFactors());
   for (int step = 0; step < 4; ++step)
   {
@@ -246,11 +261,8 @@ TEST(ReusedFactors, FourLightsOrThreeWithSamples)
       light->SetFocalPoint(0.0, 0.0, 0.0);
       light->SetIntensity(0.3);
       scene.Renderer->AddLight(light);
-      scene.Frame();
-      auto read = scene.Frame();
-      const bool keeps = lights <= (samples > 1 ? 3 : 4);
-      EXPECT_EQ(pass->GetLastFrameReusedShadowFactors(), keeps) << samples << " " << lights;
-      EXPECT_EQ(DifferingValues(LookedUp(scene, pass), read, 0), 0) << samples << " " << lights;
+      SCOPED_TRACE(std::to_string(samples) + " samples, " + std::to_string(lights) + " lights");
+      ExpectTheLookupsImage(scene, pass, lights <= (samples > 1 ? 3 : 4));
     }
   }
 }
