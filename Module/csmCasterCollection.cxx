@@ -149,7 +149,7 @@ void csmCasterCollection::StartPreparation(
 {
   this->Retire(preparation);
   preparation.Cancel = std::make_shared<std::atomic<bool>>(false);
-  preparation.Time = data->GetMTime();
+  preparation.Time = csmGeometryTime(data);
   vtkSmartPointer<vtkPolyData> copy = this->SnapshotOf(data);
   preparation.Result = std::async(std::launch::async,
     [copy, cancel = preparation.Cancel, work = std::forward<Work>(work)]()
@@ -158,7 +158,7 @@ void csmCasterCollection::StartPreparation(
 
 bool csmCasterCollection::MayPrepare(vtkPolyData* data, Pace& pace) const
 {
-  const vtkMTimeType time = data->GetMTime();
+  const vtkMTimeType time = csmGeometryTime(data);
   const long long wait = 1LL << std::min(pace.ShortLived, 10);
   if (pace.SeenTime != time)
   {
@@ -322,7 +322,7 @@ vtkPolyData* compactableData(vtkProp* prop)
 const csmCasterCollection::Closure& csmCasterCollection::ClassifiedShape(vtkPolyData* data)
 {
   Closure& closure = this->Closures[data];
-  if (closure.Data == data && closure.Time == data->GetMTime())
+  if (closure.Data == data && closure.Time == csmGeometryTime(data))
   {
     return closure;
   }
@@ -335,7 +335,7 @@ const csmCasterCollection::Closure& csmCasterCollection::ClassifiedShape(vtkPoly
   const double triangles = csmTriangleCount(data);
   if (triangles > vtkCascadedShadows::MostClassifiedTriangles)
   {
-    closure.Time = data->GetMTime(); // not classified: what it costs outweighs what it saves
+    closure.Time = csmGeometryTime(data); // not classified: what it costs outweighs what it saves
     return closure;
   }
   csm::SurfaceClosure c;
@@ -347,7 +347,7 @@ const csmCasterCollection::Closure& csmCasterCollection::ClassifiedShape(vtkPoly
   {
     // A big mesh is classified by a worker thread; frames go on meanwhile (from the second
     // frame that draws it on, as its blocks).
-    if (!closure.Pending.Result.valid() || closure.Pending.Time != data->GetMTime())
+    if (!closure.Pending.Result.valid() || closure.Pending.Time != csmGeometryTime(data))
     {
       if (closure.Pending.Result.valid())
       {
@@ -372,7 +372,7 @@ const csmCasterCollection::Closure& csmCasterCollection::ClassifiedShape(vtkPoly
     c = closure.Pending.Result.get()->Closure;
     closure.Pending = Preparation<csmPreparedClosure>();
   }
-  closure.Time = data->GetMTime();
+  closure.Time = csmGeometryTime(data);
   closure.Orientation = c.closed && c.volume != 0.0 ? (c.volume > 0.0 ? 1 : -1) : 0;
   closure.Planar = c.planar;
   closure.ShadowsItself = c.canShadowItself();
@@ -428,7 +428,7 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
   // once, a big one by a worker thread while the frames draw the prop as it is (correct, only
   // without culling inside it) until the blocks are ready.
   CasterBlocks& blocks = this->Blocks[{ window, data }];
-  const vtkMTimeType dataTime = data->GetMTime();
+  const vtkMTimeType dataTime = csmGeometryTime(data);
   // (Prepared for this very data, into blocks or into nothing usable.)
   const bool current = blocks.Data == data && blocks.Window == window && blocks.Time == dataTime;
   if (!current)

@@ -51,6 +51,18 @@ double csmTriangleCount(vtkPolyData* data)
   return std::max(0.0, polys) + std::max(0.0, strips);
 }
 
+vtkMTimeType csmGeometryTime(vtkPolyData* data)
+{
+  // The object's own time (SetPoints, SetPolys, Modified()), not its point and cell data's.
+  vtkMTimeType time = data->vtkObject::GetMTime();
+  for (vtkObject* part : std::initializer_list<vtkObject*>{ data->GetPoints(), data->GetVerts(),
+         data->GetLines(), data->GetPolys(), data->GetStrips() })
+  {
+    time = std::max(time, part ? part->GetMTime() : 0);
+  }
+  return time;
+}
+
 namespace
 {
 /// Calls f(a, b, c) for every triangle of a polydata's polygons (fans) and strips, wound as

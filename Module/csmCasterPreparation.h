@@ -47,6 +47,11 @@ vtkSmartPointer<vtkCellArray> csmOwnCopy(vtkCellArray* source);
 /// Triangles of a polydata (polygons as fans, strips) without traversing them.
 double csmTriangleCount(vtkPolyData* data);
 
+/// When a polydata's points or cells last changed (or the polydata itself was modified): what
+/// its blocks and its classification are prepared from. New scalars, normals or fields of a
+/// time step, set on its point or cell data, prepare nothing again.
+vtkMTimeType csmGeometryTime(vtkPolyData* data);
+
 /// The polydata's triangles in blocks of at least perBlock triangles; stops early (an empty
 /// result) once `stop` is set.
 std::shared_ptr<csmPreparedBlocks> csmPrepareBlocks(

@@ -11,6 +11,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
@@ -102,6 +103,20 @@ TEST(LargeCasters, APropNotYetPreparedCastsTheSameShadow)
   ASSERT_TRUE(FramesUntilCompact(scene, baker, 3));
   auto prepared = scene.Frame();
   EXPECT_EQ(baker->GetLastFrameStatistics().CompactCasters, 3);
+  // New scalars on it (a time step's field): its blocks stay, a moved view draws them at once.
+  {
+    vtkNew<vtkFloatArray> field;
+    field->SetNumberOfTuples(mapper->GetInput()->GetNumberOfPoints());
+    field->Fill(0.5f);
+    mapper->GetInput()->GetPointData()->SetScalars(field);
+    scene.Frame();
+    vtkCamera* camera = scene.Renderer->GetActiveCamera();
+    camera->Azimuth(0.5);
+    scene.Frame();
+    EXPECT_EQ(baker->GetLastFrameStatistics().CompactCasters, 3);
+    camera->Azimuth(-0.5);
+    mapper->GetInput()->GetPointData()->SetScalars(nullptr);
+  }
   const long shadow = DarkenedPixels(first, plain);
   EXPECT_GT(shadow, 1500); // the box's and the ball's
   EXPECT_NEAR(static_cast<double>(DarkenedPixels(prepared, plain)), static_cast<double>(shadow),
