@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # GLSL lives in its own files and is embedded at build time (Module/CMakeLists.txt; the
 # ParaView plugin builds the same module file).
-set(csm_glsl_files csmShadowFS csmCaster csmCasterLineGS)
+set(csm_glsl_files csmShadowFS csmCaster csmCasterLineGS csmScreenProbeVS csmScreenProbeFS)
 
 # csm_encode_glsl_files(<Module dir> <names> <sources var> <headers var>): glsl/<name>.glsl each
 function(csm_encode_glsl_files module_dir names sources_var headers_var)

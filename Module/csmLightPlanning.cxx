@@ -157,10 +157,10 @@ bool csmLightPlanning::LastPlanStands(vtkRenderer* renderer, vtkOpenGLRenderWind
 }
 
 int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
-  csmRendererMaps& state, const csmFrameCasters& props, int maximumLights,
+  csmRendererMaps& state, const csmFrameCasters& props, int maximumLights, bool asLastFrame,
   std::vector<LightMaps>& planned)
 {
-  if (this->LastPlanStands(renderer, window, state, props, maximumLights))
+  if (asLastFrame)
   {
     planned = state.Maps;
     for (LightMaps& maps : planned)

@@ -41,14 +41,6 @@ public:
     vtkMultiProcessController* controller, vtkCascadedShadows::FrameStatistics& statistics,
     Reporter report);
 
-  /// Plans up to maximumLights shadowed lights of the renderer for this frame into `planned`,
-  /// each map with its action, and keeps the state's camera and atlas textures in step; returns
-  /// how many lights cast shadows (more than maximumLights: the others are not shadowed).
-  int PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window, csmRendererMaps& state,
-    const csmFrameCasters& props, int maximumLights,
-    std::vector<vtkCascadedShadows::LightMaps>& planned);
-
-private:
   /// Would this frame be planned as the last one was? Nothing of the props changed, the same
   /// view at the same aspect, the user interacts or not as then, the same shadowed lights where
   /// they were, one process: every map of the last frame is then kept as it is (the plan of the
@@ -56,6 +48,16 @@ private:
   /// scene of many props, is not done again.
   bool LastPlanStands(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
     const csmRendererMaps& state, const csmFrameCasters& props, int maximumLights) const;
+
+  /// Plans up to maximumLights shadowed lights of the renderer for this frame into `planned`,
+  /// each map with its action, and keeps the state's camera and atlas textures in step; returns
+  /// how many lights cast shadows (more than maximumLights: the others are not shadowed).
+  /// asLastFrame: LastPlanStands' answer for this frame (every map kept, nothing planned).
+  int PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window, csmRendererMaps& state,
+    const csmFrameCasters& props, int maximumLights, bool asLastFrame,
+    std::vector<vtkCascadedShadows::LightMaps>& planned);
+
+private:
   bool Distributed() const;
   void FeedVisibleDepths(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
     csmRendererMaps& state, const csmFrameCasters& props);

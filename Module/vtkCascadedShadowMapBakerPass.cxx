@@ -317,11 +317,15 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   {
     props.GatherAcrossProcesses(this->Controller);
   }
+  // A frame planned as the last one keeps every map unplanned.
+  csmLightPlanning planning = this->Planning();
+  const int maximumLights = this->MaximumShadowedLights(window);
+  const bool asLastFrame = planning.LastPlanStands(renderer, window, state, props, maximumLights);
   // The nearest and farthest visible depth of this very view (VisibleDepthFit).
-  this->MeasureVisibleDepths(renderer, s, state, props);
+  this->MeasureVisibleDepths(renderer, s, state, props, asLastFrame);
   // 2. Plan every shadowed light, and choose the cascades to re-render.
   std::vector<LightMaps> planned;
-  this->PlanLights(renderer, window, state, props, planned);
+  this->PlanLights(planning, renderer, window, state, props, maximumLights, asLastFrame, planned);
   if (this->MeasureTimes)
   {
     this->Statistics.PlanSeconds = std::chrono::duration<double>(Clock::now() - planStart).count();
@@ -353,7 +357,7 @@ void vtkCascadedShadowMapBakerPass::SetFactorsHeldFor(vtkRenderer* renderer)
 }
 
 void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* renderer,
-  const vtkRenderState* s, csmRendererMaps& state, const csmFrameCasters& props)
+  const vtkRenderState* s, csmRendererMaps& state, const csmFrameCasters& props, bool asLastFrame)
 {
   vtkCamera* camera = renderer->GetActiveCamera();
   const double aspect = renderer->GetTiledAspectRatio();
@@ -371,8 +375,7 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
     state.VisibleCamera = nullptr; // each process sees only its own; nothing to see
     return;
   }
-  if (this->FactorsHeldFor == renderer && !props.Changed && props.Dirty.empty() &&
-    state.LastCamera && state.LastAspect == aspect && sameView(state.LastCamera, camera, aspect))
+  if (asLastFrame && this->FactorsHeldFor == renderer)
   {
     return; // the frame reads the factors its last frame held at its pixels: no lookup to spare
   }
@@ -435,8 +438,7 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
   this->Statistics.CompactCasters = counts.CompactCasters;
 }
 
-void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
-  csmRendererMaps& state, const csmFrameCasters& props, std::vector<LightMaps>& planned)
+csmLightPlanning vtkCascadedShadowMapBakerPass::Planning()
 {
   csmLightPlanning::BakerOptions options;
   options.Resolution = this->Resolution;
@@ -447,12 +449,17 @@ void vtkCascadedShadowMapBakerPass::PlanLights(vtkRenderer* renderer, vtkOpenGLR
   options.MoveKeptMaps = this->MoveKeptMaps;
   options.VisibleDepthFit = this->VisibleDepthFit;
   options.VisibleFootprintFit = this->VisibleFootprintFit;
-  csmLightPlanning planning(this->Planner, options,
-    this->Distributed() ? this->Controller : nullptr, this->Statistics,
+  return csmLightPlanning(this->Planner, options, this->Distributed() ? this->Controller : nullptr,
+    this->Statistics,
     [this](bool error, const std::string& message) { this->ReportOnce(error, message); });
-  const int maximumLights = this->MaximumShadowedLights(window);
+}
+
+void vtkCascadedShadowMapBakerPass::PlanLights(csmLightPlanning& planning, vtkRenderer* renderer,
+  vtkOpenGLRenderWindow* window, csmRendererMaps& state, const csmFrameCasters& props,
+  int maximumLights, bool asLastFrame, std::vector<LightMaps>& planned)
+{
   const int shadowingLights =
-    planning.PlanLights(renderer, window, state, props, maximumLights, planned);
+    planning.PlanLights(renderer, window, state, props, maximumLights, asLastFrame, planned);
   if (shadowingLights > maximumLights && shadowingLights != this->WarnedShadowingLights)
   {
     vtkWarningMacro(<< shadowingLights << " lights cast shadows but this GL context has texture "

@@ -34,6 +34,7 @@
 
 class csmCasterCollection;
 class csmMapDrawing;
+class csmLightPlanning;
 struct csmFrameCasters;
 struct csmRendererMaps;
 class vtkCamera;
@@ -217,10 +218,14 @@ protected:
 
   // The steps of Render() (csmBakerState.h: the per-renderer state, the frame's plan).
   void CollectProps(vtkRenderer* renderer, csmRendererMaps& state, csmFrameCasters& props);
+  /// asLastFrame: the frame is planned as the last one (csmLightPlanning::LastPlanStands).
   void MeasureVisibleDepths(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
-    csmRendererMaps& state, const csmFrameCasters& props);
-  void PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* window, csmRendererMaps& state,
-    const csmFrameCasters& props, std::vector<LightMaps>& planned);
+    csmRendererMaps& state, const csmFrameCasters& props, bool asLastFrame);
+  /// The frame's planning with the baker's options.
+  csmLightPlanning Planning();
+  void PlanLights(csmLightPlanning& planning, vtkRenderer* renderer, vtkOpenGLRenderWindow* window,
+    csmRendererMaps& state, const csmFrameCasters& props, int maximumLights, bool asLastFrame,
+    std::vector<LightMaps>& planned);
   void RenderAtlases(vtkOpenGLRenderer* renderer, vtkOpenGLRenderWindow* window,
     csmRendererMaps& state, const csmFrameCasters& props, std::vector<LightMaps>& planned);
   bool BindAtlas(vtkOpenGLRenderWindow* window, csmRendererMaps& state, LightMaps& maps);

@@ -32,7 +32,9 @@
 #include "vtkTextureUnitManager.h"
 #include "vtk_glew.h"
 
-#include "csmShadowFS.h" // the GLSL of Module/glsl/csmShadowFS.glsl
+#include "csmScreenProbeFS.h" // Module/glsl/csmScreenProbeFS.glsl
+#include "csmScreenProbeVS.h" // Module/glsl/csmScreenProbeVS.glsl
+#include "csmShadowFS.h"      // the GLSL of Module/glsl/csmShadowFS.glsl
 #if CSM_COMPARISON_TECHNIQUES
 #include "csmComparisonFS.h" // the comparison techniques' lookup, Module/glsl/csmComparisonFS.glsl
 #endif
@@ -450,8 +452,7 @@ void vtkCascadedShadowMapPass::InjectLookups(
     const std::string map =
       "csmMap" + std::to_string(j) + ", csmNearest" + std::to_string(j) + ", " + std::to_string(j);
     const std::string lookup = result +
-      (screen == csmScreenCache::READ
-          ? " = vec4(csmCached[" + std::to_string(j) + "], -1.0, 0.0, 1.0);"
+      (screen == csmScreenCache::READ ? " = csmShadowRead(csmCached, " + std::to_string(j) + ");"
           : impostor ? " = csmImpostorShadow(" + map + ", vertexVC, normalVCVSOutput);"
                      : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
     const std::string factor = result + ".x * ";
@@ -500,8 +501,6 @@ bool vtkCascadedShadowMapPass::ScreenShadersCompile(vtkOpenGLRenderWindow* windo
   // The lookup with its store, and the read, each in a program of its own: a driver that names
   // the extensions but does not compile the shaders gets the lookup alone (a mapper whose
   // shader does not compile draws nothing, or worse).
-  const char* const vertex = "//VTK::System::Dec\nin vec4 vertexMC;\n"
-                             "void main() { gl_Position = vertexMC; }\n";
   for (const int mode : { csmScreenCache::STORE, csmScreenCache::READ })
   {
     std::ostringstream fragment;
@@ -509,14 +508,9 @@ bool vtkCascadedShadowMapPass::ScreenShadersCompile(vtkOpenGLRenderWindow* windo
              << vtkCascadedShadowMapPass::ScreenExtensions(samples)
              << vtkCascadedShadowMapPass::GetShaderDefinitions(1, KERNEL_GRID, DEBUG_OFF, 1)
              << "#define CSM_SCREEN " << mode << "\n#define CSM_SCREEN_SAMPLES " << samples << "\n"
-             << csmShadowFS << "\nuniform sampler2DShadow csmMap0;\n"
-             << "uniform sampler2DShadow csmNearest0;\n//VTK::Output::Dec\nvoid main()\n{\n"
-             << (mode == csmScreenCache::STORE
-                    ? "  csmScreenStore(csmShadow(csmMap0, csmNearest0, 0, vec4(0.0, 0.0, -1.0, "
-                      "1.0), vec4(0.0), vec4(0.0)));\n  gl_FragData[0] = vec4(1.0);\n"
-                    : "  gl_FragData[0] = csmScreenRead();\n")
-             << "}\n";
-    if (!window->GetShaderCache()->ReadyShaderProgram(vertex, fragment.str().c_str(), ""))
+             << csmShadowFS << "\n"
+             << csmScreenProbeFS;
+    if (!window->GetShaderCache()->ReadyShaderProgram(csmScreenProbeVS, fragment.str().c_str(), ""))
     {
       this->ReportOnce("the shaders that keep a frame's shadow factors for the next do not "
                        "compile here: every frame makes the lookup (ReuseShadowFactors)");

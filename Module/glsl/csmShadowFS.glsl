@@ -98,6 +98,13 @@ vec4 csmScreenRead()
   return imageLoad(csmScreen, csmScreenPixel());
 #endif
 }
+
+// Light j's shadow as csmShadow gives it, from the factors read at the pixel (no cascade index,
+// no error m: those are for the debug views, which make the lookup).
+vec4 csmShadowRead(vec4 factors, int j)
+{
+  return vec4(factors[j], -1.0, 0.0, 1.0);
+}
 #endif
 #ifndef CSM_PCF_RADIUS
 uniform int csmPCFRadius;      // kernel of 2 r + 1 texels a side
