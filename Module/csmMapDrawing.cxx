@@ -230,19 +230,23 @@ void csmMapDrawing::ClearTiles(vtkOpenGLState* ostate, const LightMaps& maps)
   // Far depth where nothing casts, all before the first draw: a clear between two cascades'
   // draws would wait for the one drawn before it (a software rasterizer maps the texture).
   // (A map that moves with the view keeps most of its texels: MoveMap clears its strips.)
+  // Where the texture's rectangles can be cleared directly, only the maps drawn: their texels
+  // are fewer than the atlas's (the maps of a light that turns with the camera are drawn every
+  // frame, each in a part of its tile), and a software rasterizer writes every texel it clears.
+  const bool clearsRectangles = GLEW_VERSION_4_4 || GLEW_ARB_clear_texture;
   bool all = true;
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
     all = all && maps.Cascades[c].Action == vtkCascadedShadows::MapAction::Draw;
   }
-  if (all)
+  if (all && !clearsRectangles)
   {
-    // Nothing kept: one clear of the whole atlas, the fast clear of every driver.
+    // Nothing kept: one clear of the whole atlas.
     ostate->vtkglDisable(GL_SCISSOR_TEST);
     ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
     return;
   }
-  // Some maps kept: only the others' tiles.
+  // Only the drawn maps' rectangles.
   for (int c = 0; c < maps.GetNumberOfCascades(); ++c)
   {
     if (maps.Cascades[c].Action == vtkCascadedShadows::MapAction::Draw)
