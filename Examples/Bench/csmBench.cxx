@@ -7,6 +7,7 @@
 #include "csmScenes.h"
 #include "csmTechnique.h"
 #include "csmTruth.h"
+#include "csmChanges.h"
 #include "csmWalk.h"
 
 #include "vtkActor.h"
@@ -610,8 +611,8 @@ Options Parse(int argc, char** argv)
         "techniques fp-w, fp-zp-w and cssm in a build with -DCSM_COMPARISON_TECHNIQUES=ON).\n"
         "--error-images DIR: per measured view and technique, DIR/scene-label-view.png:\n"
         "false shadow red, false light blue, right light / dark grey, not compared dark.\n"
-        "\nThe other mode:\n\n%s",
-        csmWalk::Usage().c_str());
+        "\nThe other modes:\n\n%s\n%s",
+        csmWalk::Usage().c_str(), csmChanges::Usage().c_str());
       std::exit(0);
     }
     else if (f == "--quick")
@@ -721,6 +722,10 @@ int main(int argc, char** argv)
     if (std::string(argv[i]) == "--walk")
     {
       return csmWalk::Run(argc, argv, CSM_ENGINE_MODEL); // the path comes from CMake
+    }
+    if (std::string(argv[i]) == "--changes")
+    {
+      return csmChanges::Run(argc, argv, CSM_ENGINE_MODEL);
     }
   }
   const Options o = Parse(argc, argv);
