@@ -3,11 +3,11 @@
 // shadow pass and with cascaded variants at equal total shadow-map texels, measures frame time
 // (median, interleaved, glFinish in each frame), misclassified pixels against Embree ground
 // truth and the perspective aliasing m, and writes a CSV and a plot (vtkChartXY).
+#include "csmChanges.h"
 #include "csmFileChecks.h"
 #include "csmScenes.h"
 #include "csmTechnique.h"
 #include "csmTruth.h"
-#include "csmChanges.h"
 #include "csmWalk.h"
 
 #include "vtkActor.h"

@@ -260,8 +260,8 @@ void timeSteps(ChangingScene& s, Change c, vtkRenderer* renderer, vtkRenderWindo
     const auto start = std::chrono::steady_clock::now();
     window->Render();
     window->WaitForCompletion();
-    t.Ms.push_back(1000.0 *
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    t.Ms.push_back(
+      1000.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     ++t.Steps;
     if (baker)
       t.Texels += baker->GetLastFrameStatistics().TexelsRendered;
@@ -479,8 +479,8 @@ void runScene(const std::string& name, ChangingScene& s, const ChangeOptions& o,
       if (!std::isnan(accuracy[t]))
         std::printf("  %.3f %% misclassified", accuracy[t]);
       std::printf("\n");
-      csv << name << "," << nameOf(c) << "," << labels[t] << "," << ms << ","
-          << timed[k][t].Steps << "," << (t == 2 ? texels : NAN) << "," << accuracy[t] << "\n";
+      csv << name << "," << nameOf(c) << "," << labels[t] << "," << ms << "," << timed[k][t].Steps
+          << "," << (t == 2 ? texels : NAN) << "," << accuracy[t] << "\n";
     }
     std::fflush(stdout);
   }

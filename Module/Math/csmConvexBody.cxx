@@ -24,15 +24,89 @@ ConvexBody ConvexBody::hexahedron(const std::array<glm::dvec3, 8>& c)
   return body;
 }
 
+namespace
+{
+/// The face that closes a cut: the points of the body on the plane, ordered around their
+/// centroid in the plane, those within epsilon of the one before dropped.
+void closeCut(
+  const Plane& plane, double epsilon, const ConvexBody::Polygon& cut, ConvexBody::Polygon& face)
+{
+  glm::dvec3 centre(0.0);
+  for (const glm::dvec3& p : cut)
+  {
+    centre += p;
+  }
+  centre /= double(cut.size());
+  const glm::dvec3 n = glm::normalize(plane.normal);
+  const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 u = glm::normalize(glm::cross(n, helper));
+  const glm::dvec3 v = glm::cross(n, u);
+  // (Each point's angle computed once, not in every comparison.)
+  thread_local std::vector<std::pair<double, glm::dvec3>> around;
+  around.clear();
+  for (const glm::dvec3& p : cut)
+  {
+    around.emplace_back(std::atan2(glm::dot(p - centre, v), glm::dot(p - centre, u)), p);
+  }
+  std::sort(around.begin(), around.end(),
+    [](const std::pair<double, glm::dvec3>& a, const std::pair<double, glm::dvec3>& b)
+    { return a.first < b.first; });
+  for (const auto& angleAndPoint : around)
+  {
+    const glm::dvec3& p = angleAndPoint.second;
+    if (face.empty() || glm::length(p - face.back()) > epsilon)
+    {
+      face.push_back(p);
+    }
+  }
+}
+} // namespace
+
 void ConvexBody::clip(const Plane& plane, double epsilon)
 {
-  std::vector<Polygon> kept;
-  kept.reserve(this->Faces.size() + 1);
-  Polygon cut; // points of the body on the plane: the new face
+  // A plane with every vertex more than epsilon inside leaves the body as it is, one with every
+  // vertex more than epsilon outside leaves nothing: the faces below would come out the same,
+  // at the cost of building every face again (a body is clipped by many planes that cut it
+  // nowhere: a receiver box's planes against a partition far from its walls).
+  bool allInside = true, allOutside = true;
   for (const Polygon& face : this->Faces)
   {
-    Polygon out;
-    out.reserve(face.size() + 2);
+    for (const glm::dvec3& p : face)
+    {
+      const double d = glm::dot(plane.normal, p) + plane.offset;
+      allInside = allInside && d > epsilon;
+      allOutside = allOutside && d < -epsilon;
+    }
+  }
+  if (allInside)
+  {
+    return;
+  }
+  if (allOutside)
+  {
+    this->Faces.clear();
+    return;
+  }
+  // The clipped faces are built in buffers kept from call to call (this thread's), and swapped
+  // into the body: a plan clips thousands of small bodies a frame, and allocating each face
+  // anew cost more than the arithmetic.
+  thread_local std::vector<Polygon> kept;
+  thread_local Polygon cut; // points of the body on the plane: the new face
+  size_t used = 0;
+  auto nextFace = [&]() -> Polygon&
+  {
+    if (used == kept.size())
+    {
+      kept.emplace_back();
+    }
+    Polygon& face = kept[used++];
+    face.clear();
+    return face;
+  };
+  cut.clear();
+  for (const Polygon& face : this->Faces)
+  {
+    Polygon& out = nextFace();
     const size_t count = face.size();
     for (size_t i = 0; i < count; ++i)
     {
@@ -57,49 +131,25 @@ void ConvexBody::clip(const Plane& plane, double epsilon)
         cut.push_back(x);
       }
     }
-    if (out.size() >= 3)
+    if (out.size() < 3)
     {
-      kept.push_back(std::move(out));
+      --used; // (dropped: its buffer serves the next face)
     }
   }
   if (cut.size() >= 3)
   {
-    // Order the cut points around their centroid, in the plane.
-    glm::dvec3 centre(0.0);
-    for (const glm::dvec3& p : cut)
+    closeCut(plane, epsilon, cut, nextFace());
+    if (kept[used - 1].size() < 3)
     {
-      centre += p;
-    }
-    centre /= double(cut.size());
-    const glm::dvec3 n = glm::normalize(plane.normal);
-    const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
-    const glm::dvec3 u = glm::normalize(glm::cross(n, helper));
-    const glm::dvec3 v = glm::cross(n, u);
-    // (Each point's angle computed once, not in every comparison.)
-    std::vector<std::pair<double, glm::dvec3>> around;
-    around.reserve(cut.size());
-    for (const glm::dvec3& p : cut)
-    {
-      around.emplace_back(std::atan2(glm::dot(p - centre, v), glm::dot(p - centre, u)), p);
-    }
-    std::sort(around.begin(), around.end(),
-      [](const std::pair<double, glm::dvec3>& a, const std::pair<double, glm::dvec3>& b)
-      { return a.first < b.first; });
-    Polygon face;
-    for (const auto& angleAndPoint : around)
-    {
-      const glm::dvec3& p = angleAndPoint.second;
-      if (face.empty() || glm::length(p - face.back()) > epsilon)
-      {
-        face.push_back(p);
-      }
-    }
-    if (face.size() >= 3)
-    {
-      kept.push_back(std::move(face));
+      --used;
     }
   }
-  this->Faces = std::move(kept);
+  // The body takes the new faces; its old faces' buffers stay for the next clip.
+  this->Faces.resize(used);
+  for (size_t i = 0; i < used; ++i)
+  {
+    std::swap(this->Faces[i], kept[i]);
+  }
 }
 
 std::vector<glm::dvec3> ConvexBody::vertices(double epsilon) const

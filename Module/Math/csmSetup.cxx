@@ -106,9 +106,10 @@ public:
       return partition.vertices(epsilon);
     }
     std::vector<glm::dvec3> vertices;
+    ConvexBody part; // (assigned each box: its faces' buffers are reused)
     for (const auto& planes : this->Boxes)
     {
-      ConvexBody part = partition;
+      part = partition;
       for (const Plane& plane : planes)
       {
         part.clip(plane, epsilon);
