@@ -1,10 +1,10 @@
-# csm-bench --changes on the platform (an assembly of parts), small and short: a row per change
-# and technique; ours draws no texel a step for colour and scalars, a moved part draws some but
-# no more than every point moved, and where geometry moves ours misclassifies fewer pixels than VTK's
-# pass against the ray-cast truth.
+# csm-bench --changes on the columns (16 parts over a ground), small and short: a row per change
+# and technique; ours draws no texel a step for colour and scalars, one part of 16 moved draws
+# some but at most a quarter of the first frame's texels, and where geometry moves ours
+# misclassifies fewer pixels than VTK's pass against the ray-cast truth.
 file(REMOVE_RECURSE "${DIR}")
 file(MAKE_DIRECTORY "${DIR}")
-execute_process(COMMAND "${BENCH}" --changes --scenes platform --steps 2 --rounds 1
+execute_process(COMMAND "${BENCH}" --changes --scenes columns --steps 2 --rounds 1
   --size 320x240 --out "${DIR}/changes.csv" RESULT_VARIABLE result)
 if(NOT result EQUAL 0)
   message(FATAL_ERROR "csm-bench --changes failed: ${result}")
@@ -20,9 +20,11 @@ foreach(row IN LISTS rows)
   string(REPLACE " " "_" change "${change}")
   list(GET cells 2 label)
   list(GET cells 5 texels)
-  list(GET cells 6 misclassified)
+  list(GET cells 6 first)
+  list(GET cells 7 misclassified)
   if(label STREQUAL "default")
     set(texels_${change} "${texels}")
+    set(first_${change} "${first}")
     set(ours_${change} "${misclassified}")
   elseif(label STREQUAL "vtk default")
     set(vtk_${change} "${misclassified}")
@@ -33,9 +35,10 @@ foreach(change nothing colour scalars)
     message(FATAL_ERROR "${change}: ours drew ${texels_${change}} texels a step, expected 0")
   endif()
 endforeach()
-if(NOT texels_part_moved GREATER 0 OR texels_part_moved GREATER texels_deforming)
-  message(FATAL_ERROR "a moved part drew ${texels_part_moved} texels a step, every point moved "
-    "${texels_deforming}: expected more than 0 and no more")
+math(EXPR quarter "${first_part_moved} / 4")
+if(NOT texels_part_moved GREATER 0 OR texels_part_moved GREATER quarter)
+  message(FATAL_ERROR "one part of 16 moved drew ${texels_part_moved} texels a step, the first "
+    "frame ${first_part_moved}: expected more than 0 and at most a quarter")
 endif()
 foreach(change part_moved deforming new_dataset)
   if(NOT ours_${change} LESS vtk_${change})
@@ -43,5 +46,6 @@ foreach(change part_moved deforming new_dataset)
       "${vtk_${change}} %: expected fewer")
   endif()
 endforeach()
-message(STATUS "texels a step: part moved ${texels_part_moved}, deforming ${texels_deforming}; "
+message(STATUS "texels a step: part moved ${texels_part_moved} of ${first_part_moved}, "
+  "deforming ${texels_deforming}; "
   "misclassified ours / VTK: deforming ${ours_deforming} / ${vtk_deforming} %")
