@@ -2,7 +2,9 @@
 #include "csmClosedSurface.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 
@@ -49,6 +51,88 @@ bool weldPositions(const std::vector<glm::dvec3>& positions, std::vector<std::ui
 
 namespace
 {
+/// One id per distinct position as weldPositions gives them, but numbered in the order the
+/// positions first appear (what classifySurface needs: which corners are one vertex), found by
+/// hashing instead of sorting: a mesh whose points move every frame is classified every frame.
+bool weldByHash(const std::vector<glm::dvec3>& positions, std::vector<std::uint32_t>& ids)
+{
+  constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
+  const size_t n = positions.size();
+  if (n >= kEmpty)
+  {
+    return false;
+  }
+  size_t capacity = 1;
+  while (capacity < 2 * n)
+  {
+    capacity <<= 1;
+  }
+  std::vector<std::uint32_t> slots(capacity, kEmpty); // the first point of each position
+  ids.assign(n, 0u);
+  std::uint32_t next = 0;
+  for (size_t i = 0; i < n; ++i)
+  {
+    const glm::dvec3 q = positions[i] + glm::dvec3(0.0); // -0 becomes +0
+    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
+    {
+      return false;
+    }
+    std::uint64_t bits[3];
+    std::memcpy(bits, &q[0], sizeof(double));
+    std::memcpy(bits + 1, &q[1], sizeof(double));
+    std::memcpy(bits + 2, &q[2], sizeof(double));
+    std::uint64_t h = bits[0] * 0x9e3779b97f4a7c15ull;
+    h = (h ^ (h >> 29) ^ bits[1]) * 0xbf58476d1ce4e5b9ull;
+    h = (h ^ (h >> 31) ^ bits[2]) * 0x94d049bb133111ebull;
+    size_t slot = static_cast<size_t>(h ^ (h >> 32)) & (capacity - 1);
+    while (slots[slot] != kEmpty && positions[slots[slot]] + glm::dvec3(0.0) != q)
+    {
+      slot = (slot + 1) & (capacity - 1);
+    }
+    if (slots[slot] == kEmpty)
+    {
+      slots[slot] = static_cast<std::uint32_t>(i);
+      ids[i] = next++;
+    }
+    else
+    {
+      ids[i] = ids[slots[slot]];
+    }
+  }
+  return true;
+}
+
+/// Sorts keys in place, least significant 16 bits first (what std::sort gives, in linear time).
+void radixSort(std::vector<std::uint64_t>& keys)
+{
+  std::vector<std::uint64_t> spare(keys.size());
+  std::vector<size_t> count(size_t(1) << 16);
+  for (int shift = 0; shift < 64; shift += 16)
+  {
+    std::fill(count.begin(), count.end(), size_t(0));
+    for (const std::uint64_t key : keys)
+    {
+      ++count[(key >> shift) & 0xffff];
+    }
+    if (count[keys.empty() ? 0 : (keys.front() >> shift) & 0xffff] == keys.size())
+    {
+      continue; // every key has this digit
+    }
+    size_t sum = 0;
+    for (size_t& c : count)
+    {
+      const size_t here = c;
+      c = sum;
+      sum += here;
+    }
+    for (const std::uint64_t key : keys)
+    {
+      spare[count[(key >> shift) & 0xffff]++] = key;
+    }
+    keys.swap(spare);
+  }
+}
+
 /// Size of the mesh: the diagonal of the box around the positions its triangles use.
 double meshSize(const std::vector<glm::dvec3>& positions,
   const std::vector<std::array<std::int64_t, 3>>& triangles)
@@ -163,7 +247,7 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
   SurfaceClosure result;
   auto stopped = [stop]() { return stop && stop->load(std::memory_order_relaxed); };
   std::vector<std::uint32_t> ids;
-  if (positions.empty() || positions.size() > 0xffffffffu || !weldPositions(positions, ids) ||
+  if (positions.empty() || positions.size() > 0xffffffffu || !weldByHash(positions, ids) ||
     stopped())
   {
     return result;
@@ -221,8 +305,8 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
   {
     return result;
   }
-  std::sort(forward.begin(), forward.end());
-  std::sort(backward.begin(), backward.end());
+  radixSort(forward);
+  radixSort(backward);
   if (stopped())
   {
     return SurfaceClosure();
