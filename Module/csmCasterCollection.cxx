@@ -232,6 +232,7 @@ csmCasterCollection::Counts csmCasterCollection::Collect(vtkRenderer* renderer,
   this->Snapshots.clear(); // (the workers hold theirs)
   this->ForgetTheGone(renderer->GetRenderWindow());
   Counts counts;
+  const int buildsBefore = this->BlockBuilds;
   // Casters: visible opaque props. Receivers: every visible prop; their boxes fit the cascades.
   vtkPropCollection* collection = renderer->GetViewProps();
   vtkCollectionSimpleIterator pit;
@@ -291,6 +292,7 @@ csmCasterCollection::Counts csmCasterCollection::Collect(vtkRenderer* renderer,
     }
   }
   props.ScreenSized = hasScreenSizedCasters(props.Casters);
+  counts.PreparedBlocks = this->BlockBuilds - buildsBefore;
   return counts;
 }
 
@@ -422,6 +424,27 @@ int csmCasterCollection::ClosureOf(vtkProp* prop, bool cullClosed)
   return determinant > 0.0 ? closure.Orientation : -closure.Orientation;
 }
 
+bool csmCasterCollection::FollowPoints(
+  CasterBlocks& blocks, vtkPolyData* data, vtkMTimeType dataTime)
+{
+  // Only the points moved (the same cells of as many points: a deforming mesh, a time step
+  // that edits its positions): the blocks keep their triangles, their boxes follow the points.
+  vtkPolyData* input = blocks.Mapper ? blocks.Mapper->GetInput() : nullptr;
+  std::vector<std::array<double, 6>> bounds;
+  if (!input || blocks.BlockOf.empty() || !(csmCellsOf(data) == blocks.Source) ||
+    !csmBlockBounds(data, blocks.BlockOf, blocks.Cells.size(), bounds))
+  {
+    return false;
+  }
+  blocks.Bounds = std::move(bounds);
+  blocks.Time = dataTime;
+  if (input->GetPoints() != data->GetPoints())
+  {
+    input->SetPoints(data->GetPoints());
+  }
+  return true;
+}
+
 bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindow* window)
 {
   // The data's blocks in this window, prepared again when the data changed: a small mesh at
@@ -431,6 +454,11 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
   const vtkMTimeType dataTime = csmGeometryTime(data);
   // (Prepared for this very data, into blocks or into nothing usable.)
   const bool current = blocks.Data == data && blocks.Window == window && blocks.Time == dataTime;
+  if (!current && blocks.Data == data && blocks.Window == window &&
+    csmCasterCollection::FollowPoints(blocks, data, dataTime))
+  {
+    return blocks.Mapper->HasTriangles();
+  }
   if (!current)
   {
     std::shared_ptr<csmPreparedBlocks> prepared;
@@ -484,6 +512,7 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
     blocks.Mapper = nullptr;
     blocks.Bounds.clear();
     blocks.Cells.clear();
+    blocks.BlockOf.clear();
     blocks.Time = dataTime;
     blocks.Build = ++this->BlockBuilds;
     if (prepared->Blocks.empty() || prepared->Points != data->GetNumberOfPoints())
@@ -502,6 +531,11 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
       blocks.Cells.push_back(static_cast<double>(block.second));
     }
     blocks.Bounds = std::move(prepared->Bounds);
+    if (triangles <= vtkCascadedShadows::SynchronousPreparationTriangles)
+    {
+      blocks.BlockOf = std::move(prepared->BlockOf); // (from this very data, read just now)
+      blocks.Source = csmCellsOf(data);
+    }
     blocks.Mapper->SetBlocks(std::move(prepared->Corners), std::move(prepared->Blocks));
   }
   return blocks.Mapper && blocks.Mapper->HasTriangles();

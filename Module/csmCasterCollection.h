@@ -6,6 +6,7 @@
 #ifndef csmCasterCollection_h
 #define csmCasterCollection_h
 
+#include "csmCasterPreparation.h"      // for csmCellsKey
 #include "vtkCascadedShadowMapTypes.h" // for the compact casters' limits
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
@@ -30,8 +31,6 @@ class vtkPolyData;
 class vtkProp;
 class vtkRenderer;
 class vtkWindow;
-struct csmPreparedBlocks;  // a big caster's blocks, prepared by a worker thread
-struct csmPreparedClosure; // a big caster's closed-surface classification, likewise
 
 /// What a frame draws: the visible props' boxes and the opaque ones among them.
 struct csmFrameCasters
@@ -110,11 +109,13 @@ public:
     bool CompactCasters = true;
     bool CullCastersWithoutReceivers = true;
   };
-  /// What the last Collect() found: casters drawn from behind, and from compact blocks.
+  /// What the last Collect() found: casters drawn from behind, from compact blocks, and the
+  /// meshes prepared in blocks anew.
   struct Counts
   {
     int ClosedCasters = 0;
     int CompactCasters = 0;
+    int PreparedBlocks = 0; ///< meshes whose blocks were built (not only moved) in this frame
   };
 
   csmCasterCollection();
@@ -217,10 +218,17 @@ private:
     vtkSmartPointer<vtkCascadedShadowBlockMapper> Mapper;
     std::vector<std::array<double, 6>> Bounds; ///< per block, in the data's coordinates
     std::vector<double> Cells;                 ///< per block: its triangles
+    /// A mesh prepared at once: each triangle's block, and the cells they were prepared from
+    /// (the same cells with moved points keep the blocks, their boxes computed again).
+    std::vector<std::uint8_t> BlockOf;
+    csmCellsKey Source;
     Preparation<csmPreparedBlocks> Pending;
     Pace Paced;
   };
   std::map<std::pair<vtkWindow*, vtkPolyData*>, CasterBlocks> Blocks;
+  /// Blocks prepared from the data's cells kept for its moved points, their boxes computed
+  /// again (false: the cells changed, or the blocks were not prepared at once).
+  static bool FollowPoints(CasterBlocks& blocks, vtkPolyData* data, vtkMTimeType dataTime);
   /// The actor that draws a prop's blocks in one window (its property, a copy of its matrix).
   struct CasterProxy
   {

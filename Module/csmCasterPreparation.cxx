@@ -156,10 +156,13 @@ std::shared_ptr<csmPreparedBlocks> csmPrepareBlocks(
   corners.reserve(3 * static_cast<size_t>(csmTriangleCount(data)));
   centroids.reserve(static_cast<size_t>(csmTriangleCount(data)));
   bool valid = true;
+  std::vector<std::uint32_t> keptTriangle; // of each kept triangle, its index among all
+  std::uint32_t visited = 0;
   valid = forEachTriangle(
             data,
             [&](vtkIdType a, vtkIdType b, vtkIdType c)
             {
+              const std::uint32_t triangle = visited++;
               if (a < 0 || b < 0 || c < 0 || a >= pointCount || b >= pointCount || c >= pointCount)
               {
                 valid = false;
@@ -169,6 +172,7 @@ std::shared_ptr<csmPreparedBlocks> csmPrepareBlocks(
               {
                 return; // covers no texel
               }
+              keptTriangle.push_back(triangle);
               double pa[3], pb[3], pc[3];
               points->GetPoint(a, pa);
               points->GetPoint(b, pb);
@@ -199,6 +203,19 @@ std::shared_ptr<csmPreparedBlocks> csmPrepareBlocks(
       result->Corners.begin() + 3 * static_cast<std::ptrdiff_t>(i));
   }
   std::vector<std::uint32_t>().swap(corners);
+  if (order.blocks.size() < csmPreparedBlocks::kNoBlock)
+  {
+    result->BlockOf.assign(visited, csmPreparedBlocks::kNoBlock);
+    for (size_t b = 0; b < order.blocks.size(); ++b)
+    {
+      const auto& [first, count] = order.blocks[b];
+      for (size_t i = first; i < first + count; ++i)
+      {
+        result->BlockOf[keptTriangle[order.order[i]]] = static_cast<std::uint8_t>(b);
+      }
+    }
+  }
+  std::vector<std::uint32_t>().swap(keptTriangle);
   std::vector<std::uint32_t>().swap(order.order);
   result->Blocks = std::move(order.blocks);
   for (const auto& [first, count] : result->Blocks)
@@ -218,6 +235,102 @@ std::shared_ptr<csmPreparedBlocks> csmPrepareBlocks(
     result->Bounds.push_back(box);
   }
   return result;
+}
+
+bool csmCellsKey::operator==(const csmCellsKey& other) const
+{
+  return this->Polys == other.Polys && this->Strips == other.Strips &&
+    this->PolysTime == other.PolysTime && this->StripsTime == other.StripsTime &&
+    this->PolyCount == other.PolyCount && this->StripCount == other.StripCount &&
+    this->Points == other.Points && this->Digest == other.Digest;
+}
+
+namespace
+{
+/// A digest of an array's bytes (its values as stored), folded into `digest`.
+void digestArray(vtkDataArray* array, std::uint64_t& digest)
+{
+  const size_t bytes = array ? static_cast<size_t>(array->GetNumberOfValues()) *
+      static_cast<size_t>(array->GetDataTypeSize())
+                             : 0;
+  const unsigned char* data =
+    bytes > 0 ? static_cast<const unsigned char*>(array->GetVoidPointer(0)) : nullptr;
+  digest = (digest ^ bytes) * 0x9e3779b97f4a7c15ull;
+  size_t i = 0;
+  for (; i + 8 <= bytes; i += 8)
+  {
+    std::uint64_t word;
+    std::memcpy(&word, data + i, 8);
+    digest = (digest ^ word) * 0x100000001b3ull;
+    digest ^= digest >> 29;
+  }
+  for (; i < bytes; ++i)
+  {
+    digest = (digest ^ data[i]) * 0x100000001b3ull;
+  }
+}
+}
+
+csmCellsKey csmCellsOf(vtkPolyData* data)
+{
+  csmCellsKey key;
+  vtkCellArray* polys = data->GetPolys();
+  vtkCellArray* strips = data->GetStrips();
+  key.Polys = polys;
+  key.Strips = strips;
+  key.PolysTime = polys ? polys->GetMTime() : 0;
+  key.StripsTime = strips ? strips->GetMTime() : 0;
+  key.PolyCount = polys ? polys->GetNumberOfCells() : 0;
+  key.StripCount = strips ? strips->GetNumberOfCells() : 0;
+  key.Points = data->GetNumberOfPoints();
+  for (vtkCellArray* cells : { polys, strips })
+  {
+    if (cells)
+    {
+      digestArray(cells->GetOffsetsArray(), key.Digest);
+      digestArray(cells->GetConnectivityArray(), key.Digest);
+    }
+  }
+  return key;
+}
+
+bool csmBlockBounds(vtkPolyData* data, const std::vector<std::uint8_t>& blockOf, std::size_t blocks,
+  std::vector<std::array<double, 6>>& bounds)
+{
+  vtkPoints* points = data->GetPoints();
+  const vtkIdType pointCount = points ? points->GetNumberOfPoints() : 0;
+  bounds.assign(blocks,
+    { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX,
+      -VTK_DOUBLE_MAX });
+  size_t triangle = 0;
+  bool valid = true;
+  forEachTriangle(data,
+    [&](vtkIdType a, vtkIdType b, vtkIdType c)
+    {
+      const size_t t = triangle++;
+      if (!valid || t >= blockOf.size() || blockOf[t] >= blocks)
+      {
+        valid = valid && t < blockOf.size();
+        return;
+      }
+      if (a < 0 || b < 0 || c < 0 || a >= pointCount || b >= pointCount || c >= pointCount)
+      {
+        valid = false;
+        return;
+      }
+      std::array<double, 6>& box = bounds[blockOf[t]];
+      for (const vtkIdType corner : { a, b, c })
+      {
+        double p[3];
+        points->GetPoint(corner, p);
+        for (int k = 0; k < 3; ++k)
+        {
+          box[2 * k] = std::min(box[2 * k], p[k]);
+          box[2 * k + 1] = std::max(box[2 * k + 1], p[k]);
+        }
+      }
+    });
+  return valid && triangle == blockOf.size();
 }
 
 csm::SurfaceClosure csmClassifyPolyData(vtkPolyData* data, const std::atomic<bool>* stop)

@@ -30,7 +30,32 @@ struct csmPreparedBlocks
   std::vector<std::uint32_t> Corners;
   std::vector<std::pair<std::size_t, std::size_t>> Blocks;
   std::vector<std::array<double, 6>> Bounds;
+  /// Per triangle of the data (csmPrepareBlocks' order: polygons as fans, then strips), its
+  /// block (kNoBlock: left out, no area or a bad index): the blocks' boxes for new positions.
+  std::vector<std::uint8_t> BlockOf;
+  static constexpr std::uint8_t kNoBlock = 0xff;
 };
+
+/// The cells a polydata's triangles come from: its polygon and strip arrays (which ones, when
+/// they last changed, how many cells, a digest of their point ids: a cell replaced in place
+/// changes no count and no time) and its number of points. Equal keys: the same triangles of
+/// the same points, wherever the points are now.
+struct csmCellsKey
+{
+  const void* Polys = nullptr;
+  const void* Strips = nullptr;
+  vtkMTimeType PolysTime = 0, StripsTime = 0;
+  vtkIdType PolyCount = 0, StripCount = 0, Points = 0;
+  std::uint64_t Digest = 0;
+  bool operator==(const csmCellsKey& other) const;
+};
+csmCellsKey csmCellsOf(vtkPolyData* data);
+
+/// The blocks' boxes (in the data's coordinates) for the data's points where they are now, from
+/// the block of each triangle that csmPrepareBlocks gave (its BlockOf). False where the data's
+/// triangles are not as many as blockOf holds.
+bool csmBlockBounds(vtkPolyData* data, const std::vector<std::uint8_t>& blockOf, std::size_t blocks,
+  std::vector<std::array<double, 6>>& bounds);
 
 /// A big caster's closed-surface classification.
 struct csmPreparedClosure

@@ -436,6 +436,7 @@ void vtkCascadedShadowMapBakerPass::CollectProps(
     this->Casters->Collect(renderer, options, this->FrameNumber, this->ViewMoved, props);
   this->Statistics.ClosedCasters = counts.ClosedCasters;
   this->Statistics.CompactCasters = counts.CompactCasters;
+  this->Statistics.PreparedBlocks = counts.PreparedBlocks;
 }
 
 csmLightPlanning vtkCascadedShadowMapBakerPass::Planning()

@@ -124,7 +124,8 @@ struct FrameStatistics
   double TexelsRendered = 0.0, CellsDrawn = 0.0; ///< of the rendered maps
   int ClosedCasters = 0;                         ///< drawn with their exit layer only
   int CompactCasters = 0, BlocksDrawn = 0;       ///< casters from compact blocks, blocks drawn
-  int CastersWithoutReceivers = 0;               ///< casters (or blocks) left out of a map
+  int PreparedBlocks = 0; ///< meshes prepared in compact blocks anew (not their points moved)
+  int CastersWithoutReceivers = 0; ///< casters (or blocks) left out of a map
   bool VisibleDepthsUsed = false, VisibleDepthsMeasured = false; ///< measured in this frame
   bool VisibleFootprintUsed = false; ///< a light's cascades were fitted to the footprint
   bool ViewDepthDrawn = false;       ///< the view's depth was drawn (measured or not)

@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Data that changes while the camera stays: a change of what a prop casts draws its light's maps
-// again; a change of colour, scalars, lookup table or material draws no texel, and the frame
-// equals a fresh chain's.
+// again (a mesh's moved points keep its compact blocks); a change of colour, scalars, lookup table
+// or material draws no texel, and the frame equals a fresh chain's.
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
 #include "vtkCellArray.h"
 #include "vtkFloatArray.h"
+#include "vtkIdList.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLookupTable.h"
@@ -144,6 +145,13 @@ TEST(Changes, WhatAPropCastsDrawsTheMapsAgain)
         data->GetPoints()->SetPoint(0, p[0] - 0.5, p[1], p[2]);
         data->GetPoints()->Modified();
       } },
+    { "a cell added in place",
+      [&]()
+      {
+        const vtkIdType corners[3] = { 0, 1, 2 };
+        data->GetPolys()->InsertNextCell(3, corners);
+        data->Modified();
+      } },
     { "wireframe", [&]() { scene.Box->GetProperty()->SetRepresentationToWireframe(); } },
     { "translucent", [&]() { scene.Box->GetProperty()->SetOpacity(0.5); } },
     { "opaque again", [&]() { scene.Box->GetProperty()->SetOpacity(1.0); } },
@@ -165,10 +173,64 @@ TEST(Changes, WhatAPropCastsDrawsTheMapsAgain)
     auto changed = scene.Frame();
     const auto& statistics = baker->GetLastFrameStatistics();
     EXPECT_GT(statistics.TexelsRendered, 0.0) << name;
-    std::printf("%s: maps drawn %d, patched %d, texels %.0f\n", name.c_str(),
-      statistics.CascadesRendered, statistics.CascadesPatched, statistics.TexelsRendered);
+    std::printf("%s: maps drawn %d, patched %d, texels %.0f, meshes prepared %d\n", name.c_str(),
+      statistics.CascadesRendered, statistics.CascadesPatched, statistics.TexelsRendered,
+      statistics.PreparedBlocks);
+    // Moved points keep the box's compact blocks (their boxes follow the points); a new cell
+    // prepares them anew.
+    if (name == "points")
+    {
+      EXPECT_EQ(statistics.PreparedBlocks, 0);
+    }
+    if (name == "a cell added in place")
+    {
+      EXPECT_EQ(statistics.PreparedBlocks, 1);
+    }
     EXPECT_EQ(DifferingValues(FreshFrame(scene, baker), changed), 0) << name;
   }
+}
+
+// A mesh whose points move step after step keeps its compact blocks, their boxes where the points
+// are (the frame a fresh chain draws); a cell replaced in place (no count, no array time changed,
+// only the polydata modified) prepares them anew from the new cells.
+TEST(Changes, MovedPointsKeepTheBlocksAndReplacedCellsDoNot)
+{
+  BoxOverPlane scene;
+  vtkPolyData* data = AddField(scene);
+  vtkCascadedShadowMapBakerPass* baker =
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  scene.Frame();
+  EXPECT_EQ(baker->GetLastFrameStatistics().PreparedBlocks, 2); // the box and the ground
+  scene.Frame();
+  for (int step = 0; step < 3; ++step)
+  {
+    for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      data->GetPoint(i, p);
+      data->GetPoints()->SetPoint(i, p[0] + 0.3, p[1] * 1.1, p[2]);
+    }
+    data->GetPoints()->Modified();
+    auto moved = scene.Frame();
+    EXPECT_EQ(baker->GetLastFrameStatistics().PreparedBlocks, 0) << step;
+    EXPECT_EQ(baker->GetLastFrameStatistics().CompactCasters, 2) << step;
+    vtkCascadedShadowMapBakerPass* fresh = nullptr;
+    EXPECT_EQ(DifferingValues(FreshFrame(scene, fresh), moved), 0) << step;
+    baker = fresh;
+  }
+  // (The same face from its next corner: other point ids, the same shadow.)
+  vtkNew<vtkIdList> face;
+  data->GetPolys()->GetCellAtId(0, face);
+  const vtkIdType first = face->GetId(0);
+  for (vtkIdType k = 0; k + 1 < face->GetNumberOfIds(); ++k)
+  {
+    face->SetId(k, face->GetId(k + 1));
+  }
+  face->SetId(face->GetNumberOfIds() - 1, first);
+  data->GetPolys()->ReplaceCellAtId(0, face);
+  data->Modified();
+  scene.Frame();
+  EXPECT_EQ(baker->GetLastFrameStatistics().PreparedBlocks, 1);
 }
 
 // A frame like the last one (the same view, nothing changed; a screenshot's second render):
