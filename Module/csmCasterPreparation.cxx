@@ -10,6 +10,7 @@
 #include "vtkPolyData.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 
@@ -323,6 +324,11 @@ bool csmBlockBounds(vtkPolyData* data, const std::vector<std::uint8_t>& blockOf,
       {
         double p[3];
         points->GetPoint(corner, p);
+        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+        {
+          valid = false; // (prepared anew, as any mesh with a bad position)
+          return;
+        }
         for (int k = 0; k < 3; ++k)
         {
           box[2 * k] = std::min(box[2 * k], p[k]);

@@ -53,7 +53,7 @@ csmCellsKey csmCellsOf(vtkPolyData* data);
 
 /// The blocks' boxes (in the data's coordinates) for the data's points where they are now, from
 /// the block of each triangle that csmPrepareBlocks gave (its BlockOf). False where the data's
-/// triangles are not as many as blockOf holds.
+/// triangles are not as many as blockOf holds, or a corner is not finite.
 bool csmBlockBounds(vtkPolyData* data, const std::vector<std::uint8_t>& blockOf, std::size_t blocks,
   std::vector<std::array<double, 6>>& bounds);
 
