@@ -232,14 +232,6 @@ void restore(ChangingScene& s, Change c)
   }
 }
 
-double median(std::vector<double> v)
-{
-  if (v.empty())
-    return NAN;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 struct Timed
 {
   std::vector<double> Ms;
@@ -302,22 +294,15 @@ std::vector<double> measureAccuracy(ChangingScene& s, Change c, vtkRenderer* ren
     renderer->SetPass(nullptr);
     window->Render();
     auto plain = csmWalk::GrabFrame(window);
-    const auto surfaces = rays.CastPrimary(renderer->GetActiveCamera(), width, height);
-    const auto comparable = csmTruth::ComparablePixels(surfaces, width, height, travel);
-    std::vector<char> occluded(surfaces.size(), 0);
-    for (size_t k = 0; k < surfaces.size(); ++k)
-      occluded[k] = comparable[k] && rays.Occluded(surfaces[k], travel) ? 1 : 0;
+    const csmWalk::FrameTruth truth =
+      csmWalk::CastTruth(rays, renderer->GetActiveCamera(), width, height, travel);
     for (size_t t = 0; t < chains.size(); ++t)
     {
       renderer->SetPass(chains[t]);
       window->Render();
       if (step < 0)
         continue; // the first frame, as in the timed steps
-      const auto factor = csmTruth::FactorFromRenders(csmWalk::GrabFrame(window), plain);
-      const csmTruth::Classification e = csmTruth::Classify(surfaces, comparable, occluded, factor);
-      errors[t].Considered += e.Considered;
-      errors[t].FalseShadow += e.FalseShadow;
-      errors[t].FalseLight += e.FalseLight;
+      errors[t].Add(csmWalk::ClassifyFrame(window, plain, truth));
     }
   }
   restore(s, c);
@@ -520,10 +505,10 @@ void runScene(const std::string& name, ChangingScene& s, const ChangeOptions& o,
       accuracy[1] = e[0];
       accuracy[2] = e[1];
     }
-    const double none = median(timed[k][0].Ms), vtk = median(timed[k][1].Ms);
+    const double none = csmWalk::Median(timed[k][0].Ms), vtk = csmWalk::Median(timed[k][1].Ms);
     for (size_t t = 0; t < techniques.size(); ++t)
     {
-      const double ms = median(timed[k][t].Ms);
+      const double ms = csmWalk::Median(timed[k][t].Ms);
       const double texels = timed[k][t].Texels / std::max<long long>(timed[k][t].Steps, 1);
       std::printf("  %-8s %-11s %-12s %7.1f ms  %5.2fx vtk default  %5.2fx unshadowed",
         name.c_str(), nameOf(c), labels[t], ms, ms / vtk, ms / none);

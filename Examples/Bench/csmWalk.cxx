@@ -206,16 +206,6 @@ struct PathAccuracy
   }
 };
 
-double median(std::vector<double> v)
-{
-  if (v.empty())
-  {
-    return NAN;
-  }
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 /// The light of a walk: the scene's key light (or at gammaDeg from the first view's direction),
 /// as a scene light or a camera light (then fixed to the camera, as ParaView's key light is).
 void SetLight(
@@ -293,37 +283,32 @@ std::vector<PathAccuracy> measurePathAccuracy(vtkRenderer* renderer, vtkRenderWi
     light->GetTransformedFocalPoint(focal);
     const double travel[3] = { focal[0] - position[0], focal[1] - position[1],
       focal[2] - position[2] };
-    const auto surfaces = rays.CastPrimary(renderer->GetActiveCamera(), width, height);
-    const auto comparable = csmTruth::ComparablePixels(surfaces, width, height, travel);
-    std::vector<char> occluded(surfaces.size(), 0);
-    for (size_t k = 0; k < surfaces.size(); ++k)
-      occluded[k] = comparable[k] && rays.Occluded(surfaces[k], travel) ? 1 : 0;
+    const csmWalk::FrameTruth truth =
+      csmWalk::CastTruth(rays, renderer->GetActiveCamera(), width, height, travel);
     for (size_t t = 0; t < techniques.size(); ++t)
     {
       renderer->SetPass(chains[t]);
       window->Render();
       if (i < 0)
         continue; // the first view, as in the timed rounds
-      const auto factor = csmTruth::FactorFromRenders(csmWalk::GrabFrame(window), plain);
-      const csmTruth::Classification c = csmTruth::Classify(surfaces, comparable, occluded, factor);
-      result[t].Errors.Considered += c.Considered;
-      result[t].Errors.FalseShadow += c.FalseShadow;
-      result[t].Errors.FalseLight += c.FalseLight;
-      std::vector<char> classes(surfaces.size(), -1);
-      for (size_t k = 0; k < surfaces.size(); ++k)
-        if (comparable[k])
+      std::vector<float> factor;
+      result[t].Errors.Add(csmWalk::ClassifyFrame(window, plain, truth, &factor));
+      std::vector<char> classes(truth.Surfaces.size(), -1);
+      for (size_t k = 0; k < truth.Surfaces.size(); ++k)
+        if (truth.Comparable[k])
           classes[k] = factor[k] < 0.5f ? 1 : 0;
       for (size_t k = 0; k < classes.size() && !lastClass[t].empty(); ++k)
       {
         if (classes[k] < 0 || lastClass[t][k] < 0)
           continue;
         ++result[t].FlickerCompared;
-        result[t].Flickered += classes[k] != lastClass[t][k] && occluded[k] == lastOccluded[k];
+        result[t].Flickered +=
+          classes[k] != lastClass[t][k] && truth.Occluded[k] == lastOccluded[k];
       }
       lastClass[t] = std::move(classes);
     }
     if (i >= 0)
-      lastOccluded = std::move(occluded);
+      lastOccluded = truth.Occluded;
   }
   for (auto& chain : chains)
     chain->ReleaseGraphicsResources(window);
@@ -607,13 +592,14 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
           renderer->SetPass(nullptr);
         }
       }
-      const double none = median(techniques[0].Ms), vtk = median(techniques[1].Ms);
+      const double none = csmWalk::Median(techniques[0].Ms),
+                   vtk = csmWalk::Median(techniques[1].Ms);
       for (const Technique& t : techniques)
       {
         const double frames = std::max<long long>(t.Frames, 1);
         std::printf("  %-6s %-7s %-12s %7.1f ms  %5.2fx vtk default  %5.2fx unshadowed",
-          name.c_str(), pathName.c_str(), t.Label.c_str(), median(t.Ms), median(t.Ms) / vtk,
-          median(t.Ms) / none);
+          name.c_str(), pathName.c_str(), t.Label.c_str(), csmWalk::Median(t.Ms),
+          csmWalk::Median(t.Ms) / vtk, csmWalk::Median(t.Ms) / none);
         if (t.Shadow.Technique == "csm")
           std::printf("  maps %.2f rendered %.2f kept (%.2f moved), %.2f M texels, %.0f k cells a "
                       "frame",
@@ -622,9 +608,9 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
         std::printf("\n");
         std::ostringstream row;
         row << name << "," << pathName << "," << (o.CameraLight ? "camera" : "scene") << ","
-            << t.Label << "," << median(t.Ms) << "," << t.Frames << "," << t.MapsRendered / frames
-            << "," << t.MapsKept / frames << "," << t.Texels / frames << "," << t.Cells / frames
-            << "," << t.MapsMoved / frames;
+            << t.Label << "," << csmWalk::Median(t.Ms) << "," << t.Frames << ","
+            << t.MapsRendered / frames << "," << t.MapsKept / frames << "," << t.Texels / frames
+            << "," << t.Cells / frames << "," << t.MapsMoved / frames;
         rows.back().emplace_back(t.Label, row.str());
       }
       std::fflush(stdout);
@@ -685,4 +671,35 @@ vtkSmartPointer<vtkImageData> csmWalk::GrabFrame(vtkRenderWindow* window)
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->DeepCopy(grab->GetOutput());
   return image;
+}
+
+csmWalk::FrameTruth csmWalk::CastTruth(
+  const csmTruth::RayScene& rays, vtkCamera* camera, int width, int height, const double travel[3])
+{
+  FrameTruth truth;
+  truth.Surfaces = rays.CastPrimary(camera, width, height);
+  truth.Comparable = csmTruth::ComparablePixels(truth.Surfaces, width, height, travel);
+  truth.Occluded.assign(truth.Surfaces.size(), 0);
+  for (size_t k = 0; k < truth.Surfaces.size(); ++k)
+    truth.Occluded[k] = truth.Comparable[k] && rays.Occluded(truth.Surfaces[k], travel) ? 1 : 0;
+  return truth;
+}
+
+csmTruth::Classification csmWalk::ClassifyFrame(vtkRenderWindow* window, vtkImageData* plain,
+  const FrameTruth& truth, std::vector<float>* factors)
+{
+  std::vector<float> factor = csmTruth::FactorFromRenders(csmWalk::GrabFrame(window), plain);
+  const csmTruth::Classification c =
+    csmTruth::Classify(truth.Surfaces, truth.Comparable, truth.Occluded, factor);
+  if (factors)
+    *factors = std::move(factor);
+  return c;
+}
+
+double csmWalk::Median(std::vector<double> values)
+{
+  if (values.empty())
+    return NAN;
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
 }

@@ -2,11 +2,14 @@
 // csm-bench --walk: smooth camera paths close to the geometry, every frame a normal render.
 #pragma once
 
+#include "csmTruth.h"        // for FrameTruth
 #include "vtkImageData.h"    // for GrabFrame
 #include "vtkSmartPointer.h" // for GrabFrame
 
 #include <string>
+#include <vector>
 
+class vtkCamera;
 class vtkRenderWindow;
 
 namespace csmWalk
@@ -19,4 +22,22 @@ std::string Usage();
 /// The image of the frame the window just rendered (not rendered again), as both modes of
 /// csm-bench measure it against the truth.
 vtkSmartPointer<vtkImageData> GrabFrame(vtkRenderWindow* window);
+
+/// The truth at a view: each pixel's surface, whether it is compared, and whether something
+/// lies between it and a directional light travelling along `travel`.
+struct FrameTruth
+{
+  std::vector<csmTruth::Surface> Surfaces;
+  std::vector<char> Comparable, Occluded;
+};
+FrameTruth CastTruth(
+  const csmTruth::RayScene& rays, vtkCamera* camera, int width, int height, const double travel[3]);
+
+/// The frame the window just rendered against the truth, given the plain (unshadowed) frame of
+/// the same view; factors: each pixel's shadow factor, where wanted.
+csmTruth::Classification ClassifyFrame(vtkRenderWindow* window, vtkImageData* plain,
+  const FrameTruth& truth, std::vector<float>* factors = nullptr);
+
+/// The median of a list of times (NaN for none).
+double Median(std::vector<double> values);
 }

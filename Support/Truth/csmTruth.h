@@ -72,6 +72,13 @@ struct Classification
   }
   double FalseShadowPct() const { return Considered ? 100.0 * FalseShadow / Considered : 0.0; }
   double FalseLightPct() const { return Considered ? 100.0 * FalseLight / Considered : 0.0; }
+  /// Another image's counts added to these.
+  void Add(const Classification& other)
+  {
+    Considered += other.Considered;
+    FalseShadow += other.FalseShadow;
+    FalseLight += other.FalseLight;
+  }
 };
 
 /// Pixels to compare: hit, facing the light (n . -L > 0.05), and not on a silhouette (no
