@@ -61,6 +61,10 @@ std::vector<double> csmCastingState(vtkProp* prop)
       static_cast<double>(reinterpret_cast<std::uintptr_t>(data)), time(data->GetPoints()),
       time(data->GetVerts()), time(data->GetLines()), time(data->GetPolys()),
       time(data->GetStrips()),
+      // (The polydata's own time, without its point and cell data's: an application that edits
+      // a cell in place, which changes no count and no array's time, says so by modifying it;
+      // new scalars or fields change none of these.)
+      static_cast<double>(data->vtkObject::GetMTime()),
       // (Counts too: an application may empty or refill an array in place, which need not
       // touch its MTime.)
       static_cast<double>(data->GetNumberOfPoints()), static_cast<double>(data->GetNumberOfVerts()),

@@ -192,7 +192,7 @@ TEST(Changes, WhatAPropCastsDrawsTheMapsAgain)
 
 // A mesh whose points move step after step keeps its compact blocks, their boxes where the points
 // are (the frame a fresh chain draws); a cell replaced in place (no count, no array time changed,
-// only the polydata modified) prepares them anew from the new cells.
+// only the polydata modified) prepares them anew from the new cells and draws the maps again.
 TEST(Changes, MovedPointsKeepTheBlocksAndReplacedCellsDoNot)
 {
   BoxOverPlane scene;
@@ -229,8 +229,11 @@ TEST(Changes, MovedPointsKeepTheBlocksAndReplacedCellsDoNot)
   face->SetId(face->GetNumberOfIds() - 1, first);
   data->GetPolys()->ReplaceCellAtId(0, face);
   data->Modified();
-  scene.Frame();
+  auto replaced = scene.Frame();
   EXPECT_EQ(baker->GetLastFrameStatistics().PreparedBlocks, 1);
+  EXPECT_GT(baker->GetLastFrameStatistics().TexelsRendered, 0.0); // the maps drawn again
+  vtkCascadedShadowMapBakerPass* fresh = nullptr;
+  EXPECT_EQ(DifferingValues(FreshFrame(scene, fresh), replaced), 0);
 }
 
 // A frame like the last one (the same view, nothing changed; a screenshot's second render):
