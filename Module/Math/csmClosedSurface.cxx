@@ -6,55 +6,11 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <numeric>
 
 namespace csm
 {
 
 bool weldPositions(const std::vector<glm::dvec3>& positions, std::vector<std::uint32_t>& ids)
-{
-  if (positions.size() > 0xffffffffu)
-  {
-    return false;
-  }
-  std::vector<glm::dvec3> p(positions.size());
-  for (size_t i = 0; i < positions.size(); ++i)
-  {
-    const glm::dvec3& q = positions[i];
-    if (!std::isfinite(q.x) || !std::isfinite(q.y) || !std::isfinite(q.z))
-    {
-      return false;
-    }
-    p[i] = q + glm::dvec3(0.0); // -0 becomes +0
-  }
-  std::vector<std::uint32_t> order(p.size());
-  std::iota(order.begin(), order.end(), 0u);
-  const auto less = [&p](std::uint32_t a, std::uint32_t b)
-  {
-    return p[a].x != p[b].x ? p[a].x < p[b].x
-      : p[a].y != p[b].y    ? p[a].y < p[b].y
-                            : p[a].z < p[b].z;
-  };
-  std::sort(order.begin(), order.end(), less);
-  ids.assign(p.size(), 0u);
-  std::uint32_t id = 0;
-  for (size_t i = 0; i < order.size(); ++i)
-  {
-    if (i > 0 && p[order[i]] != p[order[i - 1]])
-    {
-      ++id;
-    }
-    ids[order[i]] = id;
-  }
-  return true;
-}
-
-namespace
-{
-/// One id per distinct position as weldPositions gives them, but numbered in the order the
-/// positions first appear (what classifySurface needs: which corners are one vertex), found by
-/// hashing instead of sorting: a mesh whose points move every frame is classified every frame.
-bool weldByHash(const std::vector<glm::dvec3>& positions, std::vector<std::uint32_t>& ids)
 {
   constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
   const size_t n = positions.size();
@@ -102,6 +58,8 @@ bool weldByHash(const std::vector<glm::dvec3>& positions, std::vector<std::uint3
   return true;
 }
 
+namespace
+{
 /// Sorts keys in place, least significant 16 bits first (what std::sort gives, in linear time).
 void radixSort(std::vector<std::uint64_t>& keys)
 {
@@ -247,7 +205,7 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
   SurfaceClosure result;
   auto stopped = [stop]() { return stop && stop->load(std::memory_order_relaxed); };
   std::vector<std::uint32_t> ids;
-  if (positions.empty() || positions.size() > 0xffffffffu || !weldByHash(positions, ids) ||
+  if (positions.empty() || positions.size() > 0xffffffffu || !weldPositions(positions, ids) ||
     stopped())
   {
     return result;

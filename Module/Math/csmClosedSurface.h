@@ -48,9 +48,10 @@ constexpr double kShapeTolerance = 1e-6;
 /// Most vertex-triangle pairs the convexity test examines.
 constexpr double kMaximumConvexityWork = 1.0e6;
 
-/// One id per distinct position (ids grow with the positions' lexicographic order; bitwise-equal
-/// positions, +0 and -0 alike, share one). Returns false, leaving ids unspecified, when a position
-/// is not finite or there are more than 2^32 positions.
+/// One id per distinct position (numbered in the order the positions first appear; bitwise-equal
+/// positions, +0 and -0 alike, share one), found by hashing: a mesh whose points move every frame
+/// is welded every frame. Returns false, leaving ids unspecified, when a position is not finite
+/// or there are 2^32 - 1 positions or more.
 bool weldPositions(const std::vector<glm::dvec3>& positions, std::vector<std::uint32_t>& ids);
 
 /// Classify a triangle mesh (closed, volume, planar, convex). Vertices at bitwise-equal positions
