@@ -460,20 +460,10 @@ void runScene(const std::string& name, ChangingScene& s, const ChangeOptions& o,
 {
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderWindow> window;
-  window->SetMultiSamples(0);
-  window->SetOffScreenRendering(1);
-  window->SetSize(o.Size[0], o.Size[1]);
-  window->AddRenderer(renderer);
-  csmScenes::Install(s.Scene, renderer, double(o.Size[0]) / o.Size[1]);
-  renderer->AutomaticLightCreationOff();
-  renderer->RemoveAllLights();
   vtkNew<vtkLight> light; // the walk's scene light
-  const double travel[3] = { -0.45, -1.0, -0.35 };
-  light->SetLightTypeToSceneLight();
-  light->SetPositional(false);
-  light->SetFocalPoint(0, 0, 0);
-  light->SetPosition(-travel[0], -travel[1], -travel[2]);
-  renderer->AddLight(light);
+  csmWalk::ShowScene(renderer, window, light, s.Scene, o.Size);
+  const double* travel = csmWalk::kSceneLightTravel;
+  csmWalk::SetSceneLight(light, travel);
   std::printf("scene %s: %lld triangles, %zu actors%s\n", name.c_str(), s.Scene.Triangles,
     s.Scene.Actors.size(), s.Part < 0 ? " (too few parts to move one)" : "");
   std::vector<csmScenes::ShadowOptions> techniques(3);

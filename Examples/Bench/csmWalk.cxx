@@ -211,19 +211,19 @@ struct PathAccuracy
 void SetLight(
   vtkLight* light, vtkCamera* camera, const Pose& first, double gammaDeg, bool cameraLight)
 {
-  double travel[3] = { -0.45, -1.0, -0.35 };
+  double travel[3] = { csmWalk::kSceneLightTravel[0], csmWalk::kSceneLightTravel[1],
+    csmWalk::kSceneLightTravel[2] };
   if (gammaDeg >= 0.0)
   {
     csmScenes::LightAtGamma(first.Eye, first.Focal, gammaDeg, travel);
   }
-  light->SetPositional(false);
-  light->SetFocalPoint(0, 0, 0);
   if (!cameraLight)
   {
-    light->SetLightTypeToSceneLight();
-    light->SetPosition(-travel[0], -travel[1], -travel[2]);
+    csmWalk::SetSceneLight(light, travel);
     return;
   }
+  light->SetPositional(false);
+  light->SetFocalPoint(0, 0, 0);
   // The same direction in the first view's camera coordinates.
   camera->SetPosition(first.Eye);
   camera->SetFocalPoint(first.Focal);
@@ -467,16 +467,9 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
     }
     vtkNew<vtkRenderer> renderer;
     vtkNew<vtkRenderWindow> window;
-    window->SetMultiSamples(0);
-    window->SetOffScreenRendering(1);
-    window->SetSize(o.Size[0], o.Size[1]);
-    window->AddRenderer(renderer);
-    window->SetDesiredUpdateRate(o.Interactive ? 15.0 : 0.0001);
-    csmScenes::Install(scene, renderer, double(o.Size[0]) / o.Size[1]);
-    renderer->AutomaticLightCreationOff();
-    renderer->RemoveAllLights();
     vtkNew<vtkLight> light;
-    renderer->AddLight(light);
+    csmWalk::ShowScene(renderer, window, light, scene, o.Size);
+    window->SetDesiredUpdateRate(o.Interactive ? 15.0 : 0.0001);
     vtkCamera* camera = renderer->GetActiveCamera();
     camera->SetViewAngle(60.0);
     std::printf("scene %s: %lld triangles\n", name.c_str(), scene.Triangles);
@@ -702,4 +695,25 @@ double csmWalk::Median(std::vector<double> values)
     return NAN;
   std::sort(values.begin(), values.end());
   return values[values.size() / 2];
+}
+
+void csmWalk::SetSceneLight(vtkLight* light, const double travel[3])
+{
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetFocalPoint(0, 0, 0);
+  light->SetPosition(-travel[0], -travel[1], -travel[2]);
+}
+
+void csmWalk::ShowScene(vtkRenderer* renderer, vtkRenderWindow* window, vtkLight* light,
+  const csmScenes::Scene& scene, const int size[2])
+{
+  window->SetMultiSamples(0);
+  window->SetOffScreenRendering(1);
+  window->SetSize(size[0], size[1]);
+  window->AddRenderer(renderer);
+  csmScenes::Install(scene, renderer, double(size[0]) / size[1]);
+  renderer->AutomaticLightCreationOff();
+  renderer->RemoveAllLights();
+  renderer->AddLight(light);
 }

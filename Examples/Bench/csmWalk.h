@@ -10,7 +10,13 @@
 #include <vector>
 
 class vtkCamera;
+class vtkLight;
 class vtkRenderWindow;
+class vtkRenderer;
+namespace csmScenes
+{
+struct Scene;
+}
 
 namespace csmWalk
 {
@@ -37,6 +43,17 @@ FrameTruth CastTruth(
 /// the same view; factors: each pixel's shadow factor, where wanted.
 csmTruth::Classification ClassifyFrame(vtkRenderWindow* window, vtkImageData* plain,
   const FrameTruth& truth, std::vector<float>* factors = nullptr);
+
+/// The direction the benchmarks' scene light travels (world), where a mode sets none of its own.
+constexpr double kSceneLightTravel[3] = { -0.45, -1.0, -0.35 };
+
+/// A directional scene light travelling along `travel`.
+void SetSceneLight(vtkLight* light, const double travel[3]);
+
+/// The renderer showing the scene in an offscreen window of width x height pixels without
+/// multisampling, from the scene's default view, lit by `light` alone.
+void ShowScene(vtkRenderer* renderer, vtkRenderWindow* window, vtkLight* light,
+  const csmScenes::Scene& scene, const int size[2]);
 
 /// The median of a list of times (NaN for none).
 double Median(std::vector<double> values);
