@@ -343,7 +343,7 @@ const csmCasterCollection::Closure& csmCasterCollection::ClassifiedShape(vtkPoly
   csm::SurfaceClosure c;
   if (triangles <= vtkCascadedShadows::SynchronousPreparationTriangles)
   {
-    c = csmClassifyPolyData(data, nullptr);
+    c = csmClassifyPolyData(data, nullptr, &closure.Topology);
   }
   else
   {

@@ -202,7 +202,10 @@ private:
     vtkMTimeType Time = 0;
     int Orientation = 0; ///< +1 outward, -1 inward, 0 open
     bool Planar = false;
-    bool ShadowsItself = true;               ///< csm::SurfaceClosure::canShadowItself
+    bool ShadowsItself = true; ///< csm::SurfaceClosure::canShadowItself
+    /// A mesh classified in its frame: its weld and whether its edges balance, so that its
+    /// next points (a deforming mesh) do not sort its edges again (4 bytes a point).
+    csm::SurfaceTopology Topology;
     Preparation<csmPreparedClosure> Pending; ///< a big mesh's, under way
     Pace Paced;
   };

@@ -339,11 +339,12 @@ bool csmBlockBounds(vtkPolyData* data, const std::vector<std::uint8_t>& blockOf,
   return valid && triangle == blockOf.size();
 }
 
-csm::SurfaceClosure csmClassifyPolyData(vtkPolyData* data, const std::atomic<bool>* stop)
+csm::SurfaceClosure csmClassifyPolyData(
+  vtkPolyData* data, const std::atomic<bool>* stop, csm::SurfaceTopology* topology)
 {
   std::vector<glm::dvec3> positions;
   std::vector<std::array<std::int64_t, 3>> triangles;
   return trianglesOf(data, positions, triangles, stop)
-    ? csm::classifySurface(positions, triangles, stop)
+    ? csm::classifySurface(positions, triangles, stop, topology)
     : csm::SurfaceClosure();
 }

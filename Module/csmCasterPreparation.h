@@ -5,7 +5,7 @@
 #ifndef csmCasterPreparation_h
 #define csmCasterPreparation_h
 
-#include "csmClosedSurface.h" // for csm::SurfaceClosure
+#include "csmClosedSurface.h" // for csm::SurfaceClosure, csm::SurfaceTopology
 
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
@@ -82,7 +82,9 @@ vtkMTimeType csmGeometryTime(vtkPolyData* data);
 std::shared_ptr<csmPreparedBlocks> csmPrepareBlocks(
   vtkPolyData* data, std::size_t perBlock, const std::atomic<bool>* stop);
 
-/// csm::classifySurface of a polydata (open where it stopped early, once `stop` is set).
-csm::SurfaceClosure csmClassifyPolyData(vtkPolyData* data, const std::atomic<bool>* stop);
+/// csm::classifySurface of a polydata (open where it stopped early, once `stop` is set), with
+/// the topology of its last classification where given.
+csm::SurfaceClosure csmClassifyPolyData(
+  vtkPolyData* data, const std::atomic<bool>* stop, csm::SurfaceTopology* topology = nullptr);
 
 #endif

@@ -197,40 +197,59 @@ bool isConvex(const std::vector<glm::dvec3>& positions,
   }
   return true;
 }
-} // namespace
 
-SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
-  const std::vector<std::array<std::int64_t, 3>>& triangles, const std::atomic<bool>* stop)
+/// A digest of the triangles' indices (which triangles a mesh has, in order).
+std::uint64_t digestTriangles(const std::vector<std::array<std::int64_t, 3>>& triangles)
 {
-  SurfaceClosure result;
-  auto stopped = [stop]() { return stop && stop->load(std::memory_order_relaxed); };
-  std::vector<std::uint32_t> ids;
-  if (positions.empty() || positions.size() > 0xffffffffu || !weldPositions(positions, ids) ||
-    stopped())
-  {
-    return result;
-  }
-  // Directed edges a -> b with a < b, and those with a > b (stored as b -> a): the boundary is
-  // empty exactly when the two lists are equal as multisets.
-  std::vector<std::uint64_t> forward, backward;
-  forward.reserve(3 * triangles.size() / 2 + 1);
-  backward.reserve(3 * triangles.size() / 2 + 1);
-  const glm::dvec3 origin = positions[0]; // volumes relative to a point of the mesh: no
-                                          // cancellation far from the world's origin
-  double volume = 0.0;
-  size_t counted = 0;
+  std::uint64_t digest = 0x9e3779b97f4a7c15ull ^ triangles.size();
   for (const auto& t : triangles)
   {
-    if ((counted & 0xffff) == 0 && stopped())
+    for (const std::int64_t i : t)
     {
-      return SurfaceClosure();
+      digest = (digest ^ static_cast<std::uint64_t>(i)) * 0x100000001b3ull;
+      digest ^= digest >> 29;
+    }
+  }
+  return digest;
+}
+
+/// The welded edges of a mesh: a -> b with a < b in forward, those with a > b (stored as b -> a)
+/// in backward (the boundary is empty exactly when the two are equal as multisets), and its
+/// enclosed signed volume over the triangles counted (those of three distinct welded corners).
+struct WeldedEdges
+{
+  std::vector<std::uint64_t> forward, backward;
+  double volume = 0.0;
+  size_t counted = 0;
+};
+
+/// Walks the triangles: checks their indices, counts the non-degenerate ones and sums their
+/// volume, and with listEdges lists their welded edges; false for an index out of range or when
+/// stopped.
+template <typename Stopped>
+bool walkTriangles(const std::vector<glm::dvec3>& positions,
+  const std::vector<std::array<std::int64_t, 3>>& triangles, const std::vector<std::uint32_t>& ids,
+  bool listEdges, const Stopped& stopped, WeldedEdges& edges)
+{
+  if (listEdges)
+  {
+    edges.forward.reserve(3 * triangles.size() / 2 + 1);
+    edges.backward.reserve(3 * triangles.size() / 2 + 1);
+  }
+  // (Volumes relative to a point of the mesh: no cancellation far from the world's origin.)
+  const glm::dvec3 origin = positions[0];
+  for (const auto& t : triangles)
+  {
+    if ((edges.counted & 0xffff) == 0 && stopped())
+    {
+      return false;
     }
     std::uint32_t v[3];
     for (int k = 0; k < 3; ++k)
     {
       if (t[k] < 0 || static_cast<std::uint64_t>(t[k]) >= positions.size())
       {
-        return SurfaceClosure();
+        return false;
       }
       v[k] = ids[static_cast<size_t>(t[k])];
     }
@@ -238,19 +257,47 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
     {
       continue; // degenerate: no area, no boundary
     }
-    ++counted;
-    for (int k = 0; k < 3; ++k)
+    ++edges.counted;
+    for (int k = 0; listEdges && k < 3; ++k)
     {
       const std::uint32_t a = v[k], b = v[(k + 1) % 3];
-      (a < b ? forward : backward)
+      (a < b ? edges.forward : edges.backward)
         .push_back((std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b)));
     }
     const glm::dvec3 a = positions[static_cast<size_t>(t[0])] - origin;
     const glm::dvec3 b = positions[static_cast<size_t>(t[1])] - origin;
     const glm::dvec3 c = positions[static_cast<size_t>(t[2])] - origin;
-    volume += glm::dot(a, glm::cross(b, c)) / 6.0;
+    edges.volume += glm::dot(a, glm::cross(b, c)) / 6.0;
   }
-  if (counted == 0 || stopped())
+  return true;
+}
+} // namespace
+
+SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
+  const std::vector<std::array<std::int64_t, 3>>& triangles, const std::atomic<bool>* stop,
+  SurfaceTopology* topology)
+{
+  SurfaceClosure result;
+  auto stopped = [stop]() { return stop && stop->load(std::memory_order_relaxed); };
+  std::vector<std::uint32_t> ids;
+  const bool known = topology && topology->known;
+  if (topology)
+  {
+    topology->known = false; // (until this classification is finished)
+  }
+  if (positions.empty() || positions.size() > 0xffffffffu || !weldPositions(positions, ids) ||
+    stopped())
+  {
+    return result;
+  }
+  const std::uint64_t digest = topology ? digestTriangles(triangles) : 0;
+  const bool sameEdges = known && topology->triangleDigest == digest && topology->ids == ids;
+  WeldedEdges edges;
+  if (!walkTriangles(positions, triangles, ids, !sameEdges, stopped, edges) || stopped())
+  {
+    return SurfaceClosure();
+  }
+  if (edges.counted == 0)
   {
     return result;
   }
@@ -259,21 +306,29 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
   {
     return SurfaceClosure();
   }
-  if (forward.size() != backward.size())
+  bool closed = sameEdges && topology->closed;
+  if (!sameEdges && edges.forward.size() == edges.backward.size())
   {
-    return result;
+    radixSort(edges.forward);
+    radixSort(edges.backward);
+    if (stopped())
+    {
+      return SurfaceClosure();
+    }
+    closed = edges.forward == edges.backward;
   }
-  radixSort(forward);
-  radixSort(backward);
-  if (stopped())
-  {
-    return SurfaceClosure();
-  }
-  result.closed = forward == backward;
-  result.volume = result.closed ? volume : 0.0;
+  result.closed = closed;
+  result.volume = result.closed ? edges.volume : 0.0;
   if (result.closed && result.volume != 0.0 && !result.planar)
   {
     result.convex = isConvex(positions, triangles, ids, result.volume > 0.0 ? 1.0 : -1.0);
+  }
+  if (topology)
+  {
+    topology->ids = std::move(ids);
+    topology->triangleDigest = digest;
+    topology->closed = closed;
+    topology->known = true;
   }
   return result;
 }

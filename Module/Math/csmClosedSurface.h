@@ -54,13 +54,28 @@ constexpr double kMaximumConvexityWork = 1.0e6;
 /// or there are 2^32 - 1 positions or more.
 bool weldPositions(const std::vector<glm::dvec3>& positions, std::vector<std::uint32_t>& ids);
 
+/// What classifySurface found of a mesh's connectivity, kept for its next classification. A mesh
+/// whose points move while its triangles and the coincidences of its positions stay (a deforming
+/// structure: the same weld, the same triangles) has the same welded edges, so whether they
+/// balance (closed) is not sorted out again; only the volume, planar and convex, which depend on
+/// the positions, are computed anew.
+struct SurfaceTopology
+{
+  std::vector<std::uint32_t> ids;   ///< the weld (weldPositions) of the last classification
+  std::uint64_t triangleDigest = 0; ///< a digest of its triangles' indices
+  bool closed = false;              ///< its welded edges balance (at least one triangle counted)
+  bool known = false;               ///< the fields above describe a finished classification
+};
+
 /// Classify a triangle mesh (closed, volume, planar, convex). Vertices at bitwise-equal positions
 /// (+0 and -0 alike) are one vertex, so meshes whose points were split for normals or texture seams
 /// still close. Triangles with two equal (welded) corners are ignored; an index out of range or a
 /// non-finite position makes the mesh open (the safe answer: both sides are drawn).
 /// stop: once set (by another thread), the work ends early with an open answer.
+/// topology (optional): the last classification's connectivity, used where the weld and the
+/// triangles are the same (the answer is the same as without it) and updated to this one's.
 SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
   const std::vector<std::array<std::int64_t, 3>>& triangles,
-  const std::atomic<bool>* stop = nullptr);
+  const std::atomic<bool>* stop = nullptr, SurfaceTopology* topology = nullptr);
 
 } // namespace csm

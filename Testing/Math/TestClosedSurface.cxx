@@ -245,3 +245,52 @@ TEST(ClosedSurface, StoppedGivesTheOpenAnswer)
   EXPECT_FALSE(c.closed);
   EXPECT_EQ(c.volume, 0.0);
 }
+
+// A deforming mesh classified with its last topology gets the answers of a fresh classification
+// at every step: points moved together (the same weld), a dent, a corner torn apart and joined
+// again (another weld), a triangle turned (other triangles).
+TEST(ClosedSurface, TheLastTopologyGivesTheFreshAnswers)
+{
+  std::vector<glm::dvec3> p;
+  Triangles t;
+  box(0.0, 1.0, true, p, t);
+  csm::SurfaceTopology topology;
+  const auto same = [&](const char* step)
+  {
+    SCOPED_TRACE(step);
+    const csm::SurfaceClosure fresh = csm::classifySurface(p, t);
+    const csm::SurfaceClosure kept = csm::classifySurface(p, t, nullptr, &topology);
+    EXPECT_EQ(kept.closed, fresh.closed);
+    EXPECT_EQ(kept.volume, fresh.volume);
+    EXPECT_EQ(kept.planar, fresh.planar);
+    EXPECT_EQ(kept.convex, fresh.convex);
+    EXPECT_TRUE(topology.known);
+    EXPECT_EQ(topology.closed, fresh.closed);
+    return fresh;
+  };
+  EXPECT_TRUE(same("first").convex);
+  for (glm::dvec3& q : p) // stretched and moved: every copy of a corner with it
+    q = glm::dvec3(2.0 * q.x + 5.0, q.y - 3.0, 0.5 * q.z);
+  const csm::SurfaceClosure moved = same("moved");
+  EXPECT_TRUE(moved.closed);
+  EXPECT_NEAR(std::abs(moved.volume), 1.0, 1e-12);
+  const glm::dvec3 top = p[t[2][0]]; // a corner of the top face: every copy pushed in
+  for (glm::dvec3& q : p)
+    if (q == top)
+      q.z -= 0.4;
+  const csm::SurfaceClosure dented = same("dented");
+  EXPECT_TRUE(dented.closed);
+  EXPECT_FALSE(dented.convex);
+  const glm::dvec3 before = p[0];
+  p[0] += glm::dvec3(0.25, 0.0, 0.0); // one copy of a corner torn off the others
+  EXPECT_FALSE(same("torn").closed);
+  p[0] = before;
+  EXPECT_TRUE(same("joined again").closed);
+  std::swap(t[0][1], t[0][2]); // one triangle turned: the same weld, other edges
+  EXPECT_FALSE(same("a triangle turned").closed);
+  std::swap(t[0][1], t[0][2]);
+  EXPECT_TRUE(same("turned back").closed);
+  p[3].y = std::numeric_limits<double>::quiet_NaN(); // bad input: open, nothing known
+  EXPECT_FALSE(csm::classifySurface(p, t, nullptr, &topology).closed);
+  EXPECT_FALSE(topology.known);
+}
