@@ -2,6 +2,7 @@
 #include "csmCasterPreparation.h"
 
 #include "csmCasterBlocks.h"
+#include "csmDigest.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
@@ -254,21 +255,7 @@ void digestArray(vtkDataArray* array, std::uint64_t& digest)
   const size_t bytes = array ? static_cast<size_t>(array->GetNumberOfValues()) *
       static_cast<size_t>(array->GetDataTypeSize())
                              : 0;
-  const unsigned char* data =
-    bytes > 0 ? static_cast<const unsigned char*>(array->GetVoidPointer(0)) : nullptr;
-  digest = (digest ^ bytes) * 0x9e3779b97f4a7c15ull;
-  size_t i = 0;
-  for (; i + 8 <= bytes; i += 8)
-  {
-    std::uint64_t word;
-    std::memcpy(&word, data + i, 8);
-    digest = (digest ^ word) * 0x100000001b3ull;
-    digest ^= digest >> 29;
-  }
-  for (; i < bytes; ++i)
-  {
-    digest = (digest ^ data[i]) * 0x100000001b3ull;
-  }
+  csm::digestBytes(bytes > 0 ? array->GetVoidPointer(0) : nullptr, bytes, digest);
 }
 }
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "csmClosedSurface.h"
 
+#include "csmDigest.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -198,21 +200,6 @@ bool isConvex(const std::vector<glm::dvec3>& positions,
   return true;
 }
 
-/// A digest of the triangles' indices (which triangles a mesh has, in order).
-std::uint64_t digestTriangles(const std::vector<std::array<std::int64_t, 3>>& triangles)
-{
-  std::uint64_t digest = 0x9e3779b97f4a7c15ull ^ triangles.size();
-  for (const auto& t : triangles)
-  {
-    for (const std::int64_t i : t)
-    {
-      digest = (digest ^ static_cast<std::uint64_t>(i)) * 0x100000001b3ull;
-      digest ^= digest >> 29;
-    }
-  }
-  return digest;
-}
-
 /// The welded edges of a mesh: a -> b with a < b in forward, those with a > b (stored as b -> a)
 /// in backward (the boundary is empty exactly when the two are equal as multisets), and its
 /// enclosed signed volume over the triangles counted (those of three distinct welded corners).
@@ -290,7 +277,11 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
   {
     return result;
   }
-  const std::uint64_t digest = topology ? digestTriangles(triangles) : 0;
+  std::uint64_t digest = 0; // (of the triangles' indices: which triangles, in order)
+  if (topology)
+  {
+    digestBytes(triangles.data(), triangles.size() * sizeof(triangles[0]), digest);
+  }
   const bool sameEdges = known && topology->triangleDigest == digest && topology->ids == ids;
   WeldedEdges edges;
   if (!walkTriangles(positions, triangles, ids, !sameEdges, stopped, edges) || stopped())

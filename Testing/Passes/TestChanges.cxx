@@ -60,6 +60,18 @@ vtkSmartPointer<vtkImageData> FreshFrame(BoxOverPlane& scene, vtkCascadedShadowM
   scene.Frame();
   return image;
 }
+
+/// Every point of the data moved to (x + dx, y * yScale, z), the points marked modified.
+void MoveEveryPoint(vtkPolyData* data, double dx, double yScale)
+{
+  for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    data->GetPoint(i, p);
+    data->GetPoints()->SetPoint(i, p[0] + dx, p[1] * yScale, p[2]);
+  }
+  data->GetPoints()->Modified();
+}
 } // namespace
 
 // Colours, scalars, lookup tables and material: every map kept, no texel drawn, the frame the
@@ -204,13 +216,7 @@ TEST(Changes, MovedPointsKeepTheBlocksAndReplacedCellsDoNot)
   scene.Frame();
   for (int step = 0; step < 3; ++step)
   {
-    for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
-    {
-      double p[3];
-      data->GetPoint(i, p);
-      data->GetPoints()->SetPoint(i, p[0] + 0.3, p[1] * 1.1, p[2]);
-    }
-    data->GetPoints()->Modified();
+    MoveEveryPoint(data, 0.3, 1.1);
     auto moved = scene.Frame();
     EXPECT_EQ(baker->GetLastFrameStatistics().PreparedBlocks, 0) << step;
     EXPECT_EQ(baker->GetLastFrameStatistics().CompactCasters, 2) << step;
@@ -321,13 +327,7 @@ TEST(Changes, CastersChangingEveryFrameGetMapsFittedToTheView)
   vtkSmartPointer<vtkImageData> deformed;
   for (int step = 0; step < 4; ++step)
   {
-    for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
-    {
-      double p[3];
-      data->GetPoint(i, p);
-      data->GetPoints()->SetPoint(i, p[0], p[1] * (step % 2 ? 1.02 : 0.98), p[2]);
-    }
-    data->GetPoints()->Modified();
+    MoveEveryPoint(data, 0.0, step % 2 ? 1.02 : 0.98);
     deformed = scene.Frame();
     const auto& statistics = baker->GetLastFrameStatistics();
     std::printf("step %d: maps drawn %d, patched %d, texels %.0f of %.0f\n", step,
