@@ -230,6 +230,7 @@ csmCasterCollection::Counts csmCasterCollection::Collect(vtkRenderer* renderer,
   this->FrameNumber = frame;
   this->ViewMoved = viewMoved;
   this->Snapshots.clear(); // (the workers hold theirs)
+  this->AdoptLastBlocks(renderer->GetRenderWindow());
   this->ForgetTheGone(renderer->GetRenderWindow());
   Counts counts;
   const int buildsBefore = this->BlockBuilds;
@@ -319,6 +320,85 @@ vtkPolyData* compactableData(vtkProp* prop)
   return data;
 }
 
+}
+
+void csmCasterCollection::AdoptLastBlocks(vtkWindow* window)
+{
+  // Which props' last blocks serve their new data (addresses only: the last data may be gone,
+  // and its address taken by another prop's new data, which at worst spares nothing here).
+  struct Adoption
+  {
+    vtkPolyData* Last;
+    vtkPolyData* Data;
+    csmCellsKey Cells;
+  };
+  std::vector<Adoption> adoptions;
+  for (const auto& [key, proxy] : this->Proxies)
+  {
+    vtkPolyData* data = key.first == window && proxy.Prop ? compactableData(proxy.Prop) : nullptr;
+    const auto from = this->Blocks.find({ window, proxy.Data });
+    const auto to = this->Blocks.find({ window, data });
+    if (!data || data == proxy.Data || from == this->Blocks.end() || from->second.BlockOf.empty() ||
+      !from->second.Mapper || (to != this->Blocks.end() && to->second.Data == data))
+    {
+      continue;
+    }
+    // (Gone: nobody draws it; alive: its address is its own.)
+    const bool drawsLast = from->second.Data &&
+      std::any_of(this->Proxies.begin(), this->Proxies.end(),
+        [&](const auto& other)
+        {
+          return other.first.first == window && other.second.Prop &&
+            other.second.Prop != proxy.Prop && compactableData(other.second.Prop) == proxy.Data;
+        });
+    const csmCellsKey cells = csmCellsOf(data);
+    if (!drawsLast && cells.SameCells(from->second.Source))
+    {
+      adoptions.push_back({ proxy.Data, data, cells });
+    }
+  }
+  // Taken out first, then put where their new data is, so that one's new key may be another's
+  // last.
+  std::vector<CasterBlocks> taken;
+  for (const Adoption& a : adoptions)
+  {
+    const auto from = this->Blocks.find({ window, a.Last });
+    taken.emplace_back(from != this->Blocks.end() ? std::move(from->second) : CasterBlocks());
+    if (from != this->Blocks.end())
+    {
+      this->Blocks.erase(from);
+    }
+  }
+  for (size_t k = 0; k < adoptions.size(); ++k)
+  {
+    CasterBlocks& blocks = taken[k];
+    CasterBlocks& to = this->Blocks[{ window, adoptions[k].Data }];
+    if (!blocks.Mapper || to.Data == adoptions[k].Data)
+    {
+      this->Retire(blocks.Pending);
+      if (blocks.Mapper)
+      {
+        blocks.Mapper->ReleaseGraphicsResources(window); // (two props took the same data)
+      }
+      continue;
+    }
+    if (to.Mapper && to.Window == window)
+    {
+      to.Mapper->ReleaseGraphicsResources(window); // a gone data's, at the same address
+    }
+    this->Retire(to.Pending);
+    blocks.Data = adoptions[k].Data;
+    blocks.Time = 0;                    // (not current: its boxes follow the points)
+    blocks.Source = adoptions[k].Cells; // (this data's arrays now)
+    blocks.SourceFrame = this->FrameNumber;
+    to = std::move(blocks);
+    const auto closure = this->Closures.find(adoptions[k].Last);
+    Closure& next = this->Closures[adoptions[k].Data];
+    if (closure != this->Closures.end() && next.Data != adoptions[k].Data)
+    {
+      next.Topology = std::move(closure->second.Topology);
+    }
+  }
 }
 
 const csmCasterCollection::Closure& csmCasterCollection::ClassifiedShape(vtkPolyData* data)
@@ -425,13 +505,15 @@ int csmCasterCollection::ClosureOf(vtkProp* prop, bool cullClosed)
 }
 
 bool csmCasterCollection::FollowPoints(
-  CasterBlocks& blocks, vtkPolyData* data, vtkMTimeType dataTime)
+  CasterBlocks& blocks, vtkPolyData* data, vtkMTimeType dataTime) const
 {
   // Only the points moved (the same cells of as many points: a deforming mesh, a time step
   // that edits its positions): the blocks keep their triangles, their boxes follow the points.
   vtkPolyData* input = blocks.Mapper ? blocks.Mapper->GetInput() : nullptr;
   std::vector<std::array<double, 6>> bounds;
-  if (!input || blocks.BlockOf.empty() || !(csmCellsOf(data) == blocks.Source) ||
+  const bool sameCells =
+    blocks.SourceFrame == this->FrameNumber || csmCellsOf(data) == blocks.Source;
+  if (!input || blocks.BlockOf.empty() || !sameCells ||
     !csmBlockBounds(data, blocks.BlockOf, blocks.Cells.size(), bounds))
   {
     return false;
@@ -455,7 +537,7 @@ bool csmCasterCollection::PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindo
   // (Prepared for this very data, into blocks or into nothing usable.)
   const bool current = blocks.Data == data && blocks.Window == window && blocks.Time == dataTime;
   if (!current && blocks.Data == data && blocks.Window == window &&
-    csmCasterCollection::FollowPoints(blocks, data, dataTime))
+    this->FollowPoints(blocks, data, dataTime))
   {
     return blocks.Mapper->HasTriangles();
   }

@@ -151,6 +151,11 @@ private:
   /// there are none to draw.
   bool PreparedBlocks(vtkPolyData* data, vtkOpenGLRenderWindow* window);
   void ForgetTheGone(vtkWindow* window);
+  /// A prop whose mapper took other data (a reader's next time step, a new polydata set as its
+  /// input) of the same cells as the data it drew last keeps that data's blocks in this window
+  /// (their boxes follow the new points) and hands that data's classification topology on, where
+  /// no other prop in the window still draws the last data.
+  void AdoptLastBlocks(vtkWindow* window);
 
   /// A worker thread's preparation of a big mesh: its result to come, the flag that stops it
   /// early, and the data time it was started for.
@@ -225,13 +230,14 @@ private:
     /// (the same cells with moved points keep the blocks, their boxes computed again).
     std::vector<std::uint8_t> BlockOf;
     csmCellsKey Source;
+    long long SourceFrame = -1; ///< the frame Source was read from the data in (adopted blocks)
     Preparation<csmPreparedBlocks> Pending;
     Pace Paced;
   };
   std::map<std::pair<vtkWindow*, vtkPolyData*>, CasterBlocks> Blocks;
   /// Blocks prepared from the data's cells kept for its moved points, their boxes computed
   /// again (false: the cells changed, or the blocks were not prepared at once).
-  static bool FollowPoints(CasterBlocks& blocks, vtkPolyData* data, vtkMTimeType dataTime);
+  bool FollowPoints(CasterBlocks& blocks, vtkPolyData* data, vtkMTimeType dataTime) const;
   /// The actor that draws a prop's blocks in one window (its property, a copy of its matrix).
   struct CasterProxy
   {

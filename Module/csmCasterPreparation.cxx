@@ -247,6 +247,12 @@ bool csmCellsKey::operator==(const csmCellsKey& other) const
     this->Points == other.Points && this->Digest == other.Digest;
 }
 
+bool csmCellsKey::SameCells(const csmCellsKey& other) const
+{
+  return this->PolyCount == other.PolyCount && this->StripCount == other.StripCount &&
+    this->Points == other.Points && this->Digest == other.Digest;
+}
+
 namespace
 {
 /// A digest of an array's bytes (its values as stored), folded into `digest`.

@@ -48,6 +48,8 @@ struct csmCellsKey
   vtkIdType PolyCount = 0, StripCount = 0, Points = 0;
   std::uint64_t Digest = 0;
   bool operator==(const csmCellsKey& other) const;
+  /// The same counts and digest, whichever arrays hold them (another polydata's cells).
+  bool SameCells(const csmCellsKey& other) const;
 };
 csmCellsKey csmCellsOf(vtkPolyData* data);
 

@@ -16,6 +16,7 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -71,6 +72,21 @@ void MoveEveryPoint(vtkPolyData* data, double dx, double yScale)
     data->GetPoints()->SetPoint(i, p[0] + dx, p[1] * yScale, p[2]);
   }
   data->GetPoints()->Modified();
+}
+
+/// The first polygon replaced in place by the same face from its next corner: other point ids
+/// (no count, no array time changed), the same shadow.
+void TurnFirstFace(vtkPolyData* data)
+{
+  vtkNew<vtkIdList> face;
+  data->GetPolys()->GetCellAtId(0, face);
+  const vtkIdType first = face->GetId(0);
+  for (vtkIdType k = 0; k + 1 < face->GetNumberOfIds(); ++k)
+  {
+    face->SetId(k, face->GetId(k + 1));
+  }
+  face->SetId(face->GetNumberOfIds() - 1, first);
+  data->GetPolys()->ReplaceCellAtId(0, face);
 }
 } // namespace
 
@@ -224,22 +240,69 @@ TEST(Changes, MovedPointsKeepTheBlocksAndReplacedCellsDoNot)
     EXPECT_EQ(DifferingValues(FreshFrame(scene, fresh), moved), 0) << step;
     baker = fresh;
   }
-  // (The same face from its next corner: other point ids, the same shadow.)
-  vtkNew<vtkIdList> face;
-  data->GetPolys()->GetCellAtId(0, face);
-  const vtkIdType first = face->GetId(0);
-  for (vtkIdType k = 0; k + 1 < face->GetNumberOfIds(); ++k)
-  {
-    face->SetId(k, face->GetId(k + 1));
-  }
-  face->SetId(face->GetNumberOfIds() - 1, first);
-  data->GetPolys()->ReplaceCellAtId(0, face);
+  TurnFirstFace(data);
   data->Modified();
   auto replaced = scene.Frame();
   EXPECT_EQ(baker->GetLastFrameStatistics().PreparedBlocks, 1);
   EXPECT_GT(baker->GetLastFrameStatistics().TexelsRendered, 0.0); // the maps drawn again
   vtkCascadedShadowMapBakerPass* fresh = nullptr;
   EXPECT_EQ(DifferingValues(FreshFrame(scene, fresh), replaced), 0);
+}
+
+// A new polydata each step (a reader's next time step, set as the mapper's input) of the same
+// cells as the last keeps the last one's compact blocks, their boxes where the new points are (the
+// frame a fresh chain draws); one of other cells prepares them anew; and a prop still drawing the
+// last data keeps blocks of its own.
+TEST(Changes, ANewPolyDataOfTheSameCellsKeepsTheBlocks)
+{
+  BoxOverPlane scene;
+  vtkPolyDataMapper* mapper = vtkPolyDataMapper::SafeDownCast(scene.Box->GetMapper());
+  ASSERT_NE(mapper, nullptr);
+  vtkPolyData* first = AddField(scene);
+  vtkCascadedShadowMapBakerPass* baker =
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  scene.Frame();
+  scene.Frame();
+  vtkSmartPointer<vtkPolyData> last = first;
+  for (int step = 0; step < 3; ++step)
+  {
+    auto next = vtkSmartPointer<vtkPolyData>::New();
+    next->DeepCopy(last);
+    MoveEveryPoint(next, 0.3, 1.1);
+    mapper->SetInputData(next);
+    last = nullptr; // (the last step's data is gone, as a reader's)
+    last = next;
+    auto stepped = scene.Frame();
+    EXPECT_EQ(baker->GetLastFrameStatistics().PreparedBlocks, 0) << step;
+    EXPECT_EQ(baker->GetLastFrameStatistics().CompactCasters, 2) << step;
+    EXPECT_GT(baker->GetLastFrameStatistics().TexelsRendered, 0.0) << step;
+    vtkCascadedShadowMapBakerPass* fresh = nullptr;
+    EXPECT_EQ(DifferingValues(FreshFrame(scene, fresh), stepped), 0) << step;
+    baker = fresh;
+  }
+  // Other cells (a face from its next corner): prepared anew.
+  auto turned = vtkSmartPointer<vtkPolyData>::New();
+  turned->DeepCopy(last);
+  TurnFirstFace(turned);
+  mapper->SetInputData(turned);
+  scene.Frame();
+  EXPECT_EQ(baker->GetLastFrameStatistics().PreparedBlocks, 1);
+  // A second box drawing that data while the first takes moved copies: each keeps its shadow.
+  vtkNew<vtkPolyDataMapper> secondMapper;
+  secondMapper->SetInputData(turned);
+  vtkNew<vtkActor> second;
+  second->SetMapper(secondMapper);
+  second->SetPosition(4.0, 0.0, 0.0);
+  scene.Renderer->AddActor(second);
+  scene.Frame();
+  auto moved = vtkSmartPointer<vtkPolyData>::New();
+  moved->DeepCopy(turned);
+  MoveEveryPoint(moved, -0.3, 0.9);
+  mapper->SetInputData(moved);
+  auto both = scene.Frame();
+  EXPECT_EQ(baker->GetLastFrameStatistics().PreparedBlocks, 1); // the first box's new data
+  vtkCascadedShadowMapBakerPass* fresh = nullptr;
+  EXPECT_EQ(DifferingValues(FreshFrame(scene, fresh), both), 0);
 }
 
 // A frame like the last one (the same view, nothing changed; a screenshot's second render):
