@@ -247,8 +247,8 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   }
   // The kernel, its size (for few lights) and the debug view are compiled into the lookup (see
   // csmShadowFS.glsl).
-  signature +=
-    " kernel " + std::to_string(this->PCFKernel) + " debug " + std::to_string(this->DebugMode);
+  signature += " kernel " + std::to_string(this->PCFKernel) + " debug " +
+    std::to_string(this->DebugMode) + (this->SingleMapShaders() ? " single map" : "");
 #if CSM_COMPARISON_TECHNIQUES
   signature += std::string(u.Faces ? " faces" : "") + (u.CameraSpace ? " camera space" : "");
 #endif
@@ -295,6 +295,19 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
     maps.Atlas->Deactivate();
   }
   vtkOpenGLCheckErrorMacro("failed after rendering with cascaded shadows");
+}
+
+bool vtkCascadedShadowMapPass::SingleMapShaders() const
+{
+  const ShaderUniforms& u = this->Uniforms;
+#if CSM_COMPARISON_TECHNIQUES
+  if (u.Faces)
+  {
+    return false; // (face partitions choose their map by half-spaces)
+  }
+#endif
+  return this->SingleMapLookup &&
+    std::all_of(u.Count.begin(), u.Count.end(), [](int count) { return count <= 1; });
 }
 
 int vtkCascadedShadowMapPass::BindNearest(vtkOpenGLRenderWindow* window, vtkTextureObject* atlas)
@@ -381,7 +394,8 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   // of DrawShadowed rebuilds the shaders when that set changes).
   const bool fromBehind =
     this->ShadowMapBakerPass && prop && this->ShadowMapBakerPass->DrawsFromBehind(prop);
-  decl << "#define CSM_PLANE_TAPS " << (fromBehind ? 1 : 0) << "\n";
+  decl << "#define CSM_PLANE_TAPS " << (fromBehind ? 1 : 0) << "\n"
+       << "#define CSM_SINGLE_MAP " << (this->SingleMapShaders() ? 1 : 0) << "\n";
   const int screen =
     impostor || !screenCapable(fragmentShader, prop) ? csmScreenCache::OFF : this->ScreenMode;
   decl << "#define CSM_SCREEN " << screen << "\n"
@@ -736,6 +750,7 @@ void vtkCascadedShadowMapPass::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ShadowDarkness: " << this->ShadowDarkness << "\n";
   os << indent << "DebugMode: " << this->DebugMode << "\n";
   os << indent << "ReuseShadowFactors: " << (this->ReuseShadowFactors ? "on" : "off") << "\n";
+  os << indent << "SingleMapLookup: " << (this->SingleMapLookup ? "on" : "off") << "\n";
   os << indent << "ShadowMapBakerPass: " << this->ShadowMapBakerPass << "\n";
   if (this->ShadowMapBakerPass)
   {

@@ -143,6 +143,17 @@ public:
   vtkGetMacro(ReuseShadowFactors, bool);
   vtkBooleanMacro(ReuseShadowFactors, bool);
   ///@}
+
+  ///@{
+  /// While every shadowed light has at most one map (a scene-fitted map kept across an orbit, a
+  /// single cascade), the lookup is compiled without the choice of a cascade: the same image for
+  /// less work a pixel. Off: one lookup whatever the count, so that no prop's shader is rebuilt
+  /// when a light's count goes to or from one. On.
+  vtkSetMacro(SingleMapLookup, bool);
+  vtkGetMacro(SingleMapLookup, bool);
+  vtkBooleanMacro(SingleMapLookup, bool);
+  ///@}
+
   /// Did the last frame read its shadow factors from the frame before it (no lookup)? Did it
   /// store them for the next (which a renderer whose stored factors went unread does only in a
   /// frame drawn as its last one)?
@@ -195,6 +206,7 @@ protected:
   double ShadowDarkness = 1.0;
   int DebugMode = DEBUG_OFF;
   bool ReuseShadowFactors = true;
+  bool SingleMapLookup = true;
 
   /// What the shader needs this frame, packed as its uniform arrays (light j's cascade c at
   /// 8 j + c): filled once per frame in Render(), only uploaded per draw.
@@ -222,6 +234,9 @@ protected:
 #endif
   };
   ShaderUniforms Uniforms;
+  /// The lookup without the cascade choice this frame (SingleMapLookup, every light's count at
+  /// most one)?
+  bool SingleMapShaders() const;
   /// The units Render() bound the atlases to for NearestUnit, and their sampler object.
   std::vector<int> NearestUnits;
   unsigned int NearestSampler = 0;

@@ -18,6 +18,9 @@
 #ifndef CSM_PLANE_TAPS
 #define CSM_PLANE_TAPS 0
 #endif
+#ifndef CSM_SINGLE_MAP
+#define CSM_SINGLE_MAP 0
+#endif
 
 // The factors at the fragment's pixel (csmScreenCache.h), CSM_SCREEN: CSM_SCREEN_OFF the lookup
 // alone; CSM_SCREEN_STORE the lookup, each light's factor written at the pixel (the fragment is
@@ -376,9 +379,20 @@ vec4 csmShadowIn(
 }
 
 // Shadow of light j at view position vc with screen derivatives dvcdx, dvcdy (w = 0): the map
-// coordinates of the two candidate cascades by matrix products in the fragment.
+// coordinates of the two candidate cascades by matrix products in the fragment. With
+// CSM_SINGLE_MAP (#defined 1 by the pass while every shadowed light has at most one map) the
+// one map's, and no choice: the same answer for less work a fragment.
 vec4 csmShadow(sampler2DShadow map, sampler2DShadow nearest, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
 {
+#if CSM_SINGLE_MAP
+  int only = j * CSM_MAX_CASCADES;
+  float depth = -vc.z;
+  mat4 toMap = csmToMap[only];
+  vec4 h = toMap * vc;
+  bool inside = csmCount[j] > 0 && depth >= csmSplitNear[j] && depth <= csmSplitFar[only];
+  return csmShadowIn(map, nearest, j, inside && csmCovers(h) ? 0 : -1, h,
+    csmDisplacement(toMap, dvcdx.xyz), csmDisplacement(toMap, dvcdy.xyz));
+#else
   int c, next;
   bool blend;
   bool inside = csmCascadeAt(j, vc, c, next, blend);
@@ -392,6 +406,7 @@ vec4 csmShadow(sampler2DShadow map, sampler2DShadow nearest, int j, vec4 vc, vec
   mat4 toChosen = takeNext ? toNext : toThis;
   return csmShadowIn(map, nearest, j, chosen, takeNext ? hNext : hThis,
     csmDisplacement(toChosen, dvcdx.xyz), csmDisplacement(toChosen, dvcdy.xyz));
+#endif
 }
 
 

@@ -155,6 +155,42 @@ TEST(Passes, SceneFittedMapServesEveryViewOfAnOrbit)
   EXPECT_GE(baker->GetLastFrameStatistics().CascadesRendered, 1);
 }
 
+// While the light has one map, the lookup compiled without the cascade choice
+// (SingleMapLookup) shades every pixel as the lookup with the choice does, along an orbit and
+// with more maps; the shadow is there.
+TEST(Passes, TheSingleMapLookupShadesAsTheChoiceDoes)
+{
+  BoxOverPlane scene;
+  auto plain = scene.Frame();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  pass->ReuseShadowFactorsOff();           // (every frame makes the lookup)
+  EXPECT_TRUE(pass->GetSingleMapLookup()); // the default
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  for (int cascades : { 1, 3 })
+  {
+    if (cascades > 1)
+    {
+      baker->GetPlanner()->SetNumberOfCascades(cascades);
+      baker->GetPlanner()->AdaptiveCascadesOff();
+    }
+    for (int frame = 0; frame < 4; ++frame)
+    {
+      scene.Renderer->GetActiveCamera()->Azimuth(frame == 0 ? 0.0 : 20.0);
+      pass->SingleMapLookupOn();
+      auto single = scene.Frame();
+      EXPECT_EQ(baker->GetLightMaps().at(0).GetNumberOfCascades(), cascades) << frame;
+      pass->SingleMapLookupOff();
+      auto chosen = scene.Frame();
+      EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, 0) << frame; // the same maps
+      EXPECT_EQ(DifferingValues(single, chosen, 0), 0) << cascades << " maps, frame " << frame;
+      if (cascades == 1 && frame == 0)
+      {
+        EXPECT_GT(DarkenedPixels(single, plain), 500);
+      }
+    }
+  }
+}
+
 // Resolution from need: a view that full maps oversample gets the maps its
 // predicted error needs, and the shadow stays; ErrorTarget 0 renders every map at Resolution.
 TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
