@@ -55,6 +55,9 @@ struct csmRendererMaps
   int LastShadowingLights = 0;
   /// Frames in a row in which some casters changed (csmFrameCasters::Dirty).
   int CastersChangedFrames = 0;
+  /// The last planned frame was planned as one of casters that change every frame (frames drawn
+  /// as the last one since keep its maps): the next change continues it.
+  bool PlannedAsChanging = false;
   vtkCascadedShadows::FrameStatistics LastPlanStatistics;
 };
 

@@ -50,9 +50,11 @@ constexpr int kPatchMarginTexels = 1;
 /// A map kept as it was where casters changed (props.Dirty; KeptMapServes keeps no other then):
 /// the texels their boxes cover, drawn again (MapAction::Patch); drawn whole where they cover as
 /// many texels as the map.
-void PatchChangedCasters(const csmFrameCasters& props, CascadeMap& map)
+/// The texels of a kept map that the changed casters' boxes cover (each box's rectangle, with
+/// kPatchMarginTexels), the rectangles appended to patches where given.
+double ChangedTexels(
+  const csmFrameCasters& props, const CascadeMap& map, std::vector<csm::TexelRect>* patches)
 {
-  map.Patches.clear();
   const csm::MapSize size(map.Resolution[0], map.Resolution[1]);
   const glm::dmat4 wsToClip = csmFromRowMajor(map.WorldToMap);
   double texels = 0.0;
@@ -62,11 +64,40 @@ void PatchChangedCasters(const csmFrameCasters& props, CascadeMap& map)
       csm::boxTexels(wsToClip, csm::Bounds::fromMinMaxPairs(box.data()), size, kPatchMarginTexels);
     if (rect[2] > 0 && rect[3] > 0)
     {
-      map.Patches.push_back(rect);
+      if (patches)
+      {
+        patches->push_back(rect);
+      }
       texels += double(rect[2]) * double(rect[3]);
     }
   }
-  if (texels >= double(size.width) * double(size.height))
+  return texels;
+}
+
+/// Would the changed casters draw a kept scene-fitted map whole? Then this first frame of
+/// changed casters is planned as one of casters that change every frame (maps fitted to the
+/// view): a time series stepped one step at a time draws those, not the scene-fitted map, a step.
+bool SceneFittedMapDrawnWhole(const csmFrameCasters& props, const std::vector<LightMaps>& kept)
+{
+  for (const LightMaps& maps : kept)
+  {
+    for (const CascadeMap& map : maps.Cascades)
+    {
+      if (map.IsSceneFitted() &&
+        ChangedTexels(props, map, nullptr) >= double(map.Resolution[0]) * map.Resolution[1])
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+void PatchChangedCasters(const csmFrameCasters& props, CascadeMap& map)
+{
+  map.Patches.clear();
+  const double texels = ChangedTexels(props, map, &map.Patches);
+  if (texels >= double(map.Resolution[0]) * map.Resolution[1])
   {
     map.Patches.clear();
     map.Action = MapAction::Draw;
@@ -182,7 +213,11 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
   }
   props.FeedPlanner(this->Planner);
   state.CastersChangedFrames = props.Dirty.empty() ? 0 : state.CastersChangedFrames + 1;
-  this->Planner->SetCastersChanging(state.CastersChangedFrames >= kChangingFrames);
+  this->Statistics.CastersChanging = state.CastersChangedFrames >= kChangingFrames ||
+    (state.CastersChangedFrames == 1 &&
+      (state.PlannedAsChanging || SceneFittedMapDrawnWhole(props, state.Maps)));
+  state.PlannedAsChanging = this->Statistics.CastersChanging;
+  this->Planner->SetCastersChanging(this->Statistics.CastersChanging);
   // Plan every shadowed light for this frame, and decide per cascade whether the map kept from
   // an earlier frame still serves (only the camera moved, it covers, its error is bounded).
   // While the user interacts (VTK's convention: the interactor raises the window's desired

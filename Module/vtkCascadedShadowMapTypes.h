@@ -132,6 +132,10 @@ struct FrameStatistics
   /// Planned as the last frame: the same view, lights and props (colours, scalars and
   /// materials aside), every map kept as it was (csmLightPlanning::LastPlanStands).
   bool AsLastFrame = false;
+  /// Planned as a frame of casters that change every frame: maps fitted to the view, no
+  /// scene-fitted map (the second frame in a row with changed casters, or a first one whose
+  /// changes would draw a kept scene-fitted map whole; as SceneFittedCascades off).
+  bool CastersChanging = false;
   /// Casters (or blocks) the visible-depth pass left out, small on the image for their
   /// triangles: their boxes stand in for their samples (csm::boxStandIn).
   int DepthPassStandIns = 0;

@@ -52,6 +52,7 @@ struct ChangeOptions
   int Rounds = 2;
   int Size[2] = { 640, 480 };
   bool Accuracy = true;
+  bool StepByStep = false; ///< an untimed still frame after each step (a user stepping a series)
   std::string Out = "changes.csv";
 };
 
@@ -243,7 +244,7 @@ struct Timed
 /// One technique through the steps of one change: two renders first (not timed), then each
 /// step's change and its timed render.
 void timeSteps(ChangingScene& s, Change c, vtkRenderer* renderer, vtkRenderWindow* window,
-  const csmScenes::ShadowOptions& options, int steps, Timed& t)
+  const csmScenes::ShadowOptions& options, int steps, bool stepByStep, Timed& t)
 {
   const csmScenes::Installed passes = csmScenes::InstallTechnique(renderer, options);
   vtkCascadedShadowMapBakerPass* baker =
@@ -263,6 +264,8 @@ void timeSteps(ChangingScene& s, Change c, vtkRenderer* renderer, vtkRenderWindo
     ++t.Steps;
     if (baker)
       t.Texels += baker->GetLastFrameStatistics().TexelsRendered;
+    if (stepByStep)
+      window->Render(); // (the user looks at the step: a still frame, not timed)
   }
   restore(s, c);
   if (vtkRenderPass* chain = renderer->GetPass())
@@ -331,6 +334,8 @@ ChangeOptions parseChanges(int argc, char** argv)
     }
     else if (f == "--no-accuracy")
       o.Accuracy = false;
+    else if (f == "--step-by-step")
+      o.StepByStep = true;
     else if ((f == "--scenes" || f == "--steps" || f == "--rounds" || f == "--out" ||
                f == "--size") &&
       !hasValue)
@@ -449,7 +454,7 @@ std::vector<std::vector<Timed>> timeChanges(ChangingScene& s, vtkRenderer* rende
       continue;
     for (int round = 0; round < o.Rounds; ++round)
       for (size_t t = 0; t < techniques.size(); ++t)
-        timeSteps(s, c, renderer, window, techniques[t], o.Steps, timed.back()[t]);
+        timeSteps(s, c, renderer, window, techniques[t], o.Steps, o.StepByStep, timed.back()[t]);
   }
   return timed;
 }
@@ -527,7 +532,7 @@ std::string csmChanges::Usage()
   char text[1400];
   std::snprintf(text, sizeof(text),
     "csm-bench --changes [--scenes a,b,...] [--steps N] [--rounds N] [--size WxH]\n"
-    "                    [--out FILE.csv] [--no-accuracy]\n"
+    "                    [--out FILE.csv] [--no-accuracy] [--step-by-step]\n"
     "Data that changes while the camera stays at the scene's default view, each actor coloured\n"
     "by a point field: nothing, a new colour on every actor, new scalars on every actor, one\n"
     "part moved, every point moved (a deforming structure), a new polydata for every actor (a\n"
@@ -541,7 +546,9 @@ std::string csmChanges::Usage()
     "  --rounds N    rounds of every change, 1..100 [%d]\n"
     "  --size WxH    the window, 64..4096 each [%dx%d]\n"
     "  --out FILE    the CSV written [%s]\n"
-    "  --no-accuracy without the misclassified pixels\n",
+    "  --no-accuracy without the misclassified pixels\n"
+    "  --step-by-step a still frame (not timed) after every step, as a user who steps a\n"
+    "                time series and looks at each step\n",
     o.Steps, o.Rounds, o.Size[0], o.Size[1], o.Out.c_str());
   return text;
 }
