@@ -47,9 +47,6 @@ constexpr int kChangingFrames = 2;
 /// triangle's edge to the texel centres it covers, never beyond the next texel).
 constexpr int kPatchMarginTexels = 1;
 
-/// A map kept as it was where casters changed (props.Dirty; KeptMapServes keeps no other then):
-/// the texels their boxes cover, drawn again (MapAction::Patch); drawn whole where they cover as
-/// many texels as the map.
 /// The texels of a kept map that the changed casters' boxes cover (each box's rectangle, with
 /// kPatchMarginTexels), the rectangles appended to patches where given.
 double ChangedTexels(
@@ -93,6 +90,9 @@ bool SceneFittedMapDrawnWhole(const csmFrameCasters& props, const std::vector<Li
   return false;
 }
 
+/// A map kept as it was where casters changed (props.Dirty; KeptMapServes keeps no other then):
+/// the texels their boxes cover, drawn again (MapAction::Patch); drawn whole where they cover as
+/// many texels as the map.
 void PatchChangedCasters(const csmFrameCasters& props, CascadeMap& map)
 {
   map.Patches.clear();

@@ -133,8 +133,9 @@ struct FrameStatistics
   /// materials aside), every map kept as it was (csmLightPlanning::LastPlanStands).
   bool AsLastFrame = false;
   /// Planned as a frame of casters that change every frame: maps fitted to the view, no
-  /// scene-fitted map (the second frame in a row with changed casters, or a first one whose
-  /// changes would draw a kept scene-fitted map whole; as SceneFittedCascades off).
+  /// scene-fitted map (the second frame in a row with changed casters, a first one whose changes
+  /// would draw a kept scene-fitted map whole, or the next change after a frame planned so; as
+  /// SceneFittedCascades off).
   bool CastersChanging = false;
   /// Casters (or blocks) the visible-depth pass left out, small on the image for their
   /// triangles: their boxes stand in for their samples (csm::boxStandIn).

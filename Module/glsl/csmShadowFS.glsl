@@ -10,7 +10,8 @@
 // lights are shadowed; in a build with the comparison techniques, CSM_FACES and
 // CSM_CAMERA_SPACE where a light's maps need their lookup (csmComparisonFS.glsl, which the pass
 // puts before this file); CSM_PLANE_TAPS 1 in the shaders of surfaces drawn into the maps from
-// behind (each texel compared at its own receiver-plane depth), 0 or undefined elsewhere. Every
+// behind (each texel compared at its own receiver-plane depth), 0 or undefined elsewhere;
+// CSM_SINGLE_MAP 1 while every shadowed light has at most one map (csmShadow). Every
 // fragment makes one map lookup: a software rasterizer runs both sides of a branch, so options
 // that a uniform would switch at run time are compiled in or out instead. The kernel radius is a
 // constant where it can be (the loops unroll, the tap weights fold); with many shadowed lights the
