@@ -47,9 +47,10 @@ constexpr int kChangingFrames = 2;
 /// triangle's edge to the texel centres it covers, never beyond the next texel).
 constexpr int kPatchMarginTexels = 1;
 
-/// The texels of a kept map that the changed casters' boxes cover (each box's rectangle, with
-/// kPatchMarginTexels), the rectangles appended to patches where given.
-double ChangedTexels(
+/// Do the changed casters' boxes (each box's rectangle, with kPatchMarginTexels) cover as many
+/// texels as a kept map has, so that it is drawn whole? The rectangles are appended to patches
+/// where given.
+bool ChangesDrawWhole(
   const csmFrameCasters& props, const CascadeMap& map, std::vector<csm::TexelRect>* patches)
 {
   const csm::MapSize size(map.Resolution[0], map.Resolution[1]);
@@ -68,7 +69,7 @@ double ChangedTexels(
       texels += double(rect[2]) * double(rect[3]);
     }
   }
-  return texels;
+  return texels >= double(size.width) * double(size.height);
 }
 
 /// Would the changed casters draw a kept scene-fitted map whole? Then this first frame of
@@ -80,8 +81,7 @@ bool SceneFittedMapDrawnWhole(const csmFrameCasters& props, const std::vector<Li
   {
     for (const CascadeMap& map : maps.Cascades)
     {
-      if (map.IsSceneFitted() &&
-        ChangedTexels(props, map, nullptr) >= double(map.Resolution[0]) * map.Resolution[1])
+      if (map.IsSceneFitted() && ChangesDrawWhole(props, map, nullptr))
       {
         return true;
       }
@@ -96,8 +96,7 @@ bool SceneFittedMapDrawnWhole(const csmFrameCasters& props, const std::vector<Li
 void PatchChangedCasters(const csmFrameCasters& props, CascadeMap& map)
 {
   map.Patches.clear();
-  const double texels = ChangedTexels(props, map, &map.Patches);
-  if (texels >= double(map.Resolution[0]) * map.Resolution[1])
+  if (ChangesDrawWhole(props, map, &map.Patches))
   {
     map.Patches.clear();
     map.Action = MapAction::Draw;
