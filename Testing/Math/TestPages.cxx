@@ -1,0 +1,233 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Light-space pages: the levels that bring the scene-fitted map to the error target, the pages
+// a view's samples read, each page's clip space, and the pages kept in the pool across frames.
+#include "csmPages.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace
+{
+/// An orthographic base map of a world square `side` wide (x across s, z across t, y depth).
+glm::dmat4 baseClip(double side)
+{
+  return glm::ortho(-side / 2, side / 2, -side / 2, side / 2, -side, side) *
+    glm::lookAt(glm::dvec3(0.0), glm::dvec3(0.0, -1.0, 0.0), glm::dvec3(0.0, 0.0, -1.0));
+}
+
+const double kPixel = 2.0 * std::tan(glm::radians(30.0)) / 480.0; // 60 degrees, 480 rows
+
+/// Window NDC -> base [0, 1]^2: x and y straight across (the depth does not move a sample).
+glm::dmat4 straightAcross()
+{
+  glm::dmat4 m(0.0);
+  m[0][0] = 0.5;
+  m[1][1] = 0.5;
+  m[3][0] = 0.5;
+  m[3][1] = 0.5;
+  m[3][3] = 1.0;
+  return m;
+}
+
+std::vector<csm::PageKey> pagesOfLevel(const std::vector<csm::PageKey>& pages, int level)
+{
+  std::vector<csm::PageKey> of;
+  for (const csm::PageKey& page : pages)
+  {
+    if (page.level == level)
+    {
+      of.push_back(page);
+    }
+  }
+  return of;
+}
+} // namespace
+
+TEST(Pages, LevelsHalveTheTexelEachOctaveOfDepthDownToTheNearestSample)
+{
+  // 100 world units over 2048 texels: a texel of 0.048828125 meets 0.7 at D_0 = t / (0.7 p).
+  csm::PageLevels levels;
+  ASSERT_TRUE(csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, 1.0, levels));
+  const double baseDepth = (100.0 / 2048.0) / (0.7 * kPixel);
+  EXPECT_NEAR(levels.baseDepth, baseDepth, 1e-9 * baseDepth);
+  EXPECT_EQ(levels.count, static_cast<int>(std::ceil(std::log2(baseDepth / 1.0))));
+  EXPECT_EQ(levels.baseTexels, glm::dvec2(2048.0));
+  EXPECT_EQ(levels.texels(3), glm::dvec2(16384.0));
+  // Level k serves fineness (k - 1, k]: at D_0 / 2^k the texel of level k meets the target.
+  EXPECT_EQ(levels.levelAt(levels.fineness(baseDepth)), 0);
+  EXPECT_EQ(levels.levelAt(levels.fineness(baseDepth * 0.99)), 1);
+  EXPECT_EQ(levels.levelAt(levels.fineness(baseDepth / 2.0)), 1);
+  EXPECT_EQ(levels.levelAt(levels.fineness(baseDepth / 2.01)), 2);
+  EXPECT_EQ(levels.levelAt(levels.fineness(1e-9)), levels.count); // the finest serves nearer
+  EXPECT_EQ(levels.levelAt(std::numeric_limits<double>::quiet_NaN()), 0);
+  // The view never nearer than D_0: no level.
+  ASSERT_TRUE(
+    csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth * 2.0, levels));
+  EXPECT_EQ(levels.count, 0);
+}
+
+TEST(Pages, LevelsAreRefusedForBadInputAndBeyondTheFinestLevel)
+{
+  csm::PageLevels levels;
+  const double baseDepth = (100.0 / 2048.0) / (0.7 * kPixel);
+  EXPECT_TRUE(
+    csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 256.0, levels));
+  EXPECT_EQ(levels.count, csm::kMaxPageLevels);
+  EXPECT_FALSE(
+    csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 300.0, levels));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, nan, levels));
+  EXPECT_FALSE(csm::pageLevels(baseClip(100.0), csm::MapSize(2048), nan, 0.7, 1.0, levels));
+  EXPECT_FALSE(csm::pageLevels(baseClip(100.0), csm::MapSize(0), kPixel, 0.7, 1.0, levels));
+  EXPECT_FALSE(csm::pageLevels(baseClip(nan), csm::MapSize(2048), kPixel, 0.7, 1.0, levels));
+  const glm::dmat4 perspective = glm::perspective(1.0, 1.0, 0.1, 10.0);
+  EXPECT_FALSE(csm::pageLevels(perspective, csm::MapSize(2048), kPixel, 0.7, 1.0, levels));
+  EXPECT_EQ(levels.count, 0);
+}
+
+TEST(Pages, APageIsItsLevelsTexelsWithABorderAtTheBaseMapsDepth)
+{
+  csm::PageLevels levels;
+  ASSERT_TRUE(csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, 1.0, levels));
+  const glm::dmat4 base = baseClip(100.0);
+  const csm::PageKey page{ 2, 5, 7 };
+  const glm::dmat4 clip = csm::pageClip(base, levels, page);
+  // The world point at level 2's texel (5 * 248, 7 * 248) (the page's first own texel corner)
+  // lies kPageBorder texels inside the page's clip square; its depth is the base's.
+  const glm::dvec2 texels = levels.texels(2);
+  const glm::dvec2 u(5.0 * csm::kPageInterior, 7.0 * csm::kPageInterior);
+  const glm::dvec2 ndc = 2.0 * u / texels - 1.0;
+  const glm::dvec4 world = glm::inverse(base) * glm::dvec4(ndc, 0.25, 1.0);
+  const glm::dvec4 inPage = clip * world;
+  const double border = -1.0 + 2.0 * csm::kPageBorder / csm::kPageTexels;
+  EXPECT_NEAR(inPage.x, border, 1e-9);
+  EXPECT_NEAR(inPage.y, border, 1e-9);
+  EXPECT_NEAR(inPage.z, 0.25, 1e-12);
+  EXPECT_EQ(inPage.w, 1.0);
+  // One texel of the level is 2 / 256 of the page's clip span.
+  const glm::dvec4 next = clip *
+    (glm::inverse(base) * glm::dvec4(2.0 * (u + glm::dvec2(1.0, 0.0)) / texels - 1.0, 0.25, 1.0));
+  EXPECT_NEAR(next.x - inPage.x, 2.0 / csm::kPageTexels, 1e-9);
+}
+
+TEST(Pages, SamplesMarkThePagesOfTheirLevelAndOfTheBandAndEdges)
+{
+  // A base of 256 texels: level 2 has 1024 texels a side, 5 pages of 248.
+  csm::PageLevels levels;
+  levels.baseTexels = glm::dvec2(256.0);
+  levels.baseDepth = 100.0;
+  levels.count = 3;
+  const double vsNear = 1.0, vsFar = 1000.0;
+  const int width = 64, height = 48;
+  // Every sample at fineness 1.5 (level 2): 5 x 5 pages of level 2, nothing else.
+  const double inLevel2 = 100.0 / std::exp2(1.5);
+  std::vector<float> depths(width * height,
+    static_cast<float>(csm::windowDepthFromViewDepth(inLevel2, vsNear, vsFar, false)));
+  depths[5] = 1.0f; // background: no page
+  std::vector<csm::PageKey> pages;
+  ASSERT_TRUE(csm::markPages(
+    levels, straightAcross(), vsNear, vsFar, depths.data(), width, height, {}, 1000, pages));
+  EXPECT_EQ(pages.size(), 25u);
+  EXPECT_EQ(pagesOfLevel(pages, 2).size(), 25u);
+  // In the dithered band before level 3 (fineness 2 - band / 2): level 3's pages too.
+  const double inBand = 100.0 / std::exp2(2.0 - csm::kPageBlendBand / 2.0);
+  std::fill(depths.begin(), depths.end(),
+    static_cast<float>(csm::windowDepthFromViewDepth(inBand, vsNear, vsFar, false)));
+  ASSERT_TRUE(csm::markPages(
+    levels, straightAcross(), vsNear, vsFar, depths.data(), width, height, {}, 1000, pages));
+  EXPECT_EQ(pagesOfLevel(pages, 2).size(), 25u);
+  EXPECT_EQ(pagesOfLevel(pages, 3).size(), 81u); // 2048 / 248: 9 a side
+  EXPECT_EQ(pagesOfLevel(pages, 1).size(), 0u);
+  // More pages than the pool holds: refused.
+  EXPECT_FALSE(csm::markPages(
+    levels, straightAcross(), vsNear, vsFar, depths.data(), width, height, {}, 100, pages));
+  // One sample near the left edge of page 1 of level 2: pages 0 and 1 across, one row.
+  std::fill(depths.begin(), depths.end(), 1.0f);
+  std::vector<float> one(
+    1, static_cast<float>(csm::windowDepthFromViewDepth(inLevel2, vsNear, vsFar, false)));
+  glm::dmat4 toTexel = straightAcross();
+  // The single pixel's centre (NDC 0, 0) at level 2 texel (248 + 1, 100).
+  toTexel[3][0] = (248.0 + 1.0) / 1024.0;
+  toTexel[3][1] = 100.0 / 1024.0;
+  ASSERT_TRUE(csm::markPages(levels, toTexel, vsNear, vsFar, one.data(), 1, 1, {}, 1000, pages));
+  ASSERT_EQ(pages.size(), 2u);
+  EXPECT_EQ(pages[0], (csm::PageKey{ 2, 0, 0 }));
+  EXPECT_EQ(pages[1], (csm::PageKey{ 2, 1, 0 }));
+  // A box standing in for a caster, over the image's left half at level 1's depths.
+  csm::BoxStandIn standIn;
+  standIn.rect = csm::ScreenRect{ -1.0, -1.0, 0.0, 1.0 };
+  const double inLevel1 = 100.0 / std::exp2(0.5);
+  standIn.depths.min = standIn.depths.max =
+    csm::windowDepthFromViewDepth(inLevel1, vsNear, vsFar, false);
+  ASSERT_TRUE(csm::markPages(levels, straightAcross(), vsNear, vsFar, depths.data(), width, height,
+    { standIn }, 1000, pages));
+  EXPECT_EQ(pagesOfLevel(pages, 1).size(), 2u * 3u); // 512 texels: 3 a side, left half 2 across
+  EXPECT_EQ(pages.size(), 6u);
+}
+
+TEST(Pages, TheCacheKeepsResidentPagesAndGivesTheLeastRecentlyNeededSlots)
+{
+  csm::PageCache cache;
+  cache.reset(3);
+  std::vector<std::pair<csm::PageKey, int>> drawn;
+  const csm::PageKey a{ 1, 0, 0 }, b{ 1, 1, 0 }, c{ 2, 0, 0 }, d{ 2, 1, 0 };
+  ASSERT_TRUE(cache.place({ a, b }, drawn));
+  EXPECT_EQ(drawn.size(), 2u);
+  ASSERT_TRUE(cache.place({ a, b }, drawn));
+  EXPECT_EQ(drawn.size(), 0u); // kept
+  ASSERT_TRUE(cache.place({ b }, drawn));
+  ASSERT_TRUE(cache.place({ b, c }, drawn));
+  ASSERT_EQ(drawn.size(), 1u); // the free slot
+  EXPECT_EQ(cache.resident(), 3);
+  const int slotOfA = cache.slotOf(a);
+  ASSERT_TRUE(cache.place({ c, d }, drawn)); // a was needed longest ago: its slot goes
+  ASSERT_EQ(drawn.size(), 1u);
+  EXPECT_EQ(drawn[0].first, d);
+  EXPECT_EQ(drawn[0].second, slotOfA);
+  EXPECT_EQ(cache.slotOf(a), -1);
+  EXPECT_GE(cache.slotOf(b), 0);
+  // More pages than slots: refused, nothing changed.
+  EXPECT_FALSE(cache.place({ a, b, c, d }, drawn));
+  EXPECT_EQ(cache.slotOf(a), -1);
+  EXPECT_EQ(cache.resident(), 3);
+}
+
+TEST(Pages, TheTableTagsEachEntryAndTheNeededPagesWinTheirEntries)
+{
+  csm::PageCache cache;
+  cache.reset(4);
+  std::vector<std::pair<csm::PageKey, int>> drawn;
+  const int side = csm::kPageTableSide;
+  const csm::PageKey a{ 1, 3, 2 }, b{ 2, 3 + side, 2 }, c{ 2, 3, 2 }; // b and c share an entry
+  ASSERT_TRUE(cache.place({ a, b }, drawn));
+  ASSERT_TRUE(cache.place({ a, c }, drawn));
+  std::vector<float> entries;
+  auto place = [](int slot) { return glm::ivec2(10 + slot, 20); };
+  EXPECT_EQ(cache.table(2, { a, c }, place, entries), 0);
+  ASSERT_EQ(entries.size(), static_cast<size_t>(side * side * 2 * 4));
+  const float* ea = &entries[4 * (2 * side + 3)];
+  EXPECT_EQ(ea[0], 10.0f + cache.slotOf(a));
+  EXPECT_EQ(ea[1], 20.0f);
+  EXPECT_EQ(ea[2], 3.0f);
+  EXPECT_EQ(ea[3], 2.0f);
+  const float* ec = &entries[4 * ((side + 2) * side + 3)];
+  EXPECT_EQ(ec[2], 3.0f); // c, needed now, over b kept from before
+  EXPECT_EQ(entries[4 * 0], -1.0f);
+  // Both needed: one loses its entry.
+  EXPECT_EQ(cache.table(2, { a, b, c }, place, entries), 1);
+}
+
+TEST(Pages, ThePoolIsTheThreeOtherSquaresOfTheAtlas)
+{
+  EXPECT_EQ(csm::poolSlots(2048), 192);
+  EXPECT_EQ(csm::poolSlots(1000), 0);
+  EXPECT_EQ(csm::poolSlots(0), 0);
+  EXPECT_EQ(csm::poolSlotPlace(2048, 0), glm::ivec2(8, 0));
+  EXPECT_EQ(csm::poolSlotPlace(2048, 9), glm::ivec2(9, 1));
+  EXPECT_EQ(csm::poolSlotPlace(2048, 64), glm::ivec2(0, 8));
+  EXPECT_EQ(csm::poolSlotPlace(2048, 191), glm::ivec2(15, 15));
+}
