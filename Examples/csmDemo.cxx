@@ -156,6 +156,8 @@ void usage()
     "                     can be in shadow, kept while the scene and light stay [%s]\n"
     "  --move-maps on|off  kept maps move with the view, only the strips that came in\n"
     "                     drawn [%s]\n"
+    "  --pages on|off     the scene-fitted map refined by light-space pages where the maps\n"
+    "                     would follow the view [%s]\n"
     "  --alpha A          adaptive ratio > 1 [%g]\n"
     "  --resolution R     texels per cascade side at most, 64..8192 [%d]\n"
     "  --error-target M   each cascade's resolution for aliasing error <= M (texel/pixel);\n"
@@ -190,10 +192,11 @@ void usage()
     d.AdaptiveCascades ? "on" : "off", d.CullClosedCasters ? "on" : "off",
     d.CompactCasters ? "on" : "off", d.CullCastersWithoutReceivers ? "on" : "off",
     d.VisibleDepthFit ? "on" : "off", d.VisibleFootprintFit ? "on" : "off",
-    d.SceneFittedCascades ? "on" : "off", d.MoveKeptMaps ? "on" : "off", d.Alpha, d.Resolution,
-    d.ErrorTarget, d.PCF, kKernels[d.Kernel], d.ConstantBias, d.SlopeBias,
-    d.ClosedSurfaceBiasFactor, d.Blend, d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug],
-    d.ReuseShadowFactors ? "on" : "off", o.Light[0], o.Light[1], o.Light[2], o.Width, o.Height,
+    d.SceneFittedCascades ? "on" : "off", d.MoveKeptMaps ? "on" : "off",
+    d.LightSpacePages ? "on" : "off", d.Alpha, d.Resolution, d.ErrorTarget, d.PCF,
+    kKernels[d.Kernel], d.ConstantBias, d.SlopeBias, d.ClosedSurfaceBiasFactor, d.Blend,
+    d.DepthClamp ? "on" : "off", d.Darkness, kDebug[d.Debug], d.ReuseShadowFactors ? "on" : "off",
+    o.Light[0], o.Light[1], o.Light[2], o.Width, o.Height,
     csmHeadless::Available() ? "through OSMesa: no X display needed"
                              : "needs an X display: xvfb-run -a",
     o.Orbit);
@@ -342,6 +345,12 @@ Options parse(int argc, char** argv)
     {
       const char* const names[] = { "off", "on" };
       o.Shadow.MoveKeptMaps = choice(f, v, names, 2) == 1;
+      next();
+    }
+    else if (f == "--pages")
+    {
+      const char* const names[] = { "off", "on" };
+      o.Shadow.LightSpacePages = choice(f, v, names, 2) == 1;
       next();
     }
     else if (f == "--scene-fitted")

@@ -6,6 +6,7 @@
 
 #include "vtkCascadedShadowMapTypes.h" // for LightMaps
 
+#include "csmPages.h"
 #include "csmVisibleDepth.h"
 
 #include "vtkCamera.h"
@@ -44,8 +45,20 @@ struct csmRendererMaps
   vtkSmartPointer<vtkCamera> VisibleCamera;
   double VisibleAspect = 1.0;
   double VisibleWindow[2] = { 1.0, 0.0 };
-  /// ... and where its samples lie on its image, by depth.
+  /// ... and where its samples lie on its image, by depth, and the depth buffer itself.
   csm::WindowFootprint VisibleFootprint;
+  csm::DepthSamples VisibleSamples;
+  /// The last plan had a light that light-space pages would serve: the next visible-depth pass
+  /// draws every caster (VisibleSamples, which the pages are marked from).
+  bool PagesWanted = false;
+  /// Per light slot: the pages kept in the pool of its atlas (LightSpacePages) and the texture
+  /// of their table.
+  std::vector<csm::PageCache> PageCaches;
+  std::vector<vtkSmartPointer<vtkTextureObject>> PageTablePool;
+  /// Where the pages a view brings in together are drawn in one pass before each is copied to
+  /// its slot (csm::batchPages), and its framebuffer.
+  vtkSmartPointer<vtkTextureObject> PageScratch;
+  vtkSmartPointer<vtkOpenGLFramebufferObject> PageFrameBuffer;
   /// The camera of the last plan (MapSlack: did this frame's camera take a small step?).
   vtkSmartPointer<vtkCamera> LastCamera;
   /// What else the last plan was made for: the aspect, whether the user interacted, how many

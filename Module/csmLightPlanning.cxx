@@ -22,6 +22,8 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include <glm/matrix.hpp>
+
 #include <algorithm>
 #include <iterator>
 #include <map>
@@ -201,6 +203,7 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
         map.Patches.clear();
         map.Moved[0] = map.Moved[1] = 0;
       }
+      maps.Pages.Drawn.clear();
     }
     this->Statistics.AsLastFrame = true;
     this->Statistics.VisibleDepthsUsed = state.LastPlanStatistics.VisibleDepthsUsed;
@@ -248,6 +251,7 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
   frame.CastersChanged = !props.Dirty.empty();
   csmMapDrawing::MainView(renderer, renderer->GetActiveCamera(), frame.ViewKey);
   this->FeedVisibleDepths(renderer, window, state, props);
+  state.PagesWanted = false;
   const int shadowingLights = forEachShadowedLight(renderer, maximumLights,
     [&](vtkLight* light, int index)
     { this->PlanLight(renderer, state, props, frame, light, index, planned); });
@@ -270,6 +274,12 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
     state.AtlasPool[i]->ReleaseGraphicsResources(window);
   }
   state.AtlasPool.resize(planned.size());
+  for (size_t i = planned.size(); i < state.PageTablePool.size(); ++i)
+  {
+    state.PageTablePool[i]->ReleaseGraphicsResources(window);
+  }
+  state.PageTablePool.resize(std::min(state.PageTablePool.size(), planned.size()));
+  state.PageCaches.resize(std::min(state.PageCaches.size(), planned.size()));
   return shadowingLights;
 }
 
@@ -365,12 +375,137 @@ void csmLightPlanning::PlanLight(vtkRenderer* renderer, csmRendererMaps& state,
   {
     maps.SplitNear = this->Planner->GetCascadeNear(0);
   }
+  this->ServeWithPages(renderer, state, props, frame, slot, maps);
   if (state.AtlasPool.size() <= slot)
   {
     state.AtlasPool.push_back(vtkSmartPointer<vtkTextureObject>::New());
   }
   maps.Atlas = state.AtlasPool[slot];
   planned.push_back(std::move(maps));
+}
+
+void csmLightPlanning::ServeWithPages(vtkRenderer* renderer, csmRendererMaps& state,
+  const csmFrameCasters& props, const csmFramePlan& frame, size_t slot, LightMaps& maps)
+{
+  // Pages where the cascades would follow the view of a scene light (its one scene-fitted map
+  // already serves the whole view with all of the atlas), the casters stay and are not sized on
+  // the screen, every receiver is in the view's depth buffer, the view is a perspective one
+  // and the atlas holds a base and its pool; marked from this view's samples, where the depth
+  // pass drew them for the pages (the plan that wants them asks the next pass for them).
+  vtkCamera* camera = renderer->GetActiveCamera();
+  const int side = this->Options.Resolution;
+  const bool followsView = std::any_of(maps.Cascades.begin(), maps.Cascades.end(),
+    [](const CascadeMap& map) { return map.Kind == MapKind::FollowsView; });
+  const bool otherKinds = std::any_of(maps.Cascades.begin(), maps.Cascades.end(),
+    [](const CascadeMap& map)
+    { return map.Kind != MapKind::FollowsView && map.Kind != MapKind::SceneFitted; });
+  const int textureLimit = this->Planner->GetMaximumTextureSize();
+  const bool serve = this->Options.LightSpacePages && !this->Distributed() && followsView &&
+    !otherKinds && maps.Kind == LightKind::Directional && maps.Light->LightTypeIsSceneLight() &&
+    !frame.CastersChanged && !frame.ScreenSized && !props.TranslucentReceivers &&
+    !camera->GetParallelProjection() && this->Planner->GetDepthClamp() &&
+    csm::poolSlots(2 * side, side / 2) > 0 && (textureLimit <= 0 || 2 * side <= textureLimit);
+  state.PagesWanted = state.PagesWanted || serve;
+  if (serve && state.VisibleCamera && !state.VisibleSamples.isEmpty() &&
+    sameView(state.VisibleCamera, camera, frame.Aspect))
+  {
+    this->PlanPages(state, props, frame, slot, maps);
+  }
+}
+
+bool csmLightPlanning::PageNeeds(const csmRendererMaps& state, const csmFramePlan& frame,
+  const double worldToBase[16], int baseSide, int slots, csm::PageLevels& levels,
+  std::vector<csm::PageKey>& needed) const
+{
+  // The levels from this view's pixel and nearest sample; the pages its samples read.
+  vtkCamera* camera = state.VisibleCamera; // this very view
+  const double* clip = camera->GetClippingRange();
+  const glm::dmat4 viewToClip =
+    csmFromRowMajor(camera->GetProjectionTransformMatrix(frame.Aspect, -1, 1)->GetData());
+  const glm::dmat4 worldToView = csmFromRowMajor(camera->GetModelViewTransformMatrix()->GetData());
+  const double pixel = 2.0 / (std::max(frame.ImageHeight, 1) * viewToClip[1][1]);
+  const double nearest =
+    csm::viewDepthFromWindowDepth(state.VisibleWindow[0], clip[0], clip[1], false);
+  const glm::dmat4 wsToBase = csmFromRowMajor(worldToBase);
+  if (!csm::pageLevels(
+        wsToBase, csm::MapSize(baseSide), pixel, this->Planner->GetErrorTarget(), nearest, levels))
+  {
+    return false;
+  }
+  glm::dmat4 toUnit(0.5); // (clip x, y -> [0, 1])
+  toUnit[2][2] = 1.0;
+  toUnit[3] = glm::dvec4(0.5, 0.5, 0.0, 1.0);
+  const glm::dmat4 windowToBase = toUnit * wsToBase * glm::inverse(viewToClip * worldToView);
+  const csm::DepthSamples& samples = state.VisibleSamples;
+  return csm::markPages(levels, windowToBase, clip[0], clip[1], samples.windowDepths.data(),
+    samples.width, samples.height, samples.standIns, static_cast<size_t>(slots), needed);
+}
+
+void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& props,
+  const csmFramePlan& frame, size_t slot, LightMaps& maps)
+{
+  // The base: the scene-fitted map in the lower left of an atlas of twice Resolution a side,
+  // half Resolution a side itself, fixed while the scene and the light stay (where it meets the
+  // target, the far view, it needs few texels; the pages refine the rest, which they fill).
+  // Where the pages this view needs do not fit, or need more levels than there are, the
+  // cascades serve.
+  const int atlasSide = 2 * this->Options.Resolution, side = this->Options.Resolution / 2;
+  const double direction[3] = { maps.FocalPoint[0] - maps.Position[0],
+    maps.FocalPoint[1] - maps.Position[1], maps.FocalPoint[2] - maps.Position[2] };
+  double worldToBase[16];
+  csm::PageLevels levels;
+  std::vector<csm::PageKey> needed;
+  const int slots = csm::poolSlots(atlasSide, side);
+  if (!this->Planner->GetSceneFittedMatrix(direction, props.SceneBounds, worldToBase) ||
+    !this->PageNeeds(state, frame, worldToBase, side, slots, levels, needed))
+  {
+    return;
+  }
+  // The pool keeps its pages while the last frame's maps of this light were this base's in
+  // this very texture.
+  const LightMaps* last = slot < state.Maps.size() ? &state.Maps[slot] : nullptr;
+  const bool keep = !frame.Changed && last && last->Light == maps.Light && last->Pages.Active &&
+    sameLightGeometry(*last, maps) && last->AtlasSize[0] == atlasSide &&
+    last->AtlasSize[1] == atlasSide && last->Cascades.size() == 1 &&
+    std::equal(worldToBase, worldToBase + 16, last->Cascades[0].WorldToMap) &&
+    slot < state.AtlasPool.size() && state.AtlasPool[slot]->GetHandle() &&
+    state.AtlasPool[slot]->GetContext() == state.Window;
+  if (state.PageCaches.size() <= slot)
+  {
+    state.PageCaches.resize(slot + 1);
+  }
+  csm::PageCache& cache = state.PageCaches[slot];
+  if (!keep)
+  {
+    cache.reset(slots);
+  }
+  std::vector<std::pair<csm::PageKey, int>> fresh;
+  cache.place(needed, fresh);
+  CascadeMap base;
+  base.Kind = MapKind::SceneFitted;
+  base.Action = keep ? MapAction::Keep : MapAction::Draw;
+  std::copy(worldToBase, worldToBase + 16, base.WorldToMap);
+  base.Tile[2] = base.Tile[3] = base.Resolution[0] = base.Resolution[1] = side;
+  base.SplitFar = maps.Cascades.back().SplitFar;
+  maps.Cascades.assign(1, base);
+  maps.AtlasSize[0] = maps.AtlasSize[1] = atlasSide;
+  LightPages& pages = maps.Pages;
+  pages.Active = true;
+  pages.Levels = levels.count;
+  pages.BaseDepth = levels.baseDepth;
+  pages.BaseTexels[0] = levels.baseTexels.x;
+  pages.BaseTexels[1] = levels.baseTexels.y;
+  pages.Needed = static_cast<int>(needed.size());
+  const auto place = [atlasSide, side](int s) { return csm::poolSlotPlace(atlasSide, side, s); };
+  cache.table(std::max(levels.count, 1), needed, place, pages.Table);
+  for (const auto& page : fresh)
+  {
+    const glm::ivec2 at = place(page.second) * csm::kPageTexels;
+    pages.Drawn.push_back({ page.first.level, page.first.x, page.first.y, at.x, at.y });
+  }
+  this->Statistics.PagesDrawn += static_cast<int>(fresh.size());
+  this->Statistics.PagesNeeded += pages.Needed;
+  this->Statistics.PagesResident += cache.resident();
 }
 
 MapKind csmLightPlanning::PlannedMapKind(vtkLight* light) const

@@ -21,6 +21,11 @@ struct csmCascadeNeed;
 struct csmFrameCasters;
 struct csmFramePlan;
 struct csmRendererMaps;
+namespace csm
+{
+struct PageKey;
+struct PageLevels;
+}
 
 class csmLightPlanning
 {
@@ -34,6 +39,7 @@ public:
     int Resolution = 0, InteractiveResolution = 0;
     double MapReuseTolerance = 1.0, InteractiveMapBorder = 0.0, MapSlack = 0.0;
     bool MoveKeptMaps = true, VisibleDepthFit = true, VisibleFootprintFit = true;
+    bool LightSpacePages = true;
   };
 
   /// controller: several processes share the maps (null or one process: not).
@@ -67,6 +73,13 @@ private:
   vtkCascadedShadows::MapKind PlannedMapKind(vtkLight* light) const;
   void PlanCascade(const csmFramePlan& frame, vtkCamera* camera, const csmRendererMaps& state,
     int c, bool smoothPath, vtkCascadedShadows::CascadeMap& map, csmCascadeNeed& need);
+  void ServeWithPages(vtkRenderer* renderer, csmRendererMaps& state, const csmFrameCasters& props,
+    const csmFramePlan& frame, size_t slot, vtkCascadedShadows::LightMaps& maps);
+  bool PageNeeds(const csmRendererMaps& state, const csmFramePlan& frame,
+    const double worldToBase[16], int baseSide, int slots, csm::PageLevels& levels,
+    std::vector<csm::PageKey>& needed) const;
+  void PlanPages(csmRendererMaps& state, const csmFrameCasters& props, const csmFramePlan& frame,
+    size_t slot, vtkCascadedShadows::LightMaps& maps);
   bool KeptMapServes(const csmFramePlan& frame, int c, const csmCascadeNeed& need,
     const vtkCascadedShadows::CascadeMap& map, const vtkCascadedShadows::CascadeMap& old,
     vtkCascadedShadows::CascadeMap& moved);

@@ -2,6 +2,7 @@
 #include "csmMapDrawing.h"
 
 #include "csmCasterCollection.h"
+#include "csmPages.h"
 #include "csmProps.h"
 #include "csmVTKMath.h"
 #include "csmVisibleDepth.h"
@@ -125,7 +126,7 @@ vtkCascadedShadowCasterPass::CasterUniforms casterUniformsFor(
 /// (window depths), and where they lie (with the boxes that stood in for casters left out);
 /// false when they cannot be read (a multisampled framebuffer, a GL error).
 bool readWindowDepths(vtkRenderer* renderer, const std::vector<csm::BoxStandIn>& standIns,
-  double range[2], csm::WindowFootprint& footprint)
+  double range[2], csm::WindowFootprint& footprint, csm::DepthSamples* samples)
 {
   vtkOpenGLRenderWindow* window =
     vtkOpenGLRenderWindow::SafeDownCast(renderer ? renderer->GetRenderWindow() : nullptr);
@@ -164,6 +165,13 @@ bool readWindowDepths(vtkRenderer* renderer, const std::vector<csm::BoxStandIn>&
   footprint = csm::windowFootprint(depths.data(), width, height, standIns);
   range[0] = footprint.range.min;
   range[1] = footprint.range.max;
+  if (samples)
+  {
+    samples->windowDepths = std::move(depths);
+    samples->width = width;
+    samples->height = height;
+    samples->standIns = standIns;
+  }
   return true;
 }
 
@@ -481,9 +489,10 @@ struct ViewCasters
 
 /// The casters the view's depth is drawn with; screenSized: also those drawn wider than their
 /// data (wide lines, big points, tubes, spheres), whose width in the depth cannot match the
-/// mapper's own rasterization to the pixel.
+/// mapper's own rasterization to the pixel; forPages: only casters small on the image stand in
+/// (csm::kPageStandInSpan).
 ViewCasters viewCasters(vtkCamera* camera, double aspect, const csmFrameCasters& props, int width,
-  int height, bool screenSized)
+  int height, bool screenSized, bool forPages)
 {
   vtkMatrix4x4* worldToClip = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
   // A closed caster seen from outside only (the near plane reaches no point of its box) shows
@@ -500,7 +509,10 @@ ViewCasters viewCasters(vtkCamera* camera, double aspect, const csmFrameCasters&
     csm::BoxStandIn standIn;
     if (screenSized ||
       !csm::boxStandIn(
-        wsToClip, csm::Bounds::fromMinMaxPairs(bounds.data()), cells, width, height, standIn))
+        wsToClip, csm::Bounds::fromMinMaxPairs(bounds.data()), cells, width, height, standIn) ||
+      (forPages &&
+        (standIn.rect.x1 - standIn.rect.x0 > 2.0 * csm::kPageStandInSpan ||
+          standIn.rect.y1 - standIn.rect.y0 > 2.0 * csm::kPageStandInSpan)))
     {
       return false;
     }
@@ -553,7 +565,7 @@ ViewCasters viewCasters(vtkCamera* camera, double aspect, const csmFrameCasters&
 
 bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
   const csmFrameCasters& props, double depths[2], csm::WindowFootprint& footprint,
-  int& standInCount)
+  int& standInCount, csm::DepthSamples* samples)
 {
   standInCount = 0;
   vtkCamera* camera = renderer->GetActiveCamera();
@@ -564,7 +576,8 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   int width = 0, height = 0, x = 0, y = 0;
   renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
   // (Screen-sized casters only where the depths are read: their depth is cleared after.)
-  ViewCasters casters = viewCasters(camera, aspect, props, width, height, depths != nullptr);
+  ViewCasters casters =
+    viewCasters(camera, aspect, props, width, height, depths != nullptr, samples != nullptr);
   vtkOpenGLState* ostate = window->GetState();
   csmDepthDrawingGuard guard(ostate);
   ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -599,7 +612,8 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   this->CasterPass->DrawCasters(renderer, s->GetFrameBuffer(), casters.Drawn);
   this->CasterPass->EndCascade();
   standInCount = static_cast<int>(casters.StandIns.size());
-  const bool read = depths && readWindowDepths(renderer, casters.StandIns, depths, footprint);
+  const bool read =
+    depths && readWindowDepths(renderer, casters.StandIns, depths, footprint, samples);
   if (casters.ScreenSizedDrawn)
   {
     // Their depth, a pixel wider or narrower than the mapper draws them, would let the

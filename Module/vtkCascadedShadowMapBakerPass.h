@@ -97,6 +97,18 @@ public:
   vtkGetMacro(MoveKeptMaps, bool);
   vtkBooleanMacro(MoveKeptMaps, bool);
 
+  /// A scene light whose cascades would follow the view gets its scene-fitted map (in a tile of
+  /// Resolution) refined by light-space pages instead (csmPages.h): levels of half the texel of
+  /// the level before, each meeting ErrorTarget an octave of view depth nearer, of which only the
+  /// pages of Resolution / 8 texels that this view's visible samples read are drawn into the
+  /// rest of the atlas, and kept while the light and the casters stay: a camera that moves draws
+  /// only the pages that come into view. Where it cannot serve (several processes, a parallel
+  /// view, casters that changed this frame or are sized on the screen, translucent receivers, no
+  /// visible depths, more pages or levels than the atlas holds) the cascades serve. On.
+  vtkSetMacro(LightSpacePages, bool);
+  vtkGetMacro(LightSpacePages, bool);
+  vtkBooleanMacro(LightSpacePages, bool);
+
   /// Closed casters (csm::classifySurface) drawn with only their faces turned away from the
   /// light, at their own depth: the exit layer shadows what the solid does (Wang & Molnar 1994)
   /// with half the fragments. Open, clipped, wireframe or user-culled props keep both sides. On.
@@ -239,6 +251,11 @@ protected:
   bool Distributed() const;
   void CombineAcrossProcesses(vtkTextureObject* atlas);
   bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, bool& reallocated);
+  void DrawPages(vtkOpenGLRenderer* renderer, vtkOpenGLRenderWindow* window, csmRendererMaps& state,
+    const csmFrameCasters& props, LightMaps& maps);
+  bool BindPageScratch(vtkOpenGLRenderWindow* window, csmRendererMaps& state, int side);
+  void UploadPageTable(
+    vtkOpenGLRenderWindow* window, csmRendererMaps& state, size_t slot, LightMaps& maps);
   int ClosureOf(vtkProp* prop);
   void ReportOnce(bool error, const std::string& message);
   int MaximumShadowedLights(vtkOpenGLRenderWindow* window);
@@ -249,7 +266,7 @@ protected:
   double MapReuseTolerance = 1.25, InteractiveMapBorder = 0.2, MapSlack = 0.44;
   bool MeasureTimes = false, CullClosedCasters = true, CompactCasters = true;
   bool CullCastersWithoutReceivers = true, VisibleDepthFit = true, MoveKeptMaps = true;
-  bool VisibleFootprintFit = true;
+  bool VisibleFootprintFit = true, LightSpacePages = true;
 
   std::vector<std::unique_ptr<csmRendererMaps>> Renderers;
   vtkWeakPointer<vtkRenderer> LastRenderer;

@@ -2,6 +2,7 @@
 #include "vtkCascadedShadowMapPass.h"
 
 #include "csmAtlas.h" // csm::kAtlasFullMaps
+#include "csmPages.h" // csm::kPageTexels and the other page constants
 #include "csmProps.h" // csmScreenSizes
 #include "csmScreenCache.h"
 
@@ -221,6 +222,19 @@ void vtkCascadedShadowMapPass::PackMaps(
       u.Texel.push_back(1.0f / static_cast<float>(std::max(1, map.Resolution[axis])));
     }
   }
+  const bool paged = maps.Pages.Active && maps.Pages.TableTexture && count == 1;
+  u.PageLevels.push_back(paged ? maps.Pages.Levels : 0);
+  u.PageDepth.push_back(paged ? static_cast<float>(maps.Pages.BaseDepth) : 0.0f);
+  u.PageVirtual.push_back(static_cast<float>(paged ? maps.Pages.BaseTexels[0] : 1.0));
+  u.PageVirtual.push_back(static_cast<float>(paged ? maps.Pages.BaseTexels[1] : 1.0));
+  u.PageTile.push_back(static_cast<float>(csm::kPageTexels / atlasWidth));
+  u.PageTile.push_back(static_cast<float>(csm::kPageTexels / atlasHeight));
+  u.PageUnit.push_back(-1);
+  if (paged)
+  {
+    maps.Pages.TableTexture->Activate();
+    u.PageUnit.back() = maps.Pages.TableTexture->GetTextureUnit();
+  }
 }
 
 void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
@@ -247,6 +261,11 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   }
   // The kernel, its size (for few lights) and the debug view are compiled into the lookup (see
   // csmShadowFS.glsl).
+  signature += " pages";
+  for (size_t j = 0; j < u.Lights(); ++j)
+  {
+    signature += u.Paged(j) ? " 1" : " 0";
+  }
   signature += " kernel " + std::to_string(this->PCFKernel) + " debug " +
     std::to_string(this->DebugMode) + (this->SingleMapShaders() ? " single map" : "");
 #if CSM_COMPARISON_TECHNIQUES
@@ -293,6 +312,10 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   for (const auto& maps : baker->GetLightMaps(renderer))
   {
     maps.Atlas->Deactivate();
+    if (maps.Pages.TableTexture)
+    {
+      maps.Pages.TableTexture->Deactivate();
+    }
   }
   vtkOpenGLCheckErrorMacro("failed after rendering with cascaded shadows");
 }
@@ -416,6 +439,10 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   {
     decl << "uniform sampler2DShadow csmMap" << j << ";\n";
     decl << "uniform sampler2DShadow csmNearest" << j << ";\n";
+    if (this->Uniforms.Paged(j))
+    {
+      decl << "uniform sampler2D csmPages" << j << ";\n";
+    }
   }
   const std::string mapperName = mapper ? mapper->GetClassName() : "a mapper";
   if (!vtkShaderProgram::Substitute(fragmentShader, kShadowDec, decl.str(), false))
@@ -465,10 +492,15 @@ void vtkCascadedShadowMapPass::InjectLookups(
     const std::string result = "csmResult" + std::to_string(j);
     const std::string map =
       "csmMap" + std::to_string(j) + ", csmNearest" + std::to_string(j) + ", " + std::to_string(j);
+    // (Impostors of a paged light read its base map.)
+    const std::string paged = "csmMap" + std::to_string(j) + ", csmNearest" + std::to_string(j) +
+      ", csmPages" + std::to_string(j) + ", " + std::to_string(j);
     const std::string lookup = result +
       (screen == csmScreenCache::READ ? " = csmShadowRead(csmCached, " + std::to_string(j) + ");"
           : impostor ? " = csmImpostorShadow(" + map + ", vertexVC, normalVCVSOutput);"
-                     : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
+          : this->Uniforms.Paged(j)
+          ? " = csmPagedShadow(" + paged + ", vertexVC, csmDVCdx, csmDVCdy);"
+          : " = csmShadow(" + map + ", vertexVC, csmDVCdx, csmDVCdy);");
     const std::string factor = result + ".x * ";
     // Phong-style lighting (diffuse and specular), or PBR (radiance, directional or positional).
     const bool phong =
@@ -541,6 +573,11 @@ std::string vtkCascadedShadowMapPass::GetShaderDefinitions(
   std::ostringstream decl;
   decl << "#define CSM_LIGHTS " << lights << "\n"
        << "#define CSM_MAX_CASCADES " << kMaxCascades << "\n"
+       << "#define CSM_PAGE_TEXELS " << csm::kPageTexels << "\n"
+       << "#define CSM_PAGE_BORDER " << csm::kPageBorder << "\n"
+       << "#define CSM_PAGE_INTERIOR " << csm::kPageInterior << "\n"
+       << "#define CSM_PAGE_TABLE_SIDE " << csm::kPageTableSide << "\n"
+       << "#define CSM_PAGE_BAND " << csm::kPageBlendBand << "\n"
        << "#define CSM_KERNEL_GRID " << KERNEL_GRID << "\n"
        << "#define CSM_KERNEL_JITTERED " << KERNEL_JITTERED << "\n"
        << "#define CSM_KERNEL " << kernel << "\n"
@@ -698,6 +735,20 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   this->SetComparisonUniforms(program);
 #endif
   program->SetUniform1fv("csmSplitNear", lights, u.SplitNear.data());
+  if (program->IsUniformUsed("csmPageDepth"))
+  {
+    program->SetUniform1iv("csmPageLevels", lights, u.PageLevels.data());
+    program->SetUniform1fv("csmPageDepth", lights, u.PageDepth.data());
+    program->SetUniform2fv("csmPageVirtual", lights, u.PageVirtual.data());
+    program->SetUniform2fv("csmPageTile", lights, u.PageTile.data());
+    for (int j = 0; j < lights; ++j)
+    {
+      if (u.Paged(static_cast<size_t>(j)) && program->IsUniformUsed(indexed("csmPages", j).c_str()))
+      {
+        program->SetUniformi(indexed("csmPages", j).c_str(), u.PageUnit[static_cast<size_t>(j)]);
+      }
+    }
+  }
   program->SetUniform1iv("csmCount", lights, u.Count.data());
   program->SetUniform1fv("csmAttenuation", lights, u.Attenuation.data());
   return true;

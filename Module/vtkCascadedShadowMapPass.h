@@ -225,6 +225,12 @@ protected:
     std::vector<float> SplitFar;               ///< per cascade
     std::vector<float>
       Texel; ///< per cascade: one texel along s and t in the cascade's [0,1] coordinates
+    /// per light, for light-space pages (0 levels and no unit: none): the levels finer than the
+    /// base, the view depth from which the base meets the target, the base's texels along s
+    /// and t, a page's side in the atlas's [0, 1], the unit of the page table
+    std::vector<int> PageLevels, PageUnit;
+    std::vector<float> PageDepth, PageVirtual, PageTile;
+    bool Paged(size_t j) const { return j < this->PageUnit.size() && this->PageUnit[j] >= 0; }
     size_t Lights() const { return this->Count.size(); }
 #if CSM_COMPARISON_TECHNIQUES
     std::vector<float> Planes; ///< per cascade: 4 view-space half-spaces (face partitions)

@@ -7,6 +7,7 @@
 #include "csmCascadeCount.h"
 #include "csmCulling.h"
 #include "csmReuse.h"
+#include "csmSceneFit.h"
 #include "csmSetup.h"
 #include "csmSpotSetup.h"
 #include "csmVTKMath.h"
@@ -438,6 +439,24 @@ void vtkCascadedShadowMapPlanner::GetCascadeTile(int i, int tile[4]) const
     ? this->Internal->Atlas.tile(i)
     : std::array<int, 4>{ 0, 0, 0, 0 };
   std::copy(t.begin(), t.end(), tile);
+}
+
+bool vtkCascadedShadowMapPlanner::GetSceneFittedMatrix(
+  const double lightDirection[3], const double bounds[6], double worldToClip[16]) const
+{
+  if (!lightDirection || !bounds || this->Internal->Casters.empty())
+  {
+    return false;
+  }
+  csm::SceneFit fit;
+  const glm::dvec3 direction(lightDirection[0], lightDirection[1], lightDirection[2]);
+  if (!csm::sceneFit(direction, csm::Bounds::fromMinMaxPairs(bounds), this->Internal->Casters,
+        this->Internal->Receivers.empty() ? nullptr : &this->Internal->Receivers, fit))
+  {
+    return false;
+  }
+  csmToRowMajor(fit.wsToClip, worldToClip);
+  return true;
 }
 
 bool vtkCascadedShadowMapPlanner::GetCascadeSceneFitted(int i) const

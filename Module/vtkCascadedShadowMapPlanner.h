@@ -229,6 +229,13 @@ public:
   /// Is cascade i of the last plan a scene-fitted one (SceneFittedCascades)?
   bool GetCascadeSceneFitted(int i) const;
 
+  /// The scene-fitted map of a directional light travelling along lightDirection over the scene
+  /// bounds, from the casters and receivers set (csm::sceneFit), whatever the last plan took:
+  /// world -> its clip space, row-major. False where there is none (no caster can shadow
+  /// anything, a screen-sized caster, input not finite).
+  bool GetSceneFittedMatrix(
+    const double lightDirection[3], const double bounds[6], double worldToClip[16]) const;
+
   /**
    * Plan the cascades for a camera seen in a viewport of the given aspect (width/height), a
    * directional light travelling along lightDirection (world), and the world bounds of the

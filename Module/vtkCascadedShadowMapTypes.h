@@ -91,6 +91,24 @@ struct CascadeMap
   }
 };
 
+/// A directional light's scene-fitted map (its one cascade, the base) refined by light-space
+/// pages (csmPages.h): levels of half the texel of the level before, fixed in light space, of
+/// which only the pages the view's visible samples read are drawn into the rest of the atlas
+/// and kept while the light and the casters stay.
+struct LightPages
+{
+  bool Active = false;                 ///< the light's maps are a base and its pages
+  int Levels = 0;                      ///< levels finer than the base
+  double BaseDepth = 0.0;              ///< view depth from which the base meets the error target
+  double BaseTexels[2] = { 0.0, 0.0 }; ///< level 0's texels along s and t (csm::PageLevels)
+  std::vector<float> Table;            ///< the page table, csm::PageCache::table's entries
+  /// The pages this frame draws: level, column and row (csm::PageKey), the lower left of the
+  /// slot (texels of the atlas).
+  std::vector<std::array<int, 5>> Drawn;
+  int Needed = 0; ///< pages this view reads
+  vtkSmartPointer<vtkTextureObject> TableTexture;
+};
+
 /// The maps of one shadowed light, as the shadow pass reads them.
 struct LightMaps
 {
@@ -104,6 +122,7 @@ struct LightMaps
   std::vector<CascadeMap> Cascades;   ///< none: nothing to shadow this frame
   int AtlasSize[2] = { 0, 0 };        ///< texels of the atlas texture
   vtkSmartPointer<vtkTextureObject> Atlas;
+  LightPages Pages; ///< Active: Cascades is the base, refined by these pages
 
   int GetNumberOfCascades() const { return static_cast<int>(this->Cascades.size()); }
 #if CSM_COMPARISON_TECHNIQUES
@@ -137,6 +156,8 @@ struct FrameStatistics
   /// would draw a kept scene-fitted map whole, or the next change after a frame planned so; as
   /// SceneFittedCascades off).
   bool CastersChanging = false;
+  /// Light-space pages (LightSpacePages): drawn this frame, read by this view, resident.
+  int PagesDrawn = 0, PagesNeeded = 0, PagesResident = 0;
   /// Casters (or blocks) the visible-depth pass left out, small on the image for their
   /// triangles: their boxes stand in for their samples (csm::boxStandIn).
   int DepthPassStandIns = 0;

@@ -5,6 +5,7 @@
 // truth and the perspective aliasing m, and writes a CSV and a plot (vtkChartXY).
 #include "csmChanges.h"
 #include "csmFileChecks.h"
+#include "csmPages.h"
 #include "csmScenes.h"
 #include "csmTechnique.h"
 #include "csmTruth.h"
@@ -352,6 +353,22 @@ bool WriteErrorImage(const std::string& file, vtkImageData* plain,
 
 /// Texels per pixel of the map at a point: max(m_x, m_z) of Lloyd Eq. 2-4, scaled to the map
 /// and image resolutions.
+/// The level of a light's pages the lookup reads at world point p, view depth `depth` (0: the
+/// base, or no pages).
+int PageLevelAt(const vtkCascadedShadowMapBakerPass::LightMaps& lm, const double p[3], double depth)
+{
+  if (!lm.Pages.Active || lm.Cascades.size() != 1)
+    return 0;
+  csm::PageLevels levels;
+  levels.baseTexels = glm::dvec2(lm.Pages.BaseTexels[0], lm.Pages.BaseTexels[1]);
+  levels.baseDepth = lm.Pages.BaseDepth;
+  levels.count = lm.Pages.Levels;
+  const double* w = lm.Cascades[0].WorldToMap; // (orthographic: w = 1)
+  const double bx = 0.5 * (w[0] * p[0] + w[1] * p[1] + w[2] * p[2] + w[3]) + 0.5;
+  const double by = 0.5 * (w[4] * p[0] + w[5] * p[1] + w[6] * p[2] + w[7]) + 0.5;
+  return csm::pageLevelRead(levels, lm.Pages.Table, bx, by, levels.fineness(depth));
+}
+
 double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[3],
   const double p[3], int imageHeight)
 {
@@ -399,12 +416,24 @@ double AliasingAt(const Technique& t, vtkRenderer* renderer, const double light[
       else
         return NAN;
     }
-    vtkCascadedShadowMapPlanner::ComputeAliasing(
-      camera, aspect, light, lm.Cascades[c].WorldToMap, p, m);
     // The resolution this view's map was rendered at (t along light space x if it was turned).
+    // With light-space pages, the level the lookup reads there, whose texels are square in the
+    // world: as a map whose t row spans what its s row does, with as many texels.
+    double worldToMap[16];
+    std::copy(lm.Cascades[c].WorldToMap, lm.Cascades[c].WorldToMap + 16, worldToMap);
     const bool turned = lm.Cascades[c].Turned;
     resolution[0] = lm.Cascades[c].Resolution[turned ? 1 : 0];
     resolution[1] = lm.Cascades[c].Resolution[turned ? 0 : 1];
+    const int level = PageLevelAt(lm, p, depth);
+    if (level > 0)
+    {
+      const double s = std::sqrt(Dot(worldToMap, worldToMap));
+      const double t = std::sqrt(Dot(worldToMap + 4, worldToMap + 4));
+      for (int k = 4; k < 8; ++k)
+        worldToMap[k] *= s / t;
+      resolution[0] = resolution[1] = lm.Pages.BaseTexels[0] * std::exp2(level);
+    }
+    vtkCascadedShadowMapPlanner::ComputeAliasing(camera, aspect, light, worldToMap, p, m);
   }
   else if (t.Passes.Vtk)
   {

@@ -505,6 +505,9 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
         techniques.emplace_back();
         techniques.back().Label = "no footprint";
         techniques.back().Shadow.VisibleFootprintFit = false;
+        techniques.emplace_back();
+        techniques.back().Label = "no pages";
+        techniques.back().Shadow.LightSpacePages = false;
       }
       for (int round = 0; round < o.Rounds; ++round)
       {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 
 namespace csm
 {
@@ -52,7 +53,9 @@ bool pageLevels(const glm::dmat4& wsToBaseClip, const MapSize& baseTexels, doubl
   {
     return false;
   }
-  levels.baseTexels = glm::dvec2(baseTexels.width, baseTexels.height);
+  // The levels' texels square in the world: the base's texel count along its shorter side
+  // scaled to the longer texel.
+  levels.baseTexels = glm::dvec2(2.0 / (sRow * wsTexel), 2.0 / (tRow * wsTexel));
   levels.baseDepth = baseDepth;
   const double finest = levels.fineness(vsNearest);
   if (finest > kMaxPageLevels)
@@ -82,43 +85,59 @@ PageKey PageKey::unpack(std::uint64_t packed)
 namespace
 {
 /// Collects the pages samples need, each run of the same pages once (a row of pixels crosses
-/// few pages: the recent keys spare the sort most repeats).
+/// few pages: the recent keys spare the sort most repeats). A sample's level by its window
+/// depth against each level's edges, window depths themselves (the view depth grows with it).
 class PageMarks
 {
 public:
-  explicit PageMarks(const PageLevels& levels)
-    : Levels(levels)
+  PageMarks(const PageLevels& levels, double vsNear, double vsFar)
+    : Count(std::min(levels.count, kMaxPageLevels))
   {
+    auto windowAt = [&](double fineness) {
+      return windowDepthFromViewDepth(
+        levels.baseDepth * std::exp2(-fineness), vsNear, vsFar, false);
+    };
+    for (int k = 0; k <= this->Count; ++k)
+    {
+      this->Edge[k] = windowAt(k);
+      this->Finer[k] = windowAt(k - kPageBlendBand - kPageLevelMargin);
+      this->Coarser[k] = windowAt(k - 1 + kPageLevelMargin);
+      this->Texels[k] = levels.texels(k);
+      this->Last[k] = glm::ceil(this->Texels[k] / double(kPageInterior)) - 1.0;
+    }
   }
 
-  /// The pages around base coordinates (bx, by) at the levels a sample of fineness f needs.
-  void sample(double bx, double by, double f)
+  /// The pages around base coordinates (bx, by) at the levels a sample at window depth w needs.
+  void sample(double bx, double by, double w)
   {
-    const int k = this->Levels.levelAt(f);
+    if (!(bx >= 0.0 && bx <= 1.0 && by >= 0.0 && by <= 1.0))
+    {
+      return; // outside the base (the lookup finds no map there)
+    }
+    const int k = this->levelAt(w);
     this->at(k, bx, by);
-    if (k < this->Levels.count && f > k - kPageBlendBand - kPageLevelMargin)
+    if (k < this->Count && w < this->Finer[k])
     {
       this->at(k + 1, bx, by); // the dithered band, or the edge
     }
-    if (k > 1 && f < k - 1 + kPageLevelMargin)
+    if (k > 1 && w > this->Coarser[k])
     {
       this->at(k - 1, bx, by);
     }
   }
 
-  /// Every page of levels k0 .. k1 that base rectangle [b0, b1] touches, up to mostPerLevel
-  /// pages a level (more: that level is left to the coarser ones).
-  void rect(int k0, int k1, const glm::dvec2& b0, const glm::dvec2& b1, int mostPerLevel)
+  /// Every page of levels k0 .. k1 that base rectangle [b0, b1] touches (a box that stood in
+  /// for a caster's samples).
+  void rect(int k0, int k1, const glm::dvec2& b0, const glm::dvec2& b1)
   {
-    for (int k = std::max(k0, 1); k <= std::min(k1, this->Levels.count); ++k)
+    for (int k = std::max(k0, 1); k <= std::min(k1, this->Count); ++k)
     {
-      const glm::dvec2 texels = this->Levels.texels(k);
-      const glm::ivec2 p0 = this->pageOf(b0 * texels - kPageTexelMargin, texels);
-      const glm::ivec2 p1 = this->pageOf(b1 * texels + kPageTexelMargin, texels);
-      if (static_cast<double>(p1.x - p0.x + 1) * (p1.y - p0.y + 1) > mostPerLevel)
-      {
-        continue;
-      }
+      const glm::dvec2 first =
+        glm::floor((b0 * this->Texels[k] - kPageTexelMargin) / double(kPageInterior));
+      const glm::dvec2 end =
+        glm::floor((b1 * this->Texels[k] + kPageTexelMargin) / double(kPageInterior));
+      const glm::ivec2 p0(glm::clamp(first, glm::dvec2(0.0), this->Last[k]));
+      const glm::ivec2 p1(glm::clamp(end, glm::dvec2(0.0), this->Last[k]));
       for (int y = p0.y; y <= p1.y; ++y)
       {
         for (int x = p0.x; x <= p1.x; ++x)
@@ -129,30 +148,42 @@ public:
     }
   }
 
+  /// The level of a sample at window depth w.
+  int levelAt(double w) const
+  {
+    int k = 0;
+    while (k < this->Count && w < this->Edge[k])
+    {
+      ++k;
+    }
+    return k;
+  }
+
   std::vector<std::uint64_t> Keys;
 
 private:
-  glm::ivec2 pageOf(const glm::dvec2& texel, const glm::dvec2& texels) const
+  /// The pages of one axis within kPageTexelMargin of texel coordinate u: first and last.
+  static void pagesAlong(double u, double last, int& first, int& end)
   {
-    const glm::dvec2 last = glm::ceil(texels / double(kPageInterior)) - 1.0;
-    const glm::dvec2 page =
-      glm::clamp(glm::floor(texel / double(kPageInterior)), glm::dvec2(0.0), last);
-    return glm::ivec2(page);
+    const double page = std::floor(u / kPageInterior);
+    const double within = u - page * kPageInterior;
+    first = static_cast<int>(std::max(0.0, page - (within < kPageTexelMargin ? 1.0 : 0.0)));
+    end = static_cast<int>(
+      std::min(last, page + (within > kPageInterior - kPageTexelMargin ? 1.0 : 0.0)));
   }
 
   void at(int k, double bx, double by)
   {
-    if (k < 1 || !(bx >= 0.0 && bx <= 1.0 && by >= 0.0 && by <= 1.0))
+    if (k < 1)
     {
-      return; // the base, or outside it (the lookup finds no map there)
+      return; // the base
     }
-    const glm::dvec2 texels = this->Levels.texels(k);
-    const glm::dvec2 u(bx * texels.x, by * texels.y);
-    const glm::ivec2 p0 = this->pageOf(u - kPageTexelMargin, texels);
-    const glm::ivec2 p1 = this->pageOf(u + kPageTexelMargin, texels);
-    for (int y = p0.y; y <= p1.y; ++y)
+    int x0, x1, y0, y1;
+    pagesAlong(bx * this->Texels[k].x, this->Last[k].x, x0, x1);
+    pagesAlong(by * this->Texels[k].y, this->Last[k].y, y0, y1);
+    for (int y = y0; y <= y1; ++y)
     {
-      for (int x = p0.x; x <= p1.x; ++x)
+      for (int x = x0; x <= x1; ++x)
       {
         this->push(PageKey{ k, x, y }.packed());
       }
@@ -161,18 +192,21 @@ private:
 
   void push(std::uint64_t key)
   {
-    if (std::find(this->Recent.begin(), this->Recent.end(), key) != this->Recent.end())
+    if (key == this->Recent[this->Latest] ||
+      std::find(this->Recent.begin(), this->Recent.end(), key) != this->Recent.end())
     {
       return;
     }
-    this->Recent[this->Next] = key;
-    this->Next = (this->Next + 1) % this->Recent.size();
+    this->Latest = (this->Latest + 1) % this->Recent.size();
+    this->Recent[this->Latest] = key;
     this->Keys.push_back(key);
   }
 
-  const PageLevels& Levels;
+  int Count;
+  std::array<double, kMaxPageLevels + 1> Edge{}, Finer{}, Coarser{};
+  std::array<glm::dvec2, kMaxPageLevels + 1> Texels{}, Last{};
   std::array<std::uint64_t, 8> Recent{};
-  std::size_t Next = 0;
+  std::size_t Latest = 0;
 };
 } // namespace
 
@@ -186,33 +220,32 @@ bool markPages(const PageLevels& levels, const glm::dmat4& windowToBase, double 
   {
     return true; // (no level finer than the base: no page)
   }
-  PageMarks marks(levels);
-  // (Key 0 is no page: level 0 is the base.)
+  PageMarks marks(levels, vsNear, vsFar);
+  const glm::dvec4 alongX = windowToBase[0];
+  const glm::dvec4 alongZ = windowToBase[2];
   for (int y = 0; y < height; ++y)
   {
     const double ndcY = 2.0 * (y + 0.5) / height - 1.0;
-    const glm::dvec4 row = windowToBase * glm::dvec4(0.0, ndcY, 0.0, 1.0);
-    const glm::dvec4 alongX = windowToBase[0];
-    const glm::dvec4 alongZ = windowToBase[2];
+    const glm::dvec4 row = windowToBase * glm::dvec4(-1.0 + 1.0 / width, ndcY, 0.0, 1.0);
+    const glm::dvec4 step = alongX * (2.0 / width);
+    const float* depths = windowDepths + static_cast<std::size_t>(y) * width;
     for (int x = 0; x < width; ++x)
     {
-      const float w = windowDepths[static_cast<std::size_t>(y) * width + x];
+      const float w = depths[x];
       if (!(w < 1.0f) || !(w >= 0.0f))
       {
         continue; // background, or not a depth
       }
-      const double ndcX = 2.0 * (x + 0.5) / width - 1.0;
-      const glm::dvec4 b = row + ndcX * alongX + (2.0 * w - 1.0) * alongZ;
-      if (!(b.w > 0.0))
+      const glm::dvec4 b = row + double(x) * step + (2.0 * w - 1.0) * alongZ;
+      if (b.w > 0.0)
       {
-        continue;
+        marks.sample(b.x / b.w, b.y / b.w, w);
       }
-      const double d = viewDepthFromWindowDepth(w, vsNear, vsFar, false);
-      marks.sample(b.x / b.w, b.y / b.w, levels.fineness(d));
     }
   }
   for (const BoxStandIn& standIn : standIns)
   {
+    // Its rectangle's corners at its nearest and farthest depth, in base coordinates.
     const ScreenRect& r = standIn.rect;
     if (r.isEmpty() || standIn.depths.isEmpty())
     {
@@ -234,15 +267,12 @@ bool markPages(const PageLevels& levels, const glm::dmat4& windowToBase, double 
         }
       }
     }
-    const double nearest =
-      levels.fineness(viewDepthFromWindowDepth(standIn.depths.min, vsNear, vsFar, false));
-    const double farthest =
-      levels.fineness(viewDepthFromWindowDepth(standIn.depths.max, vsNear, vsFar, false));
     if (b0.x <= b1.x && b0.y <= b1.y)
     {
-      marks.rect(levels.levelAt(farthest - kPageLevelMargin),
-        levels.levelAt(nearest + kPageBlendBand + kPageLevelMargin), glm::clamp(b0, 0.0, 1.0),
-        glm::clamp(b1, 0.0, 1.0), kPageTableSide * kPageTableSide / 16);
+      // (Its levels with the band and the margins: its farthest depth's, less one, to its
+      // nearest's, and one more.)
+      marks.rect(marks.levelAt(standIn.depths.max) - 1, marks.levelAt(standIn.depths.min) + 1,
+        glm::clamp(b0, 0.0, 1.0), glm::clamp(b1, 0.0, 1.0));
     }
   }
   std::sort(marks.Keys.begin(), marks.Keys.end());
@@ -259,21 +289,111 @@ bool markPages(const PageLevels& levels, const glm::dmat4& windowToBase, double 
   return true;
 }
 
-glm::dmat4 pageClip(const glm::dmat4& wsToBaseClip, const PageLevels& levels, const PageKey& page)
+int pageLevelRead(
+  const PageLevels& levels, const std::vector<float>& table, double bx, double by, double f)
 {
-  // Base clip x = 2 u / texels - 1 for texel coordinate u of the level; the page's texels with
-  // its border are u in [x kPageInterior - kPageBorder, + kPageTexels).
-  const glm::dvec2 texels = levels.texels(page.level);
-  const glm::dvec2 first(
-    page.x * double(kPageInterior) - kPageBorder, page.y * double(kPageInterior) - kPageBorder);
-  const glm::dvec2 centre = (2.0 * first + double(kPageTexels)) / texels - 1.0;
-  const glm::dvec2 half = double(kPageTexels) / texels;
+  const int k = levels.levelAt(f);
+  const int side = kPageTableSide;
+  if (k < 1 || !(bx >= 0.0 && bx <= 1.0 && by >= 0.0 && by <= 1.0))
+  {
+    return 0;
+  }
+  const glm::dvec2 u = glm::dvec2(bx, by) * levels.texels(k);
+  const glm::ivec2 page(glm::floor(u / double(kPageInterior)));
+  const std::size_t entry =
+    (static_cast<std::size_t>(k - 1) * side + static_cast<std::size_t>(page.y & (side - 1))) *
+      side +
+    static_cast<std::size_t>(page.x & (side - 1));
+  if (4 * entry + 3 >= table.size())
+  {
+    return 0;
+  }
+  const float* e = &table[4 * entry];
+  return e[0] >= 0.0f && e[2] == static_cast<float>(page.x) && e[3] == static_cast<float>(page.y)
+    ? k
+    : 0;
+}
+
+glm::dmat4 pagesClip(const glm::dmat4& wsToBaseClip, const PageLevels& levels, int level,
+  const glm::ivec2& first, const glm::ivec2& last)
+{
+  // Base clip x = 2 u / texels - 1 for texel coordinate u of the level; the pages' texels with
+  // their border are u in [first kPageInterior - kPageBorder, (last + 1) kPageInterior +
+  // kPageBorder).
+  const glm::dvec2 texels = levels.texels(level);
+  const glm::dvec2 from = glm::dvec2(first) * double(kPageInterior) - double(kPageBorder);
+  const glm::dvec2 to = glm::dvec2(last + 1) * double(kPageInterior) + double(kPageBorder);
+  const glm::dvec2 centre = (from + to) / texels - 1.0;
+  const glm::dvec2 half = (to - from) / texels;
   glm::dmat4 crop(1.0);
   crop[0][0] = 1.0 / half.x;
   crop[1][1] = 1.0 / half.y;
   crop[3][0] = -centre.x / half.x;
   crop[3][1] = -centre.y / half.y;
   return crop * wsToBaseClip;
+}
+
+glm::dmat4 pageClip(const glm::dmat4& wsToBaseClip, const PageLevels& levels, const PageKey& page)
+{
+  const glm::ivec2 at(page.x, page.y);
+  return pagesClip(wsToBaseClip, levels, page.level, at, at);
+}
+
+glm::ivec2 PageBatch::texels() const
+{
+  return (this->last - this->first + 1) * kPageInterior + 2 * kPageBorder;
+}
+
+std::vector<PageBatch> batchPages(const std::vector<PageKey>& pages, int mostASide)
+{
+  // Runs along x in each row of a level, then runs of the same columns in consecutive rows
+  // joined, each at most mostASide pages a side.
+  mostASide = std::max(mostASide, 1);
+  std::vector<std::size_t> order(pages.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+  {
+    order[i] = i;
+  }
+  std::sort(order.begin(), order.end(),
+    [&](std::size_t a, std::size_t b)
+    {
+      const PageKey& p = pages[a];
+      const PageKey& q = pages[b];
+      return std::tie(p.level, p.y, p.x) < std::tie(q.level, q.y, q.x);
+    });
+  std::vector<PageBatch> runs;
+  for (const std::size_t i : order)
+  {
+    const PageKey& p = pages[i];
+    PageBatch* run = runs.empty() ? nullptr : &runs.back();
+    if (run && run->level == p.level && run->last.y == p.y && run->last.x + 1 == p.x &&
+      p.x - run->first.x < mostASide)
+    {
+      run->last.x = p.x;
+      run->pages.push_back(i);
+      continue;
+    }
+    runs.push_back(PageBatch{ p.level, glm::ivec2(p.x, p.y), glm::ivec2(p.x, p.y), { i } });
+  }
+  std::vector<PageBatch> batches;
+  for (PageBatch& run : runs)
+  {
+    // (Runs are in row order: the one above a batch's last row is joined to it.)
+    auto below = std::find_if(batches.begin(), batches.end(),
+      [&](const PageBatch& b)
+      {
+        return b.level == run.level && b.first.x == run.first.x && b.last.x == run.last.x &&
+          b.last.y + 1 == run.first.y && run.first.y - b.first.y < mostASide;
+      });
+    if (below == batches.end())
+    {
+      batches.push_back(std::move(run));
+      continue;
+    }
+    below->last.y = run.last.y;
+    below->pages.insert(below->pages.end(), run.pages.begin(), run.pages.end());
+  }
+  return batches;
 }
 
 void PageCache::reset(int slots)
@@ -390,22 +510,27 @@ int PageCache::table(int levels, const std::vector<PageKey>& needed,
   return lost;
 }
 
-int poolSlots(int baseSide)
+int poolSlots(int atlasSide, int baseSide)
 {
-  if (baseSide < kPageTexels || baseSide % kPageTexels != 0)
+  if (atlasSide < kPageTexels || baseSide < kPageTexels || atlasSide % kPageTexels != 0 ||
+    baseSide % kPageTexels != 0 || baseSide >= atlasSide)
   {
     return 0;
   }
-  const int n = baseSide / kPageTexels;
-  return 3 * n * n;
+  const int n = atlasSide / kPageTexels, b = baseSide / kPageTexels;
+  return n * n - b * b;
 }
 
-glm::ivec2 poolSlotPlace(int baseSide, int slot)
+glm::ivec2 poolSlotPlace(int atlasSide, int baseSide, int slot)
 {
-  const int n = std::max(1, baseSide / kPageTexels);
-  const int square = slot / (n * n), i = slot % (n * n);
-  static const glm::ivec2 corners[3] = { { 1, 0 }, { 0, 1 }, { 1, 1 } };
-  return corners[std::min(std::max(square, 0), 2)] * n + glm::ivec2(i % n, i / n);
+  // The rows beside the base first (columns b .. n - 1), then the rows above it.
+  const int n = std::max(1, atlasSide / kPageTexels), b = std::max(0, baseSide / kPageTexels);
+  const int beside = b * (n - b);
+  if (slot < beside)
+  {
+    return glm::ivec2(b + slot % std::max(n - b, 1), slot / std::max(n - b, 1));
+  }
+  return glm::ivec2((slot - beside) % n, b + (slot - beside) / n);
 }
 
 } // namespace csm

@@ -34,9 +34,9 @@ constexpr int kPageInterior = kPageTexels - 2 * kPageBorder;
 /// (x mod kPageTableSide, y mod kPageTableSide) of level k's window, tagged with x and y.
 constexpr int kPageTableSide = 32;
 
-/// The most levels finer than the base map (float map coordinates keep about a tenth of a texel
-/// at 2^8 times the base's texels a side).
-constexpr int kMaxPageLevels = 8;
+/// The most levels finer than the base map (float map coordinates keep a quarter of a texel
+/// at 2^12 times the base's texels a side).
+constexpr int kMaxPageLevels = 12;
 
 /// Share of a level's octave of view depth (its nearest part) whose samples take the next finer
 /// level in a dithered share growing from 0 to 1 toward it (the seam between two levels becomes
@@ -55,7 +55,9 @@ constexpr double kPageTexelMargin = 2.0;
 /// level everything nearer.
 struct PageLevels
 {
-  glm::dvec2 baseTexels{ 0.0, 0.0 }; ///< the base map's texels along s and t
+  /// Level 0's texels along s and t: square in the world, as large as the base's larger texel
+  /// (the base map's own texels along its shorter side are finer than that).
+  glm::dvec2 baseTexels{ 0.0, 0.0 };
   double baseDepth = 0.0; ///< D_0: the view depth from which the base map meets the target
   int count = 0;          ///< levels finer than the base
   /// log2(baseDepth / vsDepth): the level a sample at that depth needs, as a real number.
@@ -96,16 +98,51 @@ struct PageKey
 /// in x, y: the lookup's own map coordinates), its level by its view depth (the camera's
 /// clipping range, perspective), and its page and the neighbours within kPageTexelMargin
 /// texels; within kPageLevelMargin of a level's edge or in the dithered band, both levels'
-/// pages. Then the boxes that stood in for casters the buffer lacks, as samples spread over
-/// their rectangles and depths. Sorted, each once; false where more than mostPages are needed.
+/// pages. Then the boxes that stood in for casters the buffer lacks: every page their
+/// rectangles touch from their farthest depth's level (less one) to their nearest's (and one
+/// more). Sorted, each once; false where more than mostPages are needed.
 bool markPages(const PageLevels& levels, const glm::dmat4& windowToBase, double vsNear,
   double vsFar, const float* windowDepths, int width, int height,
   const std::vector<BoxStandIn>& standIns, std::size_t mostPages, std::vector<PageKey>& pages);
+
+/// A caster the visible-depth pass leaves out stands in by its box for the pages only where its
+/// rectangle spans at most this share of the image's NDC width and height (its pages are every
+/// page the rectangle touches: few for a box small on the image); a larger one is drawn.
+constexpr double kPageStandInSpan = 0.25;
+
+/// The level the lookup reads at base coordinates (bx, by) for a sample of fineness f (the
+/// dithered band aside): its level (PageLevels::levelAt) where the page table `table`
+/// (PageCache::table's entries for levels.count windows) holds its page there, else 0 (the
+/// base). The lookup's own choice (csmShadowFS.glsl's csmPagedShadow), for measuring it.
+int pageLevelRead(
+  const PageLevels& levels, const std::vector<float>& table, double bx, double by, double f);
 
 /// World -> clip space of one page as drawn into its kPageTexels square of the pool: the base
 /// map's clip space (the same depth) cropped to the page's texels of its level and the
 /// kPageBorder texels around them.
 glm::dmat4 pageClip(const glm::dmat4& wsToBaseClip, const PageLevels& levels, const PageKey& page);
+
+/// The same for the pages first .. last (columns, rows) of a level drawn in one pass: their
+/// texels and the kPageBorder texels around them all.
+glm::dmat4 pagesClip(const glm::dmat4& wsToBaseClip, const PageLevels& levels, int level,
+  const glm::ivec2& first, const glm::ivec2& last);
+
+/// Pages of one level drawn in one pass (pagesClip), each then copied to its slot: a caster pass
+/// costs its triangles whatever it covers, so the pages a view brings in together are drawn
+/// together. pages: indices into the pages batched.
+struct PageBatch
+{
+  int level = 0;
+  glm::ivec2 first{ 0 }, last{ 0 };
+  std::vector<std::size_t> pages;
+  /// Texels a side of the pass: the pages' own and a border around them.
+  glm::ivec2 texels() const;
+};
+
+/// The pages in rectangles of adjacent pages of one level, each at most mostASide pages a side
+/// and every page of it among them (runs along a row, joined with the same columns of the next
+/// rows); each page in one batch.
+std::vector<PageBatch> batchPages(const std::vector<PageKey>& pages, int mostASide);
 
 /// The pages kept in a pool of slots across frames. A page keeps its slot while it is needed
 /// or no other page needs the slot (least recently needed first).
@@ -142,11 +179,11 @@ private:
   std::uint64_t Frame = 0;
 };
 
-/// The pool beside a base map of baseSide texels a side in an atlas of twice that: the three
-/// other squares of the atlas, each (baseSide / kPageTexels)^2 slots; slot i's place in pages
-/// (column, row from the atlas's lower left). Slots: 0 where baseSide is not a positive multiple
-/// of kPageTexels.
-int poolSlots(int baseSide);
-glm::ivec2 poolSlotPlace(int baseSide, int slot);
+/// The pool beside a base map of baseSide texels a side in the lower left of a square atlas of
+/// atlasSide: every other kPageTexels square of the atlas, row by row from the lower left; slot
+/// i's place in pages (column, row). Slots: 0 where the sides are not positive multiples of
+/// kPageTexels or the base does not leave room.
+int poolSlots(int atlasSide, int baseSide);
+glm::ivec2 poolSlotPlace(int atlasSide, int baseSide, int slot);
 
 } // namespace csm

@@ -130,6 +130,17 @@ bool boxStandIn(const glm::dmat4& wsToClip, const Bounds& wsBox, double cells, i
 WindowFootprint windowFootprint(
   const float* windowDepths, int width, int height, const std::vector<BoxStandIn>& standIns = {});
 
+/// A depth buffer as the visible-depth pass read it (width x height window depths, rows from
+/// the bottom) and the boxes that stood in for the casters it left out.
+struct DepthSamples
+{
+  std::vector<float> windowDepths;
+  int width = 0;
+  int height = 0;
+  std::vector<BoxStandIn> standIns;
+  bool isEmpty() const { return this->width < 1 || this->height < 1; }
+};
+
 /// A footprint and the camera that drew it.
 struct ViewFootprint
 {

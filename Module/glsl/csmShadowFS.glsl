@@ -411,6 +411,63 @@ vec4 csmShadow(sampler2DShadow map, sampler2DShadow nearest, int j, vec4 vc, vec
 }
 
 
+// Light-space pages (csmPages.h; vtkCascadedShadowMapBakerPass::LightSpacePages): light j's one
+// map is the base, refined by levels of half its texel a level, of which the pages the view reads
+// are drawn into the rest of the atlas. CSM_PAGE_TEXELS (a page's side with its border),
+// CSM_PAGE_BORDER, CSM_PAGE_INTERIOR, CSM_PAGE_TABLE_SIDE and CSM_PAGE_BAND come from csmPages.h
+// through the pass.
+uniform int csmPageLevels[CSM_LIGHTS];   // levels finer than the base
+uniform float csmPageDepth[CSM_LIGHTS];  // view depth from which the base meets the target
+uniform vec2 csmPageVirtual[CSM_LIGHTS]; // the base's texels along s and t
+uniform vec2 csmPageTile[CSM_LIGHTS];    // a page's side in the atlas's [0, 1]
+
+// Shadow of a paged light j, as csmShadow: the level the point's view depth needs (log2 of the
+// base's depth over it, rounded up; in the band before the next finer level a share of the
+// pixels growing to 1 takes that one), its page by the table (an entry holds the page's slot in
+// the pool, in pages, and the page it holds), and the lookup in that page's texels, its border
+// holding the kernel; the base where the page is not in the pool. One matrix: every level shares
+// the base's map coordinates (orthographic: w = 1).
+vec4 csmPagedShadow(sampler2DShadow map, sampler2DShadow nearest, sampler2D pages, int j, vec4 vc,
+  vec4 dvcdx, vec4 dvcdy)
+{
+  int base = j * CSM_MAX_CASCADES;
+  mat4 toMap = csmToMap[base];
+  vec4 h = toMap * vc;
+  vec4 hx = csmDisplacement(toMap, dvcdx.xyz);
+  vec4 hy = csmDisplacement(toMap, dvcdy.xyz);
+  float depth = -vc.z;
+  float fineness = log2(csmPageDepth[j] / max(depth, 1e-30));
+  int levels = csmPageLevels[j];
+  int k = clamp(int(ceil(fineness)), 0, levels);
+  float into = fineness - (float(k) - CSM_PAGE_BAND);
+  k += (k < levels && into > 0.0 && into / CSM_PAGE_BAND > csmDither()) ? 1 : 0;
+  vec2 texels = csmPageVirtual[j] * exp2(float(k));
+  vec2 u = h.xy * texels;
+  vec2 page = floor(u / float(CSM_PAGE_INTERIOR));
+  ivec2 entry = ivec2(page) & (CSM_PAGE_TABLE_SIDE - 1);
+  vec4 held = texelFetch(pages, ivec2(entry.x, entry.y + CSM_PAGE_TABLE_SIDE * max(k - 1, 0)), 0);
+  bool paged = k > 0 && held.x >= 0.0 && held.z == page.x && held.w == page.y;
+  vec2 scale = paged ? texels / float(CSM_PAGE_TEXELS) : vec2(1.0);
+  vec2 offset =
+    paged ? (float(CSM_PAGE_BORDER) - page * float(CSM_PAGE_INTERIOR)) / float(CSM_PAGE_TEXELS)
+          : vec2(0.0);
+  vec4 hPage = vec4(h.xy * scale + offset, h.zw);
+  vec4 tile = paged ? vec4(held.xy * csmPageTile[j], csmPageTile[j]) : csmTile[base];
+  vec2 texel = paged ? vec2(1.0 / float(CSM_PAGE_TEXELS)) : csmTexel[base];
+  bool inside = csmCount[j] > 0 && depth >= csmSplitNear[j] && depth <= csmSplitFar[base] &&
+    csmCovers(h);
+  if (!inside)
+  {
+    return vec4(1.0, -1.0, 0.0, 1.0); // outside the base: lit as without shadows
+  }
+  // The constant bias, in the base's depth (the whole scene along the light), shrinks with the
+  // texel: a level's texels meet the target at a view 2^k times nearer.
+  float m;
+  float visibility = csmVisibility(map, nearest, tile, texel, hPage,
+    vec4(hx.xy * scale, hx.zw), vec4(hy.xy * scale, hy.zw), paged ? exp2(-float(k)) : 1.0,
+    csmHandedness[base], m);
+  return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), paged ? float(k) : (k > 0 ? -2.0 : 0.0), m, visibility);
+}
 
 #ifdef CSM_IMPOSTOR
 // Receivers drawn as impostors (VTK's tubes and spheres): the fragment's vertexVC is the point on

@@ -45,6 +45,7 @@ ShadowOptions::ShadowOptions(vtkCascadedShadowMapPass* pass)
   this->VisibleFootprintFit = baker->GetVisibleFootprintFit();
   this->SceneFittedCascades = baker->GetPlanner()->GetSceneFittedCascades();
   this->MoveKeptMaps = baker->GetMoveKeptMaps();
+  this->LightSpacePages = baker->GetLightSpacePages();
 #if CSM_COMPARISON_TECHNIQUES
   this->FacePartitions = baker->GetPlanner()->GetFacePartitions();
   this->CameraSpace = baker->GetPlanner()->GetCameraSpace();
@@ -80,6 +81,7 @@ void Configure(vtkCascadedShadowMapPass* pass, const ShadowOptions& o)
   baker->SetVisibleFootprintFit(o.VisibleFootprintFit);
   baker->GetPlanner()->SetSceneFittedCascades(o.SceneFittedCascades);
   baker->SetMoveKeptMaps(o.MoveKeptMaps);
+  baker->SetLightSpacePages(o.LightSpacePages);
 #if CSM_COMPARISON_TECHNIQUES
   baker->GetPlanner()->SetFacePartitions(o.FacePartitions);
   baker->GetPlanner()->SetCameraSpace(o.CameraSpace);

@@ -47,6 +47,7 @@ struct ShadowOptions
   bool VisibleFootprintFit;         ///< ... and to where on the image (VisibleFootprintFit)
   bool SceneFittedCascades;         ///< the farthest cascade may be a map fixed in the world
   bool MoveKeptMaps;                ///< kept maps move with the view (their strips drawn)
+  bool LightSpacePages; ///< the scene-fitted map refined by light-space pages where they serve
 #if CSM_COMPARISON_TECHNIQUES
   int FacePartitions;      ///< 0 cascades; 1 FP+W, 2 FP+ZP+W (z-partitions per face)
   bool CameraSpace;        ///< camera space shadow maps (general case)

@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -64,6 +65,18 @@ TEST(Pages, LevelsHalveTheTexelEachOctaveOfDepthDownToTheNearestSample)
   EXPECT_EQ(levels.levelAt(levels.fineness(baseDepth / 2.01)), 2);
   EXPECT_EQ(levels.levelAt(levels.fineness(1e-9)), levels.count); // the finest serves nearer
   EXPECT_EQ(levels.levelAt(std::numeric_limits<double>::quiet_NaN()), 0);
+  // Every level meets the target over the depths it serves: a texel of t_k at depth d reads
+  // t_k / (d p), the most at the nearest depth of its octave.
+  for (double d = 1.0; d < 2.0 * baseDepth; d *= 1.013)
+  {
+    const int k = levels.levelAt(levels.fineness(d));
+    const double texel = 100.0 / levels.texels(k).x;
+    if (k < levels.count)
+    {
+      EXPECT_LE(texel / (d * kPixel), 0.7 * (1.0 + 1e-9)) << d;
+    }
+    EXPECT_GE(texel / (d * kPixel), k > 0 ? 0.35 * (1.0 - 1e-9) : 0.0) << d;
+  }
   // The view never nearer than D_0: no level.
   ASSERT_TRUE(
     csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth * 2.0, levels));
@@ -75,10 +88,10 @@ TEST(Pages, LevelsAreRefusedForBadInputAndBeyondTheFinestLevel)
   csm::PageLevels levels;
   const double baseDepth = (100.0 / 2048.0) / (0.7 * kPixel);
   EXPECT_TRUE(
-    csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 256.0, levels));
+    csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 4096.0, levels));
   EXPECT_EQ(levels.count, csm::kMaxPageLevels);
   EXPECT_FALSE(
-    csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 300.0, levels));
+    csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 4800.0, levels));
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, nan, levels));
   EXPECT_FALSE(csm::pageLevels(baseClip(100.0), csm::MapSize(2048), nan, 0.7, 1.0, levels));
@@ -157,16 +170,17 @@ TEST(Pages, SamplesMarkThePagesOfTheirLevelAndOfTheBandAndEdges)
   ASSERT_EQ(pages.size(), 2u);
   EXPECT_EQ(pages[0], (csm::PageKey{ 2, 0, 0 }));
   EXPECT_EQ(pages[1], (csm::PageKey{ 2, 1, 0 }));
-  // A box standing in for a caster, over the image's left half at level 1's depths.
+  // A box standing in for a caster, over the image's left half at level 1's depths (fineness
+  // 0.5): every page its rectangle touches at levels 1 and 2 (its level and the next finer).
   csm::BoxStandIn standIn;
   standIn.rect = csm::ScreenRect{ -1.0, -1.0, 0.0, 1.0 };
-  const double inLevel1 = 100.0 / std::exp2(0.5);
   standIn.depths.min = standIn.depths.max =
-    csm::windowDepthFromViewDepth(inLevel1, vsNear, vsFar, false);
+    csm::windowDepthFromViewDepth(100.0 / std::exp2(0.5), vsNear, vsFar, false);
   ASSERT_TRUE(csm::markPages(levels, straightAcross(), vsNear, vsFar, depths.data(), width, height,
     { standIn }, 1000, pages));
-  EXPECT_EQ(pagesOfLevel(pages, 1).size(), 2u * 3u); // 512 texels: 3 a side, left half 2 across
-  EXPECT_EQ(pages.size(), 6u);
+  EXPECT_EQ(pagesOfLevel(pages, 1).size(), 2u * 3u); // 512 texels: 3 a side, 2 in the left half
+  EXPECT_EQ(pagesOfLevel(pages, 2).size(), 3u * 5u); // 1024: 5 a side, 3 reach the left half
+  EXPECT_EQ(pages.size(), 21u);
 }
 
 TEST(Pages, TheCacheKeepsResidentPagesAndGivesTheLeastRecentlyNeededSlots)
@@ -219,15 +233,81 @@ TEST(Pages, TheTableTagsEachEntryAndTheNeededPagesWinTheirEntries)
   EXPECT_EQ(entries[4 * 0], -1.0f);
   // Both needed: one loses its entry.
   EXPECT_EQ(cache.table(2, { a, b, c }, place, entries), 1);
+  // The level the lookup reads: c's where c's page sits, the base elsewhere.
+  csm::PageLevels levels;
+  levels.baseTexels = glm::dvec2(248.0); // a page a level-0 side
+  levels.baseDepth = 100.0;
+  levels.count = 2;
+  EXPECT_EQ(cache.table(2, { a, c }, place, entries), 0);
+  const double atC = (3.5 * 248.0) / (4.0 * 248.0), rowC = (2.5 * 248.0) / (4.0 * 248.0);
+  EXPECT_EQ(csm::pageLevelRead(levels, entries, atC, rowC, 1.5), 2);
+  EXPECT_EQ(csm::pageLevelRead(levels, entries, atC, rowC, 0.5), 0); // level 1's page there: none
+  EXPECT_EQ(csm::pageLevelRead(levels, entries, atC, rowC, -1.0), 0);
+  EXPECT_EQ(csm::pageLevelRead(levels, entries, 1.5, rowC, 1.5), 0);
 }
 
-TEST(Pages, ThePoolIsTheThreeOtherSquaresOfTheAtlas)
+TEST(Pages, ThePoolIsTheRestOfTheAtlas)
 {
-  EXPECT_EQ(csm::poolSlots(2048), 192);
-  EXPECT_EQ(csm::poolSlots(1000), 0);
-  EXPECT_EQ(csm::poolSlots(0), 0);
-  EXPECT_EQ(csm::poolSlotPlace(2048, 0), glm::ivec2(8, 0));
-  EXPECT_EQ(csm::poolSlotPlace(2048, 9), glm::ivec2(9, 1));
-  EXPECT_EQ(csm::poolSlotPlace(2048, 64), glm::ivec2(0, 8));
-  EXPECT_EQ(csm::poolSlotPlace(2048, 191), glm::ivec2(15, 15));
+  // A 1024 base in a 4096 atlas: 16 x 16 pages less the base's 4 x 4.
+  EXPECT_EQ(csm::poolSlots(4096, 1024), 240);
+  EXPECT_EQ(csm::poolSlots(4096, 1000), 0);
+  EXPECT_EQ(csm::poolSlots(4096, 4096), 0);
+  EXPECT_EQ(csm::poolSlots(0, 0), 0);
+  EXPECT_EQ(csm::poolSlotPlace(4096, 1024, 0), glm::ivec2(4, 0));
+  EXPECT_EQ(csm::poolSlotPlace(4096, 1024, 11), glm::ivec2(15, 0));
+  EXPECT_EQ(csm::poolSlotPlace(4096, 1024, 12), glm::ivec2(4, 1));
+  EXPECT_EQ(csm::poolSlotPlace(4096, 1024, 48), glm::ivec2(0, 4));
+  EXPECT_EQ(csm::poolSlotPlace(4096, 1024, 239), glm::ivec2(15, 15));
+  // Every slot a place of its own, none in the base.
+  std::vector<int> seen(256, 0);
+  for (int slot = 0; slot < 240; ++slot)
+  {
+    const glm::ivec2 place = csm::poolSlotPlace(4096, 1024, slot);
+    EXPECT_FALSE(place.x < 4 && place.y < 4);
+    ++seen[static_cast<size_t>(place.y * 16 + place.x)];
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), 240);
+}
+
+TEST(Pages, PagesDrawnTogetherAreRectanglesOfAdjacentPagesOfOneLevel)
+{
+  // Level 3: a 3 x 2 block and a lone page; level 4: a row of 5 split at 4 a side.
+  const std::vector<csm::PageKey> pages = { { 3, 4, 7 }, { 3, 5, 7 }, { 3, 6, 7 }, { 3, 4, 8 },
+    { 3, 5, 8 }, { 3, 6, 8 }, { 3, 9, 9 }, { 4, 0, 1 }, { 4, 1, 1 }, { 4, 2, 1 }, { 4, 3, 1 },
+    { 4, 4, 1 } };
+  const std::vector<csm::PageBatch> batches = csm::batchPages(pages, 4);
+  ASSERT_EQ(batches.size(), 4u);
+  std::vector<int> seen(pages.size(), 0);
+  for (const csm::PageBatch& b : batches)
+  {
+    const glm::ivec2 side = b.last - b.first + 1;
+    EXPECT_EQ(b.pages.size(), static_cast<size_t>(side.x * side.y)); // a full rectangle
+    EXPECT_LE(side.x, 4);
+    EXPECT_LE(side.y, 4);
+    for (const size_t i : b.pages)
+    {
+      ++seen[i];
+      EXPECT_EQ(pages[i].level, b.level);
+      EXPECT_TRUE(pages[i].x >= b.first.x && pages[i].x <= b.last.x);
+      EXPECT_TRUE(pages[i].y >= b.first.y && pages[i].y <= b.last.y);
+    }
+    EXPECT_EQ(b.texels(), side * csm::kPageInterior + 2 * csm::kPageBorder);
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<long>(pages.size()));
+  EXPECT_EQ(batches[0].first, glm::ivec2(4, 7));
+  EXPECT_EQ(batches[0].last, glm::ivec2(6, 8));
+  // A batch's clip space is its pages' (page (5, 8) of the 3 x 2 block one page in, one up).
+  csm::PageLevels levels;
+  ASSERT_TRUE(csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, 1.0, levels));
+  const glm::dmat4 base = baseClip(100.0);
+  const glm::dmat4 together = csm::pagesClip(base, levels, 3, { 4, 7 }, { 6, 8 });
+  const glm::dmat4 alone = csm::pageClip(base, levels, { 3, 5, 8 });
+  const glm::dvec4 world = glm::inverse(alone) * glm::dvec4(0.3, -0.2, 0.1, 1.0);
+  const glm::dvec4 inBatch = together * world;
+  const glm::dvec2 texelInBatch =
+    (glm::dvec2(inBatch) + 1.0) * 0.5 * glm::dvec2(batches[0].texels());
+  const glm::dvec2 texelAlone = (glm::dvec2(0.3, -0.2) + 1.0) * 0.5 * double(csm::kPageTexels);
+  EXPECT_NEAR(texelInBatch.x, texelAlone.x + csm::kPageInterior, 1e-6);
+  EXPECT_NEAR(texelInBatch.y, texelAlone.y + csm::kPageInterior, 1e-6);
+  EXPECT_NEAR(inBatch.z, 0.1, 1e-12);
 }

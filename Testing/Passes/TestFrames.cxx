@@ -373,6 +373,7 @@ TEST(Frames, AlongADollyEveryKeptMapMeetsTheErrorTarget)
 {
   BoxOverPlane scene;
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  pass->GetShadowMapBakerPass()->LightSpacePagesOff(); // (the cascades' own behaviour)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   vtkCascadedShadowMapPlanner* planner = baker->GetPlanner();
   planner->SceneFittedCascadesOff(); // (the maps that follow the view)
@@ -470,6 +471,7 @@ TEST(Frames, AMapMovedWithTheViewKeepsItsTexelsShiftedAndDrawsOnlyTheStrips)
     BoxOverPlane& scene = k == 0 ? moving : fresh;
     passes[k] = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
     passes[k]->GetPlanner()->SceneFittedCascadesOff(); // (the maps that follow the view)
+    passes[k]->LightSpacePagesOff();
     // Orthographic maps move exactly: a warped one's moves end sooner (math.Reuse tests).
     passes[k]->GetPlanner()->SetWarpMode(vtkCascadedShadowMapPlanner::WARP_NONE);
   }

@@ -173,6 +173,7 @@ TEST(Passes, ResolutionAndCascadesCanChangeBetweenFrames)
 {
   BoxOverPlane scene;
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  pass->GetShadowMapBakerPass()->LightSpacePagesOff(); // (the cascades' own behaviour)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   auto plain = scene.Render();
   baker->GetPlanner()

@@ -78,6 +78,7 @@ TEST(Passes, CastersThatShadowNothingAreLeftOutOfTheMaps)
   BoxOverPlane scene;
   auto plain = scene.Render();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  pass->GetShadowMapBakerPass()->LightSpacePagesOff(); // (the cascades' own behaviour)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->SetResolution(1024);
   baker->GetPlanner()->SetNumberOfCascades(2);
@@ -312,6 +313,8 @@ TEST(Passes, BigCastersAreDrawnFromCompactBlocksWithTheSameShadows)
   auto plain = scene.Render();
 
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+
+  pass->GetShadowMapBakerPass()->LightSpacePagesOff(); // (the cascades' own behaviour)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->GetPlanner()->SetNumberOfCascades(3);
   baker->GetPlanner()->AdaptiveCascadesOff();

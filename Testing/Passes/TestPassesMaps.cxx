@@ -163,8 +163,9 @@ TEST(Passes, TheSingleMapLookupShadesAsTheChoiceDoes)
   BoxOverPlane scene;
   auto plain = scene.Frame();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
-  pass->ReuseShadowFactorsOff();           // (every frame makes the lookup)
-  EXPECT_TRUE(pass->GetSingleMapLookup()); // the default
+  pass->GetShadowMapBakerPass()->LightSpacePagesOff(); // (the cascades' own behaviour)
+  pass->ReuseShadowFactorsOff();                       // (every frame makes the lookup)
+  EXPECT_TRUE(pass->GetSingleMapLookup());             // the default
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   for (int cascades : { 1, 3 })
   {
@@ -213,6 +214,7 @@ TEST(Passes, MapsHaveTheResolutionTheirErrorNeeds)
     return n;
   };
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  pass->GetShadowMapBakerPass()->LightSpacePagesOff(); // (the cascades' own behaviour)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->GetPlanner()
     ->SceneFittedCascadesOff(); // (a scene-fitted map has all the texels of its tile)
@@ -274,7 +276,9 @@ TEST(Passes, KeptMapsShadeLikeFreshOnesAlongAnInteractivePath)
 {
   BoxOverPlane keep, fresh;
   vtkCascadedShadowMapPass* a = vtkCascadedShadowMapPass::UseShadowsOn(keep.Renderer);
+  a->GetShadowMapBakerPass()->LightSpacePagesOff(); // (the cascades' own behaviour)
   vtkCascadedShadowMapPass* b = vtkCascadedShadowMapPass::UseShadowsOn(fresh.Renderer);
+  b->GetShadowMapBakerPass()->LightSpacePagesOff();
   b->GetShadowMapBakerPass()->SetInteractiveMapBorder(0.0);
   b->GetShadowMapBakerPass()->SetMapReuseTolerance(1.0); // re-render whenever the camera moves
   // (The cascades that follow the view: a scene-fitted map would serve every view here.)
@@ -369,7 +373,9 @@ TEST(Passes, AMapReRenderedBesideKeptOnesHoldsOnlyItsOwnCasters)
     }
   }
   vtkCascadedShadowMapPass* a = vtkCascadedShadowMapPass::UseShadowsOn(keep.Renderer);
+  a->GetShadowMapBakerPass()->LightSpacePagesOff(); // (the cascades' own behaviour)
   vtkCascadedShadowMapPass* b = vtkCascadedShadowMapPass::UseShadowsOn(fresh.Renderer);
+  b->GetShadowMapBakerPass()->LightSpacePagesOff();
   a->GetShadowMapBakerPass()->GetPlanner()->SetErrorTarget(0.5);
   b->GetShadowMapBakerPass()->GetPlanner()->SetErrorTarget(0.5);
   b->GetShadowMapBakerPass()->SetMapReuseTolerance(1.0); // re-render whenever the camera moves
@@ -464,6 +470,7 @@ TEST(Passes, LeavingAKeptMapReRendersItInThatFrame)
 {
   BoxOverPlane scene, reference;
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  pass->GetShadowMapBakerPass()->LightSpacePagesOff(); // (the cascades' own behaviour)
   // (The cascades that follow the view: a scene-fitted map would serve every view here.)
   pass->GetShadowMapBakerPass()->GetPlanner()->SceneFittedCascadesOff();
   vtkCascadedShadowMapPass::UseShadowsOn(reference.Renderer)

@@ -96,6 +96,8 @@ TEST(Passes, VisibleDepthFitStartsTheCascadesAtTheNearestSample)
   const double cameraNear = camera->GetClippingRange()[0];
 
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+
+  pass->GetShadowMapBakerPass()->LightSpacePagesOff(); // (the cascades' own behaviour)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->GetPlanner()->SceneFittedCascadesOff(); // (the cascades that follow the view)
   baker->VisibleDepthFitOff();
@@ -250,6 +252,7 @@ TEST(Passes, CascadesFittedToTheVisibleFootprintDrawFewerTexelsForTheSameShadow)
   scene.Renderer->ResetCameraClippingRange();
   auto plain = scene.Render();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  pass->GetShadowMapBakerPass()->LightSpacePagesOff(); // (the cascades' own behaviour)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   baker->GetPlanner()->SceneFittedCascadesOff(); // (the cascades that follow the view)
   baker->GetPlanner()->AdaptiveCascadesOff();
