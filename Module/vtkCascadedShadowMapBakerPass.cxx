@@ -665,8 +665,9 @@ void vtkCascadedShadowMapBakerPass::DrawPages(vtkOpenGLRenderer* renderer,
   vtkOpenGLRenderWindow* window, csmRendererMaps& state, const csmFrameCasters& props,
   LightMaps& maps)
 {
-  // The pages a view brings in together drawn in one pass each (a caster pass costs its
-  // triangles whatever it covers) into the scratch, then copied to their slots; one pass a page
+  // The pages a view brings in together drawn in one pass a block (a caster pass costs its
+  // triangles whatever it covers; a block's clip space whatever pages come with it, so that a
+  // page's texels are too) into the scratch, then copied to their slots; one pass a page
   // straight into its slot where the GL cannot copy images.
   const vtkCascadedShadows::LightPages& pages = maps.Pages;
   if (pages.Drawn.empty() || maps.Cascades.size() != 1)
@@ -681,7 +682,7 @@ void vtkCascadedShadowMapBakerPass::DrawPages(vtkOpenGLRenderer* renderer,
   LightMaps one = maps;
   one.Pages = vtkCascadedShadows::LightPages();
   auto draw = [&](vtkOpenGLFramebufferObject* frameBuffer, const glm::dmat4& clip, int x, int y,
-                const glm::ivec2& size)
+                const glm::ivec2& size, const std::array<int, 4>& area)
   {
     one.Atlas = frameBuffer == state.FrameBuffer ? maps.Atlas : state.PageScratch;
     CascadeMap& map = one.Cascades[0];
@@ -690,10 +691,9 @@ void vtkCascadedShadowMapBakerPass::DrawPages(vtkOpenGLRenderer* renderer,
     map.Tile[2] = map.Resolution[0] = size.x;
     map.Tile[3] = map.Resolution[1] = size.y;
     csmToRowMajor(clip, map.WorldToMap);
-    csmMapDrawing::ClearMap(window->GetState(), one, 0, nullptr);
-    const int whole[4] = { 0, 0, size.x, size.y };
+    csmMapDrawing::ClearMap(window->GetState(), one, 0, area.data());
     this->NumberOfRenderedProps += this->Drawing->DrawCascade(renderer, frameBuffer, one, 0, props,
-      this->Planner->GetDepthClamp(), this->Distributed(), this->Statistics, whole);
+      this->Planner->GetDepthClamp(), this->Distributed(), this->Statistics, area.data());
     glFlush();
   };
   std::vector<csm::PageKey> keys;
@@ -707,7 +707,8 @@ void vtkCascadedShadowMapBakerPass::DrawPages(vtkOpenGLRenderer* renderer,
     for (size_t i = 0; i < keys.size(); ++i)
     {
       draw(state.FrameBuffer, csm::pageClip(wsToBase, levels, keys[i]), pages.Drawn[i][3],
-        pages.Drawn[i][4], glm::ivec2(csm::kPageTexels));
+        pages.Drawn[i][4], glm::ivec2(csm::kPageTexels),
+        { 0, 0, csm::kPageTexels, csm::kPageTexels });
     }
     return;
   }
@@ -715,7 +716,8 @@ void vtkCascadedShadowMapBakerPass::DrawPages(vtkOpenGLRenderer* renderer,
     csm::batchPages(keys, (side - 2 * csm::kPageBorder) / csm::kPageInterior))
   {
     draw(state.PageFrameBuffer,
-      csm::pagesClip(wsToBase, levels, batch.level, batch.first, batch.last), 0, 0, batch.texels());
+      csm::pagesClip(wsToBase, levels, batch.level, batch.first, batch.last), 0, 0, batch.texels(),
+      batch.drawn());
     for (const size_t i : batch.pages)
     {
       const glm::ivec2 from = (glm::ivec2(keys[i].x, keys[i].y) - batch.first) * csm::kPageInterior;

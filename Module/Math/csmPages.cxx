@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <tuple>
 
 namespace csm
@@ -344,54 +345,40 @@ glm::ivec2 PageBatch::texels() const
   return (this->last - this->first + 1) * kPageInterior + 2 * kPageBorder;
 }
 
-std::vector<PageBatch> batchPages(const std::vector<PageKey>& pages, int mostASide)
+std::array<int, 4> PageBatch::drawn() const
 {
-  // Runs along x in each row of a level, then runs of the same columns in consecutive rows
-  // joined, each at most mostASide pages a side.
-  mostASide = std::max(mostASide, 1);
-  std::vector<std::size_t> order(pages.size());
-  for (std::size_t i = 0; i < order.size(); ++i)
-  {
-    order[i] = i;
-  }
-  std::sort(order.begin(), order.end(),
-    [&](std::size_t a, std::size_t b)
-    {
-      const PageKey& p = pages[a];
-      const PageKey& q = pages[b];
-      return std::tie(p.level, p.y, p.x) < std::tie(q.level, q.y, q.x);
-    });
-  std::vector<PageBatch> runs;
-  for (const std::size_t i : order)
+  const glm::ivec2 from = (this->from - this->first) * kPageInterior;
+  const glm::ivec2 size = (this->to - this->from + 1) * kPageInterior + 2 * kPageBorder;
+  return { from.x, from.y, size.x, size.y };
+}
+
+std::vector<PageBatch> batchPages(const std::vector<PageKey>& pages, int side)
+{
+  // The blocks of side x side pages of a level from its lower left, each with the pages of it
+  // given.
+  side = std::max(side, 1);
+  std::map<std::tuple<int, int, int>, PageBatch> blocks;
+  for (std::size_t i = 0; i < pages.size(); ++i)
   {
     const PageKey& p = pages[i];
-    PageBatch* run = runs.empty() ? nullptr : &runs.back();
-    if (run && run->level == p.level && run->last.y == p.y && run->last.x + 1 == p.x &&
-      p.x - run->first.x < mostASide)
+    const glm::ivec2 at(p.x, p.y);
+    const glm::ivec2 block = at / side;
+    PageBatch& b = blocks[std::make_tuple(p.level, block.y, block.x)];
+    if (b.pages.empty())
     {
-      run->last.x = p.x;
-      run->pages.push_back(i);
-      continue;
+      b.level = p.level;
+      b.first = block * side;
+      b.last = b.first + side - 1;
+      b.from = b.to = at;
     }
-    runs.push_back(PageBatch{ p.level, glm::ivec2(p.x, p.y), glm::ivec2(p.x, p.y), { i } });
+    b.from = glm::min(b.from, at);
+    b.to = glm::max(b.to, at);
+    b.pages.push_back(i);
   }
   std::vector<PageBatch> batches;
-  for (PageBatch& run : runs)
+  for (auto& block : blocks)
   {
-    // (Runs are in row order: the one above a batch's last row is joined to it.)
-    auto below = std::find_if(batches.begin(), batches.end(),
-      [&](const PageBatch& b)
-      {
-        return b.level == run.level && b.first.x == run.first.x && b.last.x == run.last.x &&
-          b.last.y + 1 == run.first.y && run.first.y - b.first.y < mostASide;
-      });
-    if (below == batches.end())
-    {
-      batches.push_back(std::move(run));
-      continue;
-    }
-    below->last.y = run.last.y;
-    below->pages.insert(below->pages.end(), run.pages.begin(), run.pages.end());
+    batches.push_back(std::move(block.second));
   }
   return batches;
 }

@@ -15,6 +15,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <unordered_map>
@@ -127,22 +128,27 @@ glm::dmat4 pageClip(const glm::dmat4& wsToBaseClip, const PageLevels& levels, co
 glm::dmat4 pagesClip(const glm::dmat4& wsToBaseClip, const PageLevels& levels, int level,
   const glm::ivec2& first, const glm::ivec2& last);
 
-/// Pages of one level drawn in one pass (pagesClip), each then copied to its slot: a caster pass
-/// costs its triangles whatever it covers, so the pages a view brings in together are drawn
-/// together. pages: indices into the pages batched.
+/// Pages of one level drawn in one pass, each then copied to its slot: a caster pass costs its
+/// triangles whatever it covers, so the pages a view brings in together are drawn together. A
+/// batch is a block of pages first .. last (columns, rows) at a fixed place in its level, drawn
+/// with its own clip space (pagesClip) over the rectangle of its pages from .. to (the texels
+/// drawn): a page's texels are the same whichever pages come with it. pages: indices into the
+/// pages batched.
 struct PageBatch
 {
   int level = 0;
   glm::ivec2 first{ 0 }, last{ 0 };
+  glm::ivec2 from{ 0 }, to{ 0 };
   std::vector<std::size_t> pages;
-  /// Texels a side of the pass: the pages' own and a border around them.
+  /// Texels a side of the block's clip space: its pages' own and a border around them.
   glm::ivec2 texels() const;
+  /// The texels drawn, from the block's lower left: x, y, width, height.
+  std::array<int, 4> drawn() const;
 };
 
-/// The pages in rectangles of adjacent pages of one level, each at most mostASide pages a side
-/// and every page of it among them (runs along a row, joined with the same columns of the next
-/// rows); each page in one batch.
-std::vector<PageBatch> batchPages(const std::vector<PageKey>& pages, int mostASide);
+/// The pages in blocks of side x side pages of their level (from its lower left), each page in
+/// the one block that holds it.
+std::vector<PageBatch> batchPages(const std::vector<PageKey>& pages, int side);
 
 /// The pages kept in a pool of slots across frames. A page keeps its slot while it is needed
 /// or no other page needs the slot (least recently needed first).

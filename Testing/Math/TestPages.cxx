@@ -269,33 +269,38 @@ TEST(Pages, ThePoolIsTheRestOfTheAtlas)
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), 240);
 }
 
-TEST(Pages, PagesDrawnTogetherAreRectanglesOfAdjacentPagesOfOneLevel)
+TEST(Pages, PagesDrawnTogetherAreTheBlocksThatHoldThem)
 {
-  // Level 3: a 3 x 2 block and a lone page; level 4: a row of 5 split at 4 a side.
+  // Blocks of 4 x 4: level 3's pages in three blocks, level 4's row of 5 in two.
   const std::vector<csm::PageKey> pages = { { 3, 4, 7 }, { 3, 5, 7 }, { 3, 6, 7 }, { 3, 4, 8 },
     { 3, 5, 8 }, { 3, 6, 8 }, { 3, 9, 9 }, { 4, 0, 1 }, { 4, 1, 1 }, { 4, 2, 1 }, { 4, 3, 1 },
     { 4, 4, 1 } };
   const std::vector<csm::PageBatch> batches = csm::batchPages(pages, 4);
-  ASSERT_EQ(batches.size(), 4u);
+  ASSERT_EQ(batches.size(), 5u);
   std::vector<int> seen(pages.size(), 0);
   for (const csm::PageBatch& b : batches)
   {
-    const glm::ivec2 side = b.last - b.first + 1;
-    EXPECT_EQ(b.pages.size(), static_cast<size_t>(side.x * side.y)); // a full rectangle
-    EXPECT_LE(side.x, 4);
-    EXPECT_LE(side.y, 4);
+    EXPECT_EQ(b.first % 4, glm::ivec2(0));
+    EXPECT_EQ(b.last - b.first, glm::ivec2(3));
     for (const size_t i : b.pages)
     {
       ++seen[i];
       EXPECT_EQ(pages[i].level, b.level);
-      EXPECT_TRUE(pages[i].x >= b.first.x && pages[i].x <= b.last.x);
-      EXPECT_TRUE(pages[i].y >= b.first.y && pages[i].y <= b.last.y);
+      EXPECT_TRUE(pages[i].x >= b.from.x && pages[i].x <= b.to.x);
+      EXPECT_TRUE(pages[i].y >= b.from.y && pages[i].y <= b.to.y);
     }
-    EXPECT_EQ(b.texels(), side * csm::kPageInterior + 2 * csm::kPageBorder);
+    EXPECT_EQ(b.texels(), glm::ivec2(4 * csm::kPageInterior + 2 * csm::kPageBorder));
   }
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<long>(pages.size()));
-  EXPECT_EQ(batches[0].first, glm::ivec2(4, 7));
-  EXPECT_EQ(batches[0].last, glm::ivec2(6, 8));
+  // Level 3's block at (4, 4) holds the pages of row 7 (row 8 is the next block's).
+  const csm::PageBatch& b = batches[0];
+  EXPECT_EQ(b.level, 3);
+  EXPECT_EQ(b.first, glm::ivec2(4, 4));
+  EXPECT_EQ(b.from, glm::ivec2(4, 7));
+  EXPECT_EQ(b.to, glm::ivec2(6, 7));
+  const std::array<int, 4> drawn = { 0, 3 * csm::kPageInterior, 3 * csm::kPageInterior + 8,
+    csm::kPageInterior + 8 };
+  EXPECT_EQ(b.drawn(), drawn);
   // A batch's clip space is its pages' (page (5, 8) of the 3 x 2 block one page in, one up).
   csm::PageLevels levels;
   ASSERT_TRUE(csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, 1.0, levels));
@@ -304,8 +309,8 @@ TEST(Pages, PagesDrawnTogetherAreRectanglesOfAdjacentPagesOfOneLevel)
   const glm::dmat4 alone = csm::pageClip(base, levels, { 3, 5, 8 });
   const glm::dvec4 world = glm::inverse(alone) * glm::dvec4(0.3, -0.2, 0.1, 1.0);
   const glm::dvec4 inBatch = together * world;
-  const glm::dvec2 texelInBatch =
-    (glm::dvec2(inBatch) + 1.0) * 0.5 * glm::dvec2(batches[0].texels());
+  const glm::dvec2 texelInBatch = (glm::dvec2(inBatch) + 1.0) * 0.5 *
+    glm::dvec2(3 * csm::kPageInterior + 8, 2 * csm::kPageInterior + 8);
   const glm::dvec2 texelAlone = (glm::dvec2(0.3, -0.2) + 1.0) * 0.5 * double(csm::kPageTexels);
   EXPECT_NEAR(texelInBatch.x, texelAlone.x + csm::kPageInterior, 1e-6);
   EXPECT_NEAR(texelInBatch.y, texelAlone.y + csm::kPageInterior, 1e-6);

@@ -1,0 +1,238 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Light-space pages (vtkCascadedShadowMapBakerPass::LightSpacePages): a camera turning over a
+// field of posts draws only the pages that come into view, keeps the base, shades every frame as
+// a chain that draws every page afresh, every visible sample finds the page of its level, and the
+// lights and views pages cannot serve keep the cascades.
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCascadedShadowMapBakerPass.h"
+#include "vtkCascadedShadowMapPass.h"
+#include "vtkCubeSource.h"
+#include "vtkImageData.h"
+#include "vtkLight.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+
+#include "csmPages.h"
+#include "csmTestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+namespace
+{
+using csmTest::BoxOverPlane;
+using csmTest::BoxOverPlaneSettings;
+
+/// A field of 15 x 15 posts on a wide ground seen from close by, the light from the side: the
+/// cascades would follow the view (the one scene-fitted map is far too coarse near the eye).
+BoxOverPlaneSettings FieldSettings()
+{
+  BoxOverPlaneSettings settings;
+  settings.GroundHalfWidth = 24.0;
+  settings.LightPosition[0] = 6.0;
+  settings.LightPosition[1] = 10.0;
+  settings.LightPosition[2] = 3.0;
+  settings.CameraPosition[0] = 0.0;
+  settings.CameraPosition[1] = 2.5;
+  settings.CameraPosition[2] = 9.0;
+  return settings;
+}
+
+struct Field
+{
+  explicit Field(double azimuth)
+    : Scene(FieldSettings())
+  {
+    this->Scene.Renderer->RemoveActor(this->Scene.Box);
+    this->Post->SetBounds(-0.2, 0.2, 0.0, 2.0, -0.2, 0.2);
+    this->Mapper->SetInputConnection(this->Post->GetOutputPort());
+    for (int i = -7; i <= 7; ++i)
+    {
+      for (int k = -7; k <= 7; ++k)
+      {
+        auto actor = vtkSmartPointer<vtkActor>::New();
+        actor->SetMapper(this->Mapper);
+        actor->SetPosition(3.0 * i + 1.5, 0.0, 3.0 * k + 1.5);
+        this->Scene.Renderer->AddActor(actor);
+        this->Posts.push_back(actor);
+      }
+    }
+    this->Pass = vtkCascadedShadowMapPass::UseShadowsOn(this->Scene.Renderer);
+    this->Baker = this->Pass->GetShadowMapBakerPass();
+    this->Turn(azimuth);
+  }
+  void Turn(double degrees)
+  {
+    this->Scene.Renderer->GetActiveCamera()->Azimuth(degrees);
+    this->Scene.Renderer->ResetCameraClippingRange();
+  }
+  const vtkCascadedShadowMapBakerPass::LightMaps& Maps() const
+  {
+    return this->Baker->GetLightMaps(this->Scene.Renderer).at(0);
+  }
+  BoxOverPlane Scene;
+  vtkNew<vtkCubeSource> Post;
+  vtkNew<vtkPolyDataMapper> Mapper;
+  std::vector<vtkSmartPointer<vtkActor>> Posts;
+  vtkCascadedShadowMapPass* Pass = nullptr;
+  vtkCascadedShadowMapBakerPass* Baker = nullptr;
+};
+
+/// Pixels of the frame whose surface needs a level finer than the base, and of those the ones
+/// whose page the table does not hold (the lookup's own choice, csm::pageLevelRead), from the
+/// window's depth after the frame.
+void SamplesFindTheirPages(Field& field, long& needing, long& missing)
+{
+  needing = missing = 0;
+  vtkRenderer* renderer = field.Scene.Renderer;
+  const auto& maps = field.Maps();
+  ASSERT_TRUE(maps.Pages.Active);
+  csm::PageLevels levels;
+  levels.baseTexels = glm::dvec2(maps.Pages.BaseTexels[0], maps.Pages.BaseTexels[1]);
+  levels.baseDepth = maps.Pages.BaseDepth;
+  levels.count = maps.Pages.Levels;
+  const int* size = field.Scene.Window->GetSize();
+  std::vector<float> depths(static_cast<size_t>(size[0]) * size[1]);
+  field.Scene.Window->GetZbufferData(0, 0, size[0] - 1, size[1] - 1, depths.data());
+  vtkCamera* camera = renderer->GetActiveCamera();
+  vtkNew<vtkMatrix4x4> toWorld;
+  toWorld->DeepCopy(
+    camera->GetCompositeProjectionTransformMatrix(renderer->GetTiledAspectRatio(), -1, 1));
+  toWorld->Invert();
+  double eye[3], direction[3];
+  camera->GetPosition(eye);
+  camera->GetDirectionOfProjection(direction);
+  const double* base = maps.Cascades[0].WorldToMap;
+  for (int y = 0; y < size[1]; ++y)
+  {
+    for (int x = 0; x < size[0]; ++x)
+    {
+      const float z = depths[static_cast<size_t>(y) * size[0] + x];
+      if (!(z < 1.0f))
+      {
+        continue;
+      }
+      const double ndc[4] = { 2.0 * (x + 0.5) / size[0] - 1.0, 2.0 * (y + 0.5) / size[1] - 1.0,
+        2.0 * z - 1.0, 1.0 };
+      double p[4];
+      toWorld->MultiplyPoint(ndc, p);
+      for (int a = 0; a < 3; ++a)
+      {
+        p[a] /= p[3];
+      }
+      const double depth = (p[0] - eye[0]) * direction[0] + (p[1] - eye[1]) * direction[1] +
+        (p[2] - eye[2]) * direction[2];
+      const double bx = 0.5 * (base[0] * p[0] + base[1] * p[1] + base[2] * p[2] + base[3]) + 0.5;
+      const double by = 0.5 * (base[4] * p[0] + base[5] * p[1] + base[6] * p[2] + base[7]) + 0.5;
+      const double f = levels.fineness(depth);
+      if (levels.levelAt(f) == 0 || bx < 0.0 || bx > 1.0 || by < 0.0 || by > 1.0)
+      {
+        continue;
+      }
+      ++needing;
+      missing += csm::pageLevelRead(levels, maps.Pages.Table, bx, by, f) == 0 ? 1 : 0;
+    }
+  }
+}
+} // namespace
+
+// An orbit of 2 degrees a frame: after the first paged frame the base is kept and only the pages
+// that came into view are drawn, every visible sample finds the page of its level, and each frame
+// is the one a chain that draws every page afresh draws, with shadows.
+TEST(Pages, AnOrbitDrawsOnlyThePagesThatComeIntoViewAndShadesAsAFreshChain)
+{
+  Field moving(0.0);
+  moving.Scene.Frame(); // (the cascades: the next depth pass draws the samples for the pages)
+  long drawn = 0, needed = 0;
+  for (int frame = 1; frame <= 8; ++frame)
+  {
+    moving.Turn(2.0);
+    auto image = moving.Scene.Frame();
+    const auto& stats = moving.Baker->GetLastFrameStatistics();
+    ASSERT_TRUE(moving.Maps().Pages.Active) << frame;
+    EXPECT_GE(moving.Maps().Pages.Levels, 2);
+    EXPECT_EQ(stats.CascadesRendered, frame == 1 ? 1 : 0) << frame; // the base kept after
+    EXPECT_GT(stats.PagesNeeded, 0);
+    EXPECT_LE(stats.TexelsRendered,
+      double(stats.PagesDrawn) * (csm::kPageTexels + csm::kPageInterior) *
+        (csm::kPageTexels + csm::kPageInterior)); // (batches: their pages and borders)
+    if (frame == 1)
+    {
+      EXPECT_EQ(stats.PagesDrawn, stats.PagesNeeded); // every page fresh
+    }
+    else
+    {
+      drawn += stats.PagesDrawn;
+      needed += stats.PagesNeeded;
+    }
+    long needing = 0, missing = 0;
+    SamplesFindTheirPages(moving, needing, missing);
+    EXPECT_GT(needing, 1000) << frame;
+    EXPECT_EQ(missing, 0) << frame;
+    // A fresh chain: the view before (the cascades), then this one (every page drawn).
+    Field fresh(2.0 * (frame - 1));
+    fresh.Scene.Frame();
+    fresh.Turn(2.0);
+    auto again = fresh.Scene.Frame();
+    EXPECT_EQ(fresh.Baker->GetLastFrameStatistics().PagesDrawn,
+      fresh.Baker->GetLastFrameStatistics().PagesNeeded);
+    // (The same texels: a page's are its level's and place's alone; its slot, elsewhere in the
+    // atlas, is read through float coordinates rounded otherwise, which turns a compare at a
+    // texel's edge now and then: a few pixels by one tap of the kernel.)
+    EXPECT_LE(csmTest::DifferingPixels(image, again, 0), 8) << frame;
+    EXPECT_EQ(csmTest::DifferingPixels(image, again, 24), 0) << frame;
+    if (frame == 8)
+    {
+      fresh.Scene.Renderer->SetPass(nullptr);
+      auto plain = fresh.Scene.Frame();
+      EXPECT_GT(csmTest::DifferingPixels(image, plain, 24), 2000); // the posts' shadows
+    }
+  }
+  EXPECT_LT(drawn, needed / 4); // a turn of 2 degrees brings in few pages
+}
+
+// Pages serve a scene light seen through a perspective view; a light that follows the camera
+// (nothing of its maps can be kept) and a parallel view keep the cascades.
+TEST(Pages, CameraLightsAndParallelViewsKeepTheCascades)
+{
+  {
+    Field field(0.0);
+    field.Scene.Light->SetLightTypeToCameraLight();
+    field.Scene.Light->SetPosition(0.3, 1.0, 1.0);
+    field.Scene.Light->SetFocalPoint(0.0, 0.0, 0.0);
+    for (int frame = 0; frame < 3; ++frame)
+    {
+      field.Turn(2.0);
+      field.Scene.Frame();
+      EXPECT_FALSE(field.Maps().Pages.Active);
+      EXPECT_GT(field.Maps().GetNumberOfCascades(), 0);
+    }
+  }
+  {
+    Field field(0.0);
+    field.Scene.Renderer->GetActiveCamera()->ParallelProjectionOn();
+    field.Scene.Renderer->GetActiveCamera()->SetParallelScale(4.0);
+    for (int frame = 0; frame < 3; ++frame)
+    {
+      field.Turn(2.0);
+      field.Scene.Frame();
+      EXPECT_FALSE(field.Maps().Pages.Active);
+    }
+  }
+  {
+    Field field(0.0); // the same field and view with a scene light: pages
+    for (int frame = 0; frame < 3; ++frame)
+    {
+      field.Turn(2.0);
+      field.Scene.Frame();
+    }
+    EXPECT_TRUE(field.Maps().Pages.Active);
+  }
+}
