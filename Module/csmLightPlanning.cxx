@@ -40,6 +40,13 @@ constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASC
 // fitted to the body, has none either (the lookup clamps its taps to the map).
 constexpr double kReuseMarginTexels = 0.0;
 
+/// The atlas of a light refined by light-space pages, for maps of resolution texels a side:
+/// its base (half that a side) and the pool of pages beside and above it.
+csm::MapSize pageAtlas(int resolution)
+{
+  return csm::MapSize(2 * resolution, 3 * resolution);
+}
+
 /// Frames in a row with changed casters after which they count as changing every frame
 /// (vtkCascadedShadowMapPlanner::SetCastersChanging): the second such frame, when a map kept
 /// for the next one would be drawn again.
@@ -404,7 +411,8 @@ void csmLightPlanning::ServeWithPages(vtkRenderer* renderer, csmRendererMaps& st
     !otherKinds && maps.Kind == LightKind::Directional && maps.Light->LightTypeIsSceneLight() &&
     !frame.CastersChanged && !frame.ScreenSized && !props.TranslucentReceivers &&
     !camera->GetParallelProjection() && this->Planner->GetDepthClamp() &&
-    csm::poolSlots(2 * side, side / 2) > 0 && (textureLimit <= 0 || 2 * side <= textureLimit);
+    csm::poolSlots(pageAtlas(side), side / 2) > 0 &&
+    (textureLimit <= 0 || pageAtlas(side).height <= textureLimit);
   state.PagesWanted = state.PagesWanted || serve;
   if (serve && state.VisibleCamera && !state.VisibleSamples.isEmpty() &&
     sameView(state.VisibleCamera, camera, frame.Aspect))
@@ -427,18 +435,24 @@ bool csmLightPlanning::PageNeeds(const csmRendererMaps& state, const csmFramePla
   const double nearest =
     csm::viewDepthFromWindowDepth(state.VisibleWindow[0], clip[0], clip[1], false);
   const glm::dmat4 wsToBase = csmFromRowMajor(worldToBase);
-  if (!csm::pageLevels(
-        wsToBase, csm::MapSize(baseSide), pixel, this->Planner->GetErrorTarget(), nearest, levels))
-  {
-    return false;
-  }
   glm::dmat4 toUnit(0.5); // (clip x, y -> [0, 1])
   toUnit[2][2] = 1.0;
   toUnit[3] = glm::dvec4(0.5, 0.5, 0.0, 1.0);
   const glm::dmat4 windowToBase = toUnit * wsToBase * glm::inverse(viewToClip * worldToView);
   const csm::DepthSamples& samples = state.VisibleSamples;
-  return csm::markPages(levels, windowToBase, clip[0], clip[1], samples.windowDepths.data(),
-    samples.width, samples.height, samples.standIns, static_cast<size_t>(slots), needed);
+  // At csm::kPageErrorShare of the target where the pool holds those pages, else at the target
+  // (the same pages: a level's texels do not depend on the depths it serves).
+  for (const double share : { csm::kPageErrorShare, 1.0 })
+  {
+    if (csm::pageLevels(wsToBase, csm::MapSize(baseSide), pixel,
+          share * this->Planner->GetErrorTarget(), nearest, levels) &&
+      csm::markPages(levels, windowToBase, clip[0], clip[1], samples.windowDepths.data(),
+        samples.width, samples.height, samples.standIns, static_cast<size_t>(slots), needed))
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& props,
@@ -449,13 +463,14 @@ void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& 
   // target, the far view, it needs few texels; the pages refine the rest, which they fill).
   // Where the pages this view needs do not fit, or need more levels than there are, the
   // cascades serve.
-  const int atlasSide = 2 * this->Options.Resolution, side = this->Options.Resolution / 2;
+  const csm::MapSize atlas = pageAtlas(this->Options.Resolution);
+  const int side = this->Options.Resolution / 2;
   const double direction[3] = { maps.FocalPoint[0] - maps.Position[0],
     maps.FocalPoint[1] - maps.Position[1], maps.FocalPoint[2] - maps.Position[2] };
   double worldToBase[16];
   csm::PageLevels levels;
   std::vector<csm::PageKey> needed;
-  const int slots = csm::poolSlots(atlasSide, side);
+  const int slots = csm::poolSlots(atlas, side);
   if (!this->Planner->GetSceneFittedMatrix(direction, props.SceneBounds, worldToBase) ||
     !this->PageNeeds(state, frame, worldToBase, side, slots, levels, needed))
   {
@@ -465,8 +480,8 @@ void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& 
   // this very texture.
   const LightMaps* last = slot < state.Maps.size() ? &state.Maps[slot] : nullptr;
   const bool keep = !frame.Changed && last && last->Light == maps.Light && last->Pages.Active &&
-    sameLightGeometry(*last, maps) && last->AtlasSize[0] == atlasSide &&
-    last->AtlasSize[1] == atlasSide && last->Cascades.size() == 1 &&
+    sameLightGeometry(*last, maps) && last->AtlasSize[0] == atlas.width &&
+    last->AtlasSize[1] == atlas.height && last->Cascades.size() == 1 &&
     std::equal(worldToBase, worldToBase + 16, last->Cascades[0].WorldToMap) &&
     slot < state.AtlasPool.size() && state.AtlasPool[slot]->GetHandle() &&
     state.AtlasPool[slot]->GetContext() == state.Window;
@@ -488,7 +503,8 @@ void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& 
   base.Tile[2] = base.Tile[3] = base.Resolution[0] = base.Resolution[1] = side;
   base.SplitFar = maps.Cascades.back().SplitFar;
   maps.Cascades.assign(1, base);
-  maps.AtlasSize[0] = maps.AtlasSize[1] = atlasSide;
+  maps.AtlasSize[0] = atlas.width;
+  maps.AtlasSize[1] = atlas.height;
   LightPages& pages = maps.Pages;
   pages.Active = true;
   pages.Levels = levels.count;
@@ -496,7 +512,7 @@ void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& 
   pages.BaseTexels[0] = levels.baseTexels.x;
   pages.BaseTexels[1] = levels.baseTexels.y;
   pages.Needed = static_cast<int>(needed.size());
-  const auto place = [atlasSide, side](int s) { return csm::poolSlotPlace(atlasSide, side, s); };
+  const auto place = [atlas, side](int s) { return csm::poolSlotPlace(atlas, side, s); };
   cache.table(std::max(levels.count, 1), needed, place, pages.Table);
   for (const auto& page : fresh)
   {

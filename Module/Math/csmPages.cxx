@@ -59,11 +59,8 @@ bool pageLevels(const glm::dmat4& wsToBaseClip, const MapSize& baseTexels, doubl
   levels.baseTexels = glm::dvec2(2.0 / (sRow * wsTexel), 2.0 / (tRow * wsTexel));
   levels.baseDepth = baseDepth;
   const double finest = levels.fineness(vsNearest);
-  if (finest > kMaxPageLevels)
-  {
-    return false;
-  }
-  levels.count = finest > 0.0 ? static_cast<int>(std::ceil(finest)) : 0;
+  levels.count =
+    finest > 0.0 ? static_cast<int>(std::ceil(std::min(finest, 1.0 * kMaxPageLevels))) : 0;
   return true;
 }
 
@@ -497,21 +494,22 @@ int PageCache::table(int levels, const std::vector<PageKey>& needed,
   return lost;
 }
 
-int poolSlots(int atlasSide, int baseSide)
+int poolSlots(const MapSize& atlas, int baseSide)
 {
-  if (atlasSide < kPageTexels || baseSide < kPageTexels || atlasSide % kPageTexels != 0 ||
-    baseSide % kPageTexels != 0 || baseSide >= atlasSide)
+  if (atlas.width < kPageTexels || atlas.height < kPageTexels || baseSide < kPageTexels ||
+    atlas.width % kPageTexels != 0 || atlas.height % kPageTexels != 0 ||
+    baseSide % kPageTexels != 0 || baseSide > atlas.width || baseSide > atlas.height)
   {
     return 0;
   }
-  const int n = atlasSide / kPageTexels, b = baseSide / kPageTexels;
-  return n * n - b * b;
+  const int b = baseSide / kPageTexels;
+  return (atlas.width / kPageTexels) * (atlas.height / kPageTexels) - b * b;
 }
 
-glm::ivec2 poolSlotPlace(int atlasSide, int baseSide, int slot)
+glm::ivec2 poolSlotPlace(const MapSize& atlas, int baseSide, int slot)
 {
   // The rows beside the base first (columns b .. n - 1), then the rows above it.
-  const int n = std::max(1, atlasSide / kPageTexels), b = std::max(0, baseSide / kPageTexels);
+  const int n = std::max(1, atlas.width / kPageTexels), b = std::max(0, baseSide / kPageTexels);
   const int beside = b * (n - b);
   if (slot < beside)
   {

@@ -39,6 +39,13 @@ constexpr int kPageTableSide = 32;
 /// at 2^12 times the base's texels a side).
 constexpr int kMaxPageLevels = 12;
 
+/// Share of the error target the levels are sized for where the pool holds their pages (else
+/// the target itself): a level's error halves across its octave, while a map sized to meet the
+/// target where its error is worst meets it with room over most of its view, so that at the
+/// target itself pages misclassify more pixels than the cascades (Results.md, "Light-space
+/// pages"); at this share, as many.
+constexpr double kPageErrorShare = 0.70710678118654752;
+
 /// Share of a level's octave of view depth (its nearest part) whose samples take the next finer
 /// level in a dithered share growing from 0 to 1 toward it (the seam between two levels becomes
 /// a dithered band, both sides meeting the target); the samples there need both levels' pages.
@@ -75,9 +82,9 @@ struct PageLevels
 /// t at view depth d reads an error m = t / (d pixelAtUnitDepth) (Lloyd et al. 2006, Eq. 1, the
 /// texel face-on to the view, the largest over the ways it can turn; the receiver's own angle to
 /// the light aside, as in the cascades' error), so the base meets the target from D_0 =
-/// t_max / (targetError pixelAtUnitDepth) on, level k from D_0 / 2^k. False where the input is
-/// not finite or positive, the base is not orthographic, or more than kMaxPageLevels levels
-/// would be needed.
+/// t_max / (targetError pixelAtUnitDepth) on, level k from D_0 / 2^k; the finest, at most
+/// kMaxPageLevels, serves what is nearer (as a cascade whose map cannot reach the target). False
+/// where the input is not finite or positive or the base is not orthographic.
 bool pageLevels(const glm::dmat4& wsToBaseClip, const MapSize& baseTexels, double pixelAtUnitDepth,
   double targetError, double vsNearest, PageLevels& levels);
 
@@ -185,11 +192,11 @@ private:
   std::uint64_t Frame = 0;
 };
 
-/// The pool beside a base map of baseSide texels a side in the lower left of a square atlas of
-/// atlasSide: every other kPageTexels square of the atlas, row by row from the lower left; slot
-/// i's place in pages (column, row). Slots: 0 where the sides are not positive multiples of
-/// kPageTexels or the base does not leave room.
-int poolSlots(int atlasSide, int baseSide);
-glm::ivec2 poolSlotPlace(int atlasSide, int baseSide, int slot);
+/// The pool beside a base map of baseSide texels a side in the lower left of an atlas: every
+/// other kPageTexels square of the atlas, row by row from the lower left; slot i's place in
+/// pages (column, row). Slots: 0 where the sides are not positive multiples of kPageTexels or
+/// the base does not fit.
+int poolSlots(const MapSize& atlas, int baseSide);
+glm::ivec2 poolSlotPlace(const MapSize& atlas, int baseSide, int slot);
 
 } // namespace csm

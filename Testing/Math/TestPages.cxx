@@ -83,15 +83,16 @@ TEST(Pages, LevelsHalveTheTexelEachOctaveOfDepthDownToTheNearestSample)
   EXPECT_EQ(levels.count, 0);
 }
 
-TEST(Pages, LevelsAreRefusedForBadInputAndBeyondTheFinestLevel)
+TEST(Pages, LevelsAreRefusedForBadInputAndStopAtTheFinestLevel)
 {
   csm::PageLevels levels;
   const double baseDepth = (100.0 / 2048.0) / (0.7 * kPixel);
   EXPECT_TRUE(
     csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 4096.0, levels));
   EXPECT_EQ(levels.count, csm::kMaxPageLevels);
-  EXPECT_FALSE(
+  EXPECT_TRUE(
     csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 4800.0, levels));
+  EXPECT_EQ(levels.count, csm::kMaxPageLevels); // the finest serves what is nearer
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, nan, levels));
   EXPECT_FALSE(csm::pageLevels(baseClip(100.0), csm::MapSize(2048), nan, 0.7, 1.0, levels));
@@ -248,25 +249,26 @@ TEST(Pages, TheTableTagsEachEntryAndTheNeededPagesWinTheirEntries)
 
 TEST(Pages, ThePoolIsTheRestOfTheAtlas)
 {
-  // A 1024 base in a 4096 atlas: 16 x 16 pages less the base's 4 x 4.
-  EXPECT_EQ(csm::poolSlots(4096, 1024), 240);
-  EXPECT_EQ(csm::poolSlots(4096, 1000), 0);
-  EXPECT_EQ(csm::poolSlots(4096, 4096), 0);
-  EXPECT_EQ(csm::poolSlots(0, 0), 0);
-  EXPECT_EQ(csm::poolSlotPlace(4096, 1024, 0), glm::ivec2(4, 0));
-  EXPECT_EQ(csm::poolSlotPlace(4096, 1024, 11), glm::ivec2(15, 0));
-  EXPECT_EQ(csm::poolSlotPlace(4096, 1024, 12), glm::ivec2(4, 1));
-  EXPECT_EQ(csm::poolSlotPlace(4096, 1024, 48), glm::ivec2(0, 4));
-  EXPECT_EQ(csm::poolSlotPlace(4096, 1024, 239), glm::ivec2(15, 15));
+  // A 1024 base in a 4096 x 6144 atlas: 16 x 24 pages less the base's 4 x 4.
+  const csm::MapSize atlas(4096, 6144);
+  EXPECT_EQ(csm::poolSlots(atlas, 1024), 368);
+  EXPECT_EQ(csm::poolSlots(atlas, 1000), 0);
+  EXPECT_EQ(csm::poolSlots(atlas, 8192), 0);
+  EXPECT_EQ(csm::poolSlots(csm::MapSize(0), 0), 0);
+  EXPECT_EQ(csm::poolSlotPlace(atlas, 1024, 0), glm::ivec2(4, 0));
+  EXPECT_EQ(csm::poolSlotPlace(atlas, 1024, 11), glm::ivec2(15, 0));
+  EXPECT_EQ(csm::poolSlotPlace(atlas, 1024, 12), glm::ivec2(4, 1));
+  EXPECT_EQ(csm::poolSlotPlace(atlas, 1024, 48), glm::ivec2(0, 4));
+  EXPECT_EQ(csm::poolSlotPlace(atlas, 1024, 367), glm::ivec2(15, 23));
   // Every slot a place of its own, none in the base.
-  std::vector<int> seen(256, 0);
-  for (int slot = 0; slot < 240; ++slot)
+  std::vector<int> seen(16 * 24, 0);
+  for (int slot = 0; slot < 368; ++slot)
   {
-    const glm::ivec2 place = csm::poolSlotPlace(4096, 1024, slot);
+    const glm::ivec2 place = csm::poolSlotPlace(atlas, 1024, slot);
     EXPECT_FALSE(place.x < 4 && place.y < 4);
     ++seen[static_cast<size_t>(place.y * 16 + place.x)];
   }
-  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), 240);
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), 368);
 }
 
 TEST(Pages, PagesDrawnTogetherAreTheBlocksThatHoldThem)
