@@ -53,8 +53,9 @@ constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASC
 // ORM, emissive and anisotropy maps, and PBR's irradiance, prefiltered and BRDF maps).
 constexpr int kMapperTextureUnits = 8;
 // Fragment uniform components one shadowed light costs: per cascade a mat4, a vec4 and two
-// floats (padded to vec4s), and the per-light values; face partitions add 4 planes a cascade.
-constexpr int kUniformComponentsPerLight = kMaxCascades * (16 + 4 + 4 + 4) + 16;
+// floats (padded to vec4s), and the per-light values (its light-space pages' among them, each
+// padded to a vec4); face partitions add 4 planes a cascade.
+constexpr int kUniformComponentsPerLight = kMaxCascades * (16 + 4 + 4 + 4) + 32;
 constexpr int kFacePlaneComponentsPerLight = kMaxCascades * 16;
 constexpr int kMapperUniformComponents = 1024;
 

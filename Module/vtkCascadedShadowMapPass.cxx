@@ -176,6 +176,19 @@ std::string propDigest(vtkRenderer* renderer, const std::function<bool(vtkProp*)
 }
 } // namespace
 
+namespace
+{
+int freeUnits(vtkTextureUnitManager* units)
+{
+  int free = 0;
+  for (int unit = 0; unit < units->GetNumberOfTextureUnits(); ++unit)
+  {
+    free += units->IsAllocated(unit) ? 0 : 1;
+  }
+  return free;
+}
+} // namespace
+
 void vtkCascadedShadowMapPass::PackMaps(
   const vtkCascadedShadowMapBakerPass::LightMaps& maps, vtkMatrix4x4* viewToWorld)
 {
@@ -222,7 +235,12 @@ void vtkCascadedShadowMapPass::PackMaps(
       u.Texel.push_back(1.0f / static_cast<float>(std::max(1, map.Resolution[axis])));
     }
   }
-  const bool paged = maps.Pages.Active && maps.Pages.TableTexture && count == 1;
+  // (A light whose page table finds no free texture unit reads its base alone.)
+  vtkTextureUnitManager* units = maps.Atlas && maps.Atlas->GetContext()
+    ? maps.Atlas->GetContext()->GetTextureUnitManager()
+    : nullptr;
+  const bool paged = maps.Pages.Active && maps.Pages.TableTexture && count == 1 && units &&
+    units->GetNumberOfTextureUnits() > 0 && freeUnits(units) > 0;
   u.PageLevels.push_back(paged ? maps.Pages.Levels : 0);
   u.PageDepth.push_back(paged ? static_cast<float>(maps.Pages.BaseDepth) : 0.0f);
   u.PageVirtual.push_back(static_cast<float>(paged ? maps.Pages.BaseTexels[0] : 1.0));
@@ -249,14 +267,15 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   u = ShaderUniforms();
   for (const auto& maps : baker->GetLightMaps(renderer))
   {
-    this->PackMaps(maps, viewToWorld);
-#if CSM_COMPARISON_TECHNIQUES
-    this->PackComparison(maps, viewToWorld);
-#endif
+    // (The atlas's units first: a page table takes a unit only where one is left.)
     maps.Atlas->Activate();
     u.TextureUnit.push_back(maps.Atlas->GetTextureUnit());
     u.NearestUnit.push_back(this->BindNearest(
       static_cast<vtkOpenGLRenderWindow*>(renderer->GetRenderWindow()), maps.Atlas));
+    this->PackMaps(maps, viewToWorld);
+#if CSM_COMPARISON_TECHNIQUES
+    this->PackComparison(maps, viewToWorld);
+#endif
     signature += std::to_string(maps.LightIndex) + ";";
   }
   // The kernel, its size (for few lights) and the debug view are compiled into the lookup (see
