@@ -426,7 +426,8 @@ uniform vec2 csmPageTile[CSM_LIGHTS];    // a page's side in the atlas's [0, 1]
 // pixels growing to 1 takes that one), its page by the table (an entry holds the page's slot in
 // the pool, in pages, and the page it holds), and the lookup in that page's texels, its border
 // holding the kernel; the base where the page is not in the pool. One matrix: every level shares
-// the base's map coordinates (orthographic: w = 1).
+// the base's map coordinates (orthographic: w = 1). y: the level read (0 the base; -2 where the
+// level's page is not in the pool and the base served: grey in the cascades' debug view).
 vec4 csmPagedShadow(sampler2DShadow map, sampler2DShadow nearest, sampler2D pages, int j, vec4 vc,
   vec4 dvcdx, vec4 dvcdy)
 {
@@ -466,7 +467,8 @@ vec4 csmPagedShadow(sampler2DShadow map, sampler2DShadow nearest, sampler2D page
   float visibility = csmVisibility(map, nearest, tile, texel, hPage,
     vec4(hx.xy * scale, hx.zw), vec4(hy.xy * scale, hy.zw), paged ? exp2(-float(k)) : 1.0,
     csmHandedness[base], m);
-  return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), paged ? float(k) : (k > 0 ? -2.0 : 0.0), m, visibility);
+  float read = paged ? float(k) : (k > 0 ? -2.0 : 0.0);
+  return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), read, m, visibility);
 }
 
 #ifdef CSM_IMPOSTOR
