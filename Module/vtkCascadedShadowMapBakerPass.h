@@ -251,11 +251,6 @@ protected:
   bool Distributed() const;
   void CombineAcrossProcesses(vtkTextureObject* atlas);
   bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, bool& reallocated);
-  void DrawPages(vtkOpenGLRenderer* renderer, vtkOpenGLRenderWindow* window, csmRendererMaps& state,
-    const csmFrameCasters& props, LightMaps& maps);
-  bool BindPageScratch(vtkOpenGLRenderWindow* window, csmRendererMaps& state, int side);
-  void UploadPageTable(
-    vtkOpenGLRenderWindow* window, csmRendererMaps& state, size_t slot, LightMaps& maps);
   int ClosureOf(vtkProp* prop);
   void ReportOnce(bool error, const std::string& message);
   int MaximumShadowedLights(vtkOpenGLRenderWindow* window);
