@@ -407,11 +407,15 @@ void csmLightPlanning::ServeWithPages(vtkRenderer* renderer, csmRendererMaps& st
     [](const CascadeMap& map)
     { return map.Kind != MapKind::FollowsView && map.Kind != MapKind::SceneFitted; });
   const int textureLimit = this->Planner->GetMaximumTextureSize();
+  // (Casters that changed: only where the last frame's maps were this light's pages, which the
+  // changes patch, and not every frame.)
+  const bool lastPaged = slot < state.Maps.size() && state.Maps[slot].Pages.Active &&
+    state.Maps[slot].Light == maps.Light;
   const bool serve = this->Options.LightSpacePages && !this->Distributed() && followsView &&
     !otherKinds && maps.Kind == LightKind::Directional && maps.Light->LightTypeIsSceneLight() &&
-    !frame.CastersChanged && !frame.ScreenSized && !props.TranslucentReceivers &&
-    !camera->GetParallelProjection() && this->Planner->GetDepthClamp() &&
-    csm::poolSlots(pageAtlas(side), side / 2) > 0 &&
+    (!frame.CastersChanged || (lastPaged && !this->Statistics.CastersChanging)) &&
+    !frame.ScreenSized && !props.TranslucentReceivers && !camera->GetParallelProjection() &&
+    this->Planner->GetDepthClamp() && csm::poolSlots(pageAtlas(side), side / 2) > 0 &&
     (textureLimit <= 0 || pageAtlas(side).height <= textureLimit);
   state.PagesWanted = state.PagesWanted || serve;
   if (serve && state.VisibleCamera && !state.VisibleSamples.isEmpty() &&
@@ -494,14 +498,31 @@ void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& 
   {
     cache.reset(slots);
   }
-  std::vector<std::pair<csm::PageKey, int>> fresh;
-  cache.place(needed, fresh);
   CascadeMap base;
   base.Kind = MapKind::SceneFitted;
   base.Action = keep ? MapAction::Keep : MapAction::Draw;
   std::copy(worldToBase, worldToBase + 16, base.WorldToMap);
   base.Tile[2] = base.Tile[3] = base.Resolution[0] = base.Resolution[1] = side;
   base.SplitFar = maps.Cascades.back().SplitFar;
+  if (keep && frame.CastersChanged)
+  {
+    // The base's texels the changed casters' boxes cover drawn again (or all of it), the pages
+    // their boxes reach across the light given up (drawn again where this view needs them).
+    PatchChangedCasters(props, base);
+    const glm::dmat4 wsToBase = csmFromRowMajor(worldToBase);
+    cache.forget(
+      [&](const csm::PageKey& page)
+      {
+        return base.Action == MapAction::Draw ||
+          std::any_of(props.Dirty.begin(), props.Dirty.end(),
+            [&](const std::array<double, 6>& box) {
+              return csm::pageReachesBox(
+                wsToBase, levels, page, csm::Bounds::fromMinMaxPairs(box.data()));
+            });
+      });
+  }
+  std::vector<std::pair<csm::PageKey, int>> fresh;
+  cache.place(needed, fresh);
   maps.Cascades.assign(1, base);
   maps.AtlasSize[0] = atlas.width;
   maps.AtlasSize[1] = atlas.height;

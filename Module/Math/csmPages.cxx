@@ -312,6 +312,33 @@ int pageLevelRead(
     : 0;
 }
 
+bool pageReachesBox(const glm::dmat4& wsToBaseClip, const PageLevels& levels, const PageKey& page,
+  const Bounds& wsBox)
+{
+  if (wsBox.isEmpty())
+  {
+    return false;
+  }
+  // The box's rectangle in base coordinates against the page's texels with their border.
+  glm::dvec2 b0(1e300), b1(-1e300);
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::dvec3 p((corner & 1) ? wsBox.wsMax.x : wsBox.wsMin.x,
+      (corner & 2) ? wsBox.wsMax.y : wsBox.wsMin.y, (corner & 4) ? wsBox.wsMax.z : wsBox.wsMin.z);
+    const glm::dvec4 c = wsToBaseClip * glm::dvec4(p, 1.0);
+    const glm::dvec2 b = 0.5 * glm::dvec2(c) / c.w + 0.5;
+    b0 = glm::min(b0, b);
+    b1 = glm::max(b1, b);
+  }
+  const glm::dvec2 texels = levels.texels(page.level);
+  const glm::dvec2 from =
+    (glm::dvec2(page.x, page.y) * double(kPageInterior) - double(kPageBorder) - 1.0) / texels;
+  const glm::dvec2 to =
+    (glm::dvec2(page.x + 1, page.y + 1) * double(kPageInterior) + double(kPageBorder) + 1.0) /
+    texels;
+  return b0.x <= to.x && b1.x >= from.x && b0.y <= to.y && b1.y >= from.y;
+}
+
 glm::dmat4 pagesClip(const glm::dmat4& wsToBaseClip, const PageLevels& levels, int level,
   const glm::ivec2& first, const glm::ivec2& last)
 {
@@ -442,6 +469,22 @@ bool PageCache::place(
     drawn.emplace_back(missing[i], index);
   }
   return true;
+}
+
+void PageCache::forget(const std::function<bool(const PageKey&)>& stale)
+{
+  for (auto it = this->Index.begin(); it != this->Index.end();)
+  {
+    if (stale(PageKey::unpack(it->first)))
+    {
+      this->Slots[static_cast<std::size_t>(it->second)] = Slot();
+      it = this->Index.erase(it);
+    }
+    else
+    {
+      ++it;
+    }
+  }
 }
 
 int PageCache::slotOf(const PageKey& page) const

@@ -125,6 +125,12 @@ constexpr double kPageStandInSpan = 0.25;
 int pageLevelRead(
   const PageLevels& levels, const std::vector<float>& table, double bx, double by, double f);
 
+/// Does a world box reach page's texels (with its border) across the light? What a caster in
+/// the box casts lies in its column along the light: a page the box reaches nowhere holds
+/// nothing of it. wsToBaseClip: the base map's world -> clip space (orthographic).
+bool pageReachesBox(const glm::dmat4& wsToBaseClip, const PageLevels& levels, const PageKey& page,
+  const Bounds& wsBox);
+
 /// World -> clip space of one page as drawn into its kPageTexels square of the pool: the base
 /// map's clip space (the same depth) cropped to the page's texels of its level and the
 /// kPageBorder texels around them.
@@ -172,6 +178,8 @@ public:
   bool place(const std::vector<PageKey>& needed, std::vector<std::pair<PageKey, int>>& drawn);
   /// The slot of a resident page; -1 where it is not.
   int slotOf(const PageKey& page) const;
+  /// Gives up the slots of the resident pages `stale` says are (drawn again where needed).
+  void forget(const std::function<bool(const PageKey&)>& stale);
   /// The page table of `levels` level windows (kPageTableSide entries a side, level k's window
   /// the (k - 1)-th from the bottom), four values an entry: the slot's place in the pool grid
   /// (slotPlace: column, row, in pages), the page's x and y; -1 where no page sits. The pages of

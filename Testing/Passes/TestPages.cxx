@@ -236,3 +236,41 @@ TEST(Pages, CameraLightsAndParallelViewsKeepTheCascades)
     EXPECT_TRUE(field.Maps().Pages.Active);
   }
 }
+
+// A post that moves redraws the base's texels and the pages its boxes (before and after) reach
+// across the light, no other, and the frame is the one a chain that draws every page afresh
+// draws.
+TEST(Pages, AMovedPostRedrawsOnlyThePagesItsBoxesReachAndShadesAsAFreshChain)
+{
+  Field moving(0.0);
+  moving.Scene.Frame();
+  for (int frame = 0; frame < 2; ++frame)
+  {
+    moving.Turn(2.0);
+    moving.Scene.Frame();
+  }
+  ASSERT_TRUE(moving.Maps().Pages.Active);
+  const int resident = moving.Baker->GetLastFrameStatistics().PagesResident;
+  vtkActor* post = moving.Posts[7 * 15 + 8]; // (the post at (1.5, 4.5): near the eye)
+  post->AddPosition(0.6, 0.0, 0.0);
+  auto image = moving.Scene.Frame();
+  const auto& stats = moving.Baker->GetLastFrameStatistics();
+  ASSERT_TRUE(moving.Maps().Pages.Active);
+  EXPECT_EQ(stats.CascadesRendered, 0); // the base patched, not drawn whole
+  EXPECT_EQ(stats.CascadesPatched, 1);
+  EXPECT_GT(stats.PagesDrawn, 0);
+  EXPECT_LT(stats.PagesDrawn * 4, resident);
+  Field fresh(4.0);
+  fresh.Posts[7 * 15 + 8]->AddPosition(0.6, 0.0, 0.0);
+  fresh.Turn(-2.0);
+  fresh.Scene.Frame();
+  fresh.Turn(2.0);
+  auto again = fresh.Scene.Frame();
+  ASSERT_TRUE(fresh.Maps().Pages.Active);
+  EXPECT_LE(csmTest::DifferingPixels(image, again, 0), 8);
+  EXPECT_EQ(csmTest::DifferingPixels(image, again, 24), 0);
+  // The post's own shadow moved: the frame differs from the one before the move.
+  moving.Posts[7 * 15 + 8]->AddPosition(-0.6, 0.0, 0.0);
+  auto back = moving.Scene.Frame();
+  EXPECT_GT(csmTest::DifferingPixels(image, back, 24), 50);
+}
