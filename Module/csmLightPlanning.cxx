@@ -532,7 +532,6 @@ void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& 
   pages.BaseDepth = levels.baseDepth;
   pages.BaseTexels[0] = levels.baseTexels.x;
   pages.BaseTexels[1] = levels.baseTexels.y;
-  pages.Needed = static_cast<int>(needed.size());
   const auto place = [atlas, side](int s) { return csm::poolSlotPlace(atlas, side, s); };
   cache.table(std::max(levels.count, 1), needed, place, pages.Table);
   for (const auto& page : fresh)
@@ -541,7 +540,7 @@ void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& 
     pages.Drawn.push_back({ page.first.level, page.first.x, page.first.y, at.x, at.y });
   }
   this->Statistics.PagesDrawn += static_cast<int>(fresh.size());
-  this->Statistics.PagesNeeded += pages.Needed;
+  this->Statistics.PagesNeeded += static_cast<int>(needed.size());
   this->Statistics.PagesResident += cache.resident();
 }
 

@@ -499,7 +499,10 @@ void vtkCascadedShadowMapBakerPass::RenderAtlases(vtkOpenGLRenderer* renderer,
   for (size_t slot = 0; slot < planned.size(); ++slot)
   {
     this->RenderAtlas(renderer, window, state, props, planned[slot], slot == 0);
-    csmPageDrawing::UploadPageTable(window, state, slot, planned[slot]);
+    if (!this->Statistics.AsLastFrame) // (else the table of the last frame, as it was)
+    {
+      csmPageDrawing::UploadPageTable(window, state, slot, planned[slot]);
+    }
   }
   renderer->SetAutomaticLightCreation(automaticLights);
 }

@@ -105,7 +105,6 @@ struct LightPages
   /// The pages this frame draws: level, column and row (csm::PageKey), the lower left of the
   /// slot (texels of the atlas).
   std::vector<std::array<int, 5>> Drawn;
-  int Needed = 0; ///< pages this view reads
   vtkSmartPointer<vtkTextureObject> TableTexture;
 };
 
