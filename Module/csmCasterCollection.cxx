@@ -81,6 +81,15 @@ bool hasScreenSizedCasters(const std::vector<Caster>& casters)
   return false;
 }
 
+/// Widens box (x0, x1, y0, y1, z0, z1) to hold other.
+void uniteBoxes(std::array<double, 6>& box, const std::array<double, 6>& other)
+{
+  for (int k = 0; k < 3; ++k)
+  {
+    box[2 * k] = std::min(box[2 * k], other[2 * k]);
+    box[2 * k + 1] = std::max(box[2 * k + 1], other[2 * k + 1]);
+  }
+}
 } // namespace
 
 csmCasterCollection::csmCasterCollection() = default;
@@ -285,10 +294,10 @@ csmCasterCollection::Counts csmCasterCollection::Collect(vtkRenderer* renderer,
         continue;
       }
       const csmFrameCasters::Compact& compact = props.Compacts[static_cast<size_t>(caster.Compact)];
-      for (size_t k = 0; k < compact.Bounds.size(); ++k)
+      for (const csmFrameCasters::Compact::Group& group : compact.Groups)
       {
         props.CasterLoads.push_back(
-          { compact.Bounds[k], compact.Cells[k], caster.Receiver, itself, screenSized });
+          { group.Bounds, group.Cells, caster.Receiver, itself, screenSized });
       }
     }
   }
@@ -684,14 +693,24 @@ bool csmCasterCollection::AddCompactCaster(
     }
     compact.Bounds.push_back(world);
   }
-  std::array<double, 6> whole = compact.Bounds.front();
-  for (const auto& box : compact.Bounds)
+  const std::size_t perGroup = vtkCascadedShadows::BlocksPerGroup;
+  for (std::size_t first = 0; first < compact.Bounds.size(); first += perGroup)
   {
-    for (int k = 0; k < 3; ++k)
+    csmFrameCasters::Compact::Group group;
+    group.First = first;
+    group.Count = std::min(perGroup, compact.Bounds.size() - first);
+    group.Bounds = compact.Bounds[first];
+    for (std::size_t b = first; b < first + group.Count; ++b)
     {
-      whole[2 * k] = std::min(whole[2 * k], box[2 * k]);
-      whole[2 * k + 1] = std::max(whole[2 * k + 1], box[2 * k + 1]);
+      uniteBoxes(group.Bounds, compact.Bounds[b]);
+      group.Cells += compact.Cells[b];
     }
+    compact.Groups.push_back(group);
+  }
+  std::array<double, 6> whole = compact.Bounds.front();
+  for (const auto& group : compact.Groups)
+  {
+    uniteBoxes(whole, group.Bounds);
   }
   csmFrameCasters::Caster caster;
   caster.Prop = proxy.Actor;

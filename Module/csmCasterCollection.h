@@ -58,13 +58,21 @@ struct csmFrameCasters
     double Cells = 0.0; ///< of its data: triangles, strips, lines, vertices
   };
   std::vector<Caster> Casters;
-  /// A prop drawn from compact blocks: the mapper that draws the chosen ones, and each
-  /// block's world box and triangles.
+  /// A prop drawn from compact blocks: the mapper that draws the chosen ones, each block's
+  /// world box and triangles, and the groups of consecutive blocks
+  /// (vtkCascadedShadows::BlocksPerGroup) the visible-depth pass and the cascade count weigh.
   struct Compact
   {
     vtkCascadedShadowBlockMapper* Mapper = nullptr;
     std::vector<std::array<double, 6>> Bounds;
     std::vector<double> Cells;
+    struct Group
+    {
+      std::size_t First = 0, Count = 0; ///< its blocks
+      std::array<double, 6> Bounds;
+      double Cells = 0.0;
+    };
+    std::vector<Group> Groups;
   };
   std::vector<Compact> Compacts;
   std::vector<std::array<double, 6>> Receivers;

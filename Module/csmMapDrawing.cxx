@@ -542,13 +542,21 @@ ViewCasters viewCasters(vtkCamera* camera, double aspect, const csmFrameCasters&
     if (caster.Compact >= 0)
     {
       const csmFrameCasters::Compact& compact = props.Compacts[static_cast<size_t>(caster.Compact)];
+      // A group stands in whole or draws its blocks in view.
       std::vector<size_t> blocks;
-      for (size_t k = 0; k < compact.Bounds.size(); ++k)
+      for (const csmFrameCasters::Compact::Group& group : compact.Groups)
       {
-        if (csmCascadeReachesBox(worldToClip->GetData(), compact.Bounds[k].data(), false) &&
-          !standsIn(compact.Bounds[k], compact.Cells[k], wide))
+        if (!csmCascadeReachesBox(worldToClip->GetData(), group.Bounds.data(), false) ||
+          standsIn(group.Bounds, group.Cells, wide))
         {
-          blocks.push_back(k);
+          continue;
+        }
+        for (size_t k = group.First; k < group.First + group.Count; ++k)
+        {
+          if (csmCascadeReachesBox(worldToClip->GetData(), compact.Bounds[k].data(), false))
+          {
+            blocks.push_back(k);
+          }
         }
       }
       if (blocks.empty())

@@ -26,11 +26,14 @@ constexpr int MaximumCascades = 8;
 constexpr int ResolutionStep = 64;
 
 /// Compact casters (vtkCascadedShadowMapBakerPass::CompactCasters): at least
-/// MinimumBlockTriangles a block, at most MaximumBlocks a prop; meshes of more than
+/// MinimumBlockTriangles a block, at most MaximumBlocks a prop; the visible-depth pass and the
+/// cascade count weigh groups of BlocksPerGroup consecutive blocks (a k-d subtree each where the
+/// median splits are balanced), the maps cull the blocks; meshes of more than
 /// SynchronousPreparationTriangles are prepared by a worker thread; beyond
 /// MostClassifiedTriangles none is classified as closed.
-constexpr int MinimumBlockTriangles = 16384;
-constexpr int MaximumBlocks = 64;
+constexpr int MinimumBlockTriangles = 2048;
+constexpr int MaximumBlocks = 512;
+constexpr int BlocksPerGroup = 8;
 constexpr int SynchronousPreparationTriangles = 262144;
 constexpr int MostClassifiedTriangles = 4194304;
 
