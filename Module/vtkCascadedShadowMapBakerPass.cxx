@@ -328,6 +328,17 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   // 2. Plan every shadowed light, and choose the cascades to re-render.
   std::vector<LightMaps> planned;
   this->PlanLights(planning, renderer, window, state, props, maximumLights, asLastFrame, planned);
+  if (this->LightSpacePages && state.PagesWanted && this->Statistics.VisibleDepthsMeasured &&
+    state.VisibleSamples.isEmpty() && props.Dirty.empty())
+  {
+    // A plan that first wants light-space pages (a first frame, a view come close): the view's
+    // depth again with the samples that mark them, and the lights planned anew, rather than
+    // cascades drawn for one frame and the base and pages the next.
+    state.VisibleCamera = nullptr;
+    this->MeasureVisibleDepths(renderer, s, state, props, asLastFrame);
+    planned.clear();
+    this->PlanLights(planning, renderer, window, state, props, maximumLights, asLastFrame, planned);
+  }
   if (this->MeasureTimes)
   {
     this->Statistics.PlanSeconds = std::chrono::duration<double>(Clock::now() - planStart).count();

@@ -37,6 +37,16 @@ namespace
 using csmTest::BoxOverPlane;
 using csmTest::DifferingValues;
 
+/// Our shadows on a renderer, the cascades alone (these tests are the cascades' behaviour under
+/// changes; Pages.* tests the light-space pages').
+vtkCascadedShadowMapBakerPass* CascadesOn(vtkRenderer* renderer)
+{
+  vtkCascadedShadowMapBakerPass* baker =
+    vtkCascadedShadowMapPass::UseShadowsOn(renderer)->GetShadowMapBakerPass();
+  baker->LightSpacePagesOff();
+  return baker;
+}
+
 /// The box's polydata with a point scalar array "field" (0 everywhere).
 vtkPolyData* AddField(BoxOverPlane& scene)
 {
@@ -61,7 +71,7 @@ vtkSmartPointer<vtkImageData> FreshFrame(BoxOverPlane& scene,
   const bool changing = last->GetLastFrameStatistics().CastersChanging;
   vtkCascadedShadowMapPass::UseShadowsOff(scene.Renderer);
   scene.Frame();
-  baker = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  baker = CascadesOn(scene.Renderer);
   baker->GetPlanner()->SetSceneFittedCascades(!changing);
   auto image = scene.Frame();
   baker->GetPlanner()->SceneFittedCascadesOn();
@@ -103,8 +113,7 @@ TEST(Changes, ColourScalarsAndMaterialDrawNoTexel)
 {
   BoxOverPlane scene;
   vtkPolyData* data = AddField(scene);
-  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
-  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  vtkCascadedShadowMapBakerPass* baker = CascadesOn(scene.Renderer);
   scene.Frame();
   ASSERT_GT(baker->GetLastFrameStatistics().CascadesRendered, 0);
   scene.Frame();
@@ -198,8 +207,7 @@ TEST(Changes, WhatAPropCastsDrawsTheMapsAgain)
       } },
     { "hidden", [&]() { scene.Box->VisibilityOff(); } },
   };
-  vtkCascadedShadowMapBakerPass* baker =
-    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  vtkCascadedShadowMapBakerPass* baker = CascadesOn(scene.Renderer);
   scene.Frame();
   scene.Frame();
   for (const auto& [name, change] : changes)
@@ -232,8 +240,7 @@ TEST(Changes, MovedPointsKeepTheBlocksAndReplacedCellsDoNot)
 {
   BoxOverPlane scene;
   vtkPolyData* data = AddField(scene);
-  vtkCascadedShadowMapBakerPass* baker =
-    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  vtkCascadedShadowMapBakerPass* baker = CascadesOn(scene.Renderer);
   scene.Frame();
   EXPECT_EQ(baker->GetLastFrameStatistics().PreparedBlocks, 2); // the box and the ground
   scene.Frame();
@@ -266,8 +273,7 @@ TEST(Changes, ANewPolyDataOfTheSameCellsKeepsTheBlocks)
   vtkPolyDataMapper* mapper = vtkPolyDataMapper::SafeDownCast(scene.Box->GetMapper());
   ASSERT_NE(mapper, nullptr);
   vtkPolyData* first = AddField(scene);
-  vtkCascadedShadowMapBakerPass* baker =
-    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  vtkCascadedShadowMapBakerPass* baker = CascadesOn(scene.Renderer);
   scene.Frame();
   scene.Frame();
   vtkSmartPointer<vtkPolyData> last = first;
@@ -317,8 +323,7 @@ TEST(Changes, ANewPolyDataOfTheSameCellsKeepsTheBlocks)
 TEST(Changes, AFrameAsTheLastDrawsNothing)
 {
   BoxOverPlane scene;
-  vtkCascadedShadowMapBakerPass* baker =
-    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  vtkCascadedShadowMapBakerPass* baker = CascadesOn(scene.Renderer);
   scene.Frame();
   scene.Renderer->GetActiveCamera()->Azimuth(20.0);
   scene.Renderer->ResetCameraClippingRange();
@@ -355,8 +360,7 @@ TEST(Changes, OnePartOfSixteenMovedDrawsOnlyItsTexels)
       csmTest::BoxActor(x - 0.5, x + 0.5, 1.0, 2.5 + 0.25 * (i % 3), z - 0.5, z + 0.5));
     scene.Renderer->AddActor(parts.back());
   }
-  vtkCascadedShadowMapBakerPass* baker =
-    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  vtkCascadedShadowMapBakerPass* baker = CascadesOn(scene.Renderer);
   scene.Frame();
   const double firstTexels = baker->GetLastFrameStatistics().TexelsRendered;
   ASSERT_GT(firstTexels, 0.0);
@@ -390,8 +394,7 @@ TEST(Changes, CastersChangingEveryFrameGetMapsFittedToTheView)
 {
   BoxOverPlane scene;
   vtkPolyData* data = AddField(scene);
-  vtkCascadedShadowMapBakerPass* baker =
-    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+  vtkCascadedShadowMapBakerPass* baker = CascadesOn(scene.Renderer);
   scene.Frame();
   const double firstTexels = baker->GetLastFrameStatistics().TexelsRendered;
   ASSERT_GT(firstTexels, 0.0);

@@ -59,6 +59,7 @@ TEST(Passes, MapsAreRebakedOnlyWhenSomethingChanged)
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
   // (The cascades that follow the view: a scene-fitted map would serve every view here.)
   baker->GetPlanner()->SceneFittedCascadesOff();
+  baker->LightSpacePagesOff(); // (the cascades' own behaviour)
   // (Window renders only: grabbing an image renders with a copy of the camera. Two warm-up
   // frames: anything the first frame creates, such as an actor's default property, is a change.)
   scene.Window->Render();
@@ -212,6 +213,7 @@ TEST(Passes, ResolutionAndCascadesCanChangeBetweenFrames)
   {
     BoxOverPlane fresh;
     vtkCascadedShadowMapPass* first = vtkCascadedShadowMapPass::UseShadowsOn(fresh.Renderer);
+    first->GetShadowMapBakerPass()->LightSpacePagesOff();
     first->GetShadowMapBakerPass()->GetPlanner()->AdaptiveCascadesOff();
     first->GetShadowMapBakerPass()->SetResolution(512);
     first->GetShadowMapBakerPass()->GetPlanner()->SetNumberOfCascades(1);

@@ -62,6 +62,7 @@ TEST(Passes, CastersOutsideACascadeAreNotDrawnIntoIt)
     ->SetInputConnection(plane->GetOutputPort());
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->LightSpacePagesOff(); // (the cascades' own behaviour)
   baker->GetPlanner()->SetNumberOfCascades(3);
   baker->GetPlanner()->AdaptiveCascadesOff();
   baker->CullCastersWithoutReceiversOff(); // the ground is counted below

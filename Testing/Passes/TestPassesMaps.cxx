@@ -146,6 +146,7 @@ TEST(Passes, SceneFittedMapServesEveryViewOfAnOrbit)
   scene.Frame();
   EXPECT_GE(baker->GetLastFrameStatistics().CascadesRendered, 1);
   // Off: the farthest cascade follows the view, and a turn draws it again.
+  baker->LightSpacePagesOff(); // (the cascades' own behaviour)
   baker->GetPlanner()->SceneFittedCascadesOff();
   scene.Frame();
   scene.Renderer->GetActiveCamera()->Azimuth(35.0);
@@ -440,6 +441,7 @@ TEST(Passes, MoreThanFourCascadesOnlyInStillFrames)
   // (A frame that reads the last frame's factors has shaders of its own: passes.ReusedFactors.)
   pass->ReuseShadowFactorsOff();
   vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->LightSpacePagesOff();               // (the cascades' own behaviour)
   baker->GetPlanner()->SetErrorTarget(0.05); // out of reach: as many as pay
   // (Of the cascades that follow the view: one scene-fitted map of the box's footprint would
   // meet even this.)
@@ -473,10 +475,10 @@ TEST(Passes, LeavingAKeptMapReRendersItInThatFrame)
   pass->GetShadowMapBakerPass()->LightSpacePagesOff(); // (the cascades' own behaviour)
   // (The cascades that follow the view: a scene-fitted map would serve every view here.)
   pass->GetShadowMapBakerPass()->GetPlanner()->SceneFittedCascadesOff();
-  vtkCascadedShadowMapPass::UseShadowsOn(reference.Renderer)
-    ->GetShadowMapBakerPass()
-    ->GetPlanner()
-    ->SceneFittedCascadesOff();
+  vtkCascadedShadowMapBakerPass* fresh =
+    vtkCascadedShadowMapPass::UseShadowsOn(reference.Renderer)->GetShadowMapBakerPass();
+  fresh->LightSpacePagesOff();
+  fresh->GetPlanner()->SceneFittedCascadesOff();
   scene.Window->SetDesiredUpdateRate(15.0);
   reference.Window->SetDesiredUpdateRate(15.0);
   scene.Frame();
