@@ -146,6 +146,14 @@ public:
     }
   }
 
+  /// The window depths whose samples mark pages of level k (1 .. Count): its own, those of
+  /// the coarser level in its band or margin before k, those of the finer one within the margin.
+  void band(int k, double& w0, double& w1) const
+  {
+    w0 = k < this->Count ? this->Coarser[k + 1] : 0.0;
+    w1 = this->Finer[k - 1];
+  }
+
   /// The level of a sample at window depth w.
   int levelAt(double w) const
   {
@@ -243,34 +251,44 @@ bool markPages(const PageLevels& levels, const glm::dmat4& windowToBase, double 
   }
   for (const BoxStandIn& standIn : standIns)
   {
-    // Its rectangle's corners at its nearest and farthest depth, in base coordinates.
     const ScreenRect& r = standIn.rect;
     if (r.isEmpty() || standIn.depths.isEmpty())
     {
       continue;
     }
-    glm::dvec2 b0(1e300), b1(-1e300);
-    for (const double w : { standIn.depths.min, standIn.depths.max })
+    for (int k = 1; k <= std::min(levels.count, kMaxPageLevels); ++k)
     {
-      for (const double sx : { r.x0, r.x1 })
+      // The part of its rectangle between the depths that mark level k: the box of its
+      // corners in base coordinates holds the part (a convex solid the projective map keeps
+      // convex in front of the eye).
+      double w0 = 0.0, w1 = 0.0;
+      marks.band(k, w0, w1);
+      w0 = std::max(w0, standIn.depths.min);
+      w1 = std::min(w1, standIn.depths.max);
+      if (!(w0 <= w1))
       {
-        for (const double sy : { r.y0, r.y1 })
+        continue;
+      }
+      glm::dvec2 b0(1e300), b1(-1e300);
+      for (const double w : { w0, w1 })
+      {
+        for (const double sx : { r.x0, r.x1 })
         {
-          const glm::dvec4 b = windowToBase * glm::dvec4(sx, sy, 2.0 * w - 1.0, 1.0);
-          if (b.w > 0.0)
+          for (const double sy : { r.y0, r.y1 })
           {
-            b0 = glm::min(b0, glm::dvec2(b) / b.w);
-            b1 = glm::max(b1, glm::dvec2(b) / b.w);
+            const glm::dvec4 b = windowToBase * glm::dvec4(sx, sy, 2.0 * w - 1.0, 1.0);
+            if (b.w > 0.0)
+            {
+              b0 = glm::min(b0, glm::dvec2(b) / b.w);
+              b1 = glm::max(b1, glm::dvec2(b) / b.w);
+            }
           }
         }
       }
-    }
-    if (b0.x <= b1.x && b0.y <= b1.y)
-    {
-      // (Its levels with the band and the margins: its farthest depth's, less one, to its
-      // nearest's, and one more.)
-      marks.rect(marks.levelAt(standIn.depths.max) - 1, marks.levelAt(standIn.depths.min) + 1,
-        glm::clamp(b0, 0.0, 1.0), glm::clamp(b1, 0.0, 1.0));
+      if (b0.x <= b1.x && b0.y <= b1.y)
+      {
+        marks.rect(k, k, glm::clamp(b0, 0.0, 1.0), glm::clamp(b1, 0.0, 1.0));
+      }
     }
   }
   std::sort(marks.Keys.begin(), marks.Keys.end());

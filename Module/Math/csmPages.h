@@ -106,9 +106,10 @@ struct PageKey
 /// in x, y: the lookup's own map coordinates), its level by its view depth (the camera's
 /// clipping range, perspective), and its page and the neighbours within kPageTexelMargin
 /// texels; within kPageLevelMargin of a level's edge or in the dithered band, both levels'
-/// pages. Then the boxes that stood in for casters the buffer lacks: every page their
-/// rectangles touch from their farthest depth's level (less one) to their nearest's (and one
-/// more). Sorted, each once; false where more than mostPages are needed.
+/// pages. Then the boxes that stood in for casters the buffer lacks: at each level, every page
+/// that the part of a box's rectangle between the window depths that level's samples mark it
+/// from (its own, its band and margins) touches, so every page a sample in that part would
+/// mark. Sorted, each once; false where more than mostPages are needed.
 bool markPages(const PageLevels& levels, const glm::dmat4& windowToBase, double vsNear,
   double vsFar, const float* windowDepths, int width, int height,
   const std::vector<BoxStandIn>& standIns, std::size_t mostPages, std::vector<PageKey>& pages);

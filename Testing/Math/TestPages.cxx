@@ -172,7 +172,8 @@ TEST(Pages, SamplesMarkThePagesOfTheirLevelAndOfTheBandAndEdges)
   EXPECT_EQ(pages[0], (csm::PageKey{ 2, 0, 0 }));
   EXPECT_EQ(pages[1], (csm::PageKey{ 2, 1, 0 }));
   // A box standing in for a caster, over the image's left half at level 1's depths (fineness
-  // 0.5): every page its rectangle touches at levels 1 and 2 (its level and the next finer).
+  // 0.5, outside the band and margins of levels 0 and 2): every page its rectangle touches at
+  // level 1 alone.
   csm::BoxStandIn standIn;
   standIn.rect = csm::ScreenRect{ -1.0, -1.0, 0.0, 1.0 };
   standIn.depths.min = standIn.depths.max =
@@ -180,8 +181,71 @@ TEST(Pages, SamplesMarkThePagesOfTheirLevelAndOfTheBandAndEdges)
   ASSERT_TRUE(csm::markPages(levels, straightAcross(), vsNear, vsFar, depths.data(), width, height,
     { standIn }, 1000, pages));
   EXPECT_EQ(pagesOfLevel(pages, 1).size(), 2u * 3u); // 512 texels: 3 a side, 2 in the left half
-  EXPECT_EQ(pagesOfLevel(pages, 2).size(), 3u * 5u); // 1024: 5 a side, 3 reach the left half
-  EXPECT_EQ(pages.size(), 21u);
+  EXPECT_EQ(pages.size(), 6u);
+}
+
+// A box that stands in for a caster deep along the view marks, at each level, the pages of the
+// part of it whose depths that level serves: every page a sample inside it would mark, and at
+// the finest level only those of its near part.
+TEST(Pages, AStandInMarksAtEachLevelThePagesOfItsPartAtThatLevelsDepths)
+{
+  csm::PageLevels levels;
+  levels.baseTexels = glm::dvec2(256.0); // level 3: 2048 texels, 9 pages of 248 a side
+  levels.baseDepth = 100.0;
+  levels.count = 3;
+  const double vsNear = 1.0, vsFar = 1000.0;
+  auto windowAt = [&](double fineness)
+  { return csm::windowDepthFromViewDepth(100.0 / std::exp2(fineness), vsNear, vsFar, false); };
+  // Base x moves with the window depth (a light across the view): 5 (2 w - 1) - 4.1.
+  glm::dmat4 across = straightAcross();
+  across[2][0] = 5.0;
+  across[3][0] = 0.5 - 4.6;
+  csm::BoxStandIn standIn;
+  standIn.rect = csm::ScreenRect{ -0.2, -0.2, 0.0, 0.0 };
+  standIn.depths.min = windowAt(2.8);
+  standIn.depths.max = windowAt(0.2);
+  // Samples inside it, each column of its pixels at another depth from its nearest to its
+  // farthest.
+  const int width = 160, height = 120;
+  std::vector<float> depths(width * height, 1.0f);
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      const double sx = 2.0 * (x + 0.5) / width - 1.0, sy = 2.0 * (y + 0.5) / height - 1.0;
+      if (sx >= -0.2 && sx <= 0.0 && sy >= -0.2 && sy <= 0.0)
+      {
+        const double t = (sx + 0.2) / 0.2;
+        depths[y * width + x] =
+          static_cast<float>(standIn.depths.min + t * (standIn.depths.max - standIn.depths.min));
+      }
+    }
+  }
+  std::vector<csm::PageKey> bySamples, byBox;
+  ASSERT_TRUE(csm::markPages(
+    levels, across, vsNear, vsFar, depths.data(), width, height, {}, 1000, bySamples));
+  const std::vector<float> none(width * height, 1.0f);
+  ASSERT_TRUE(csm::markPages(
+    levels, across, vsNear, vsFar, none.data(), width, height, { standIn }, 1000, byBox));
+  for (const csm::PageKey& page : bySamples)
+  {
+    EXPECT_TRUE(std::find(byBox.begin(), byBox.end(), page) != byBox.end())
+      << page.level << " " << page.x << " " << page.y;
+  }
+  for (int k = 1; k <= 3; ++k)
+  {
+    EXPECT_FALSE(pagesOfLevel(byBox, k).empty()) << k;
+  }
+  // Level 3 serves its depths down to fineness 2 less the band and margin (window depth 0.9626,
+  // base x 0.526 at most: 1079 texels with the margin, page 4); the whole box reaches 0.795 (page
+  // 6).
+  int farthest = 0;
+  for (const csm::PageKey& page : pagesOfLevel(byBox, 3))
+  {
+    farthest = std::max(farthest, page.x);
+  }
+  EXPECT_EQ(farthest, 4);
+  EXPECT_NEAR(windowAt(2.0 - csm::kPageBlendBand - csm::kPageLevelMargin), 0.9626, 1e-4);
 }
 
 TEST(Pages, TheCacheKeepsResidentPagesAndGivesTheLeastRecentlyNeededSlots)
