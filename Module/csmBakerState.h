@@ -48,9 +48,6 @@ struct csmRendererMaps
   /// ... and where its samples lie on its image, by depth, and the depth buffer itself.
   csm::WindowFootprint VisibleFootprint;
   csm::DepthSamples VisibleSamples;
-  /// The last plan had a light that light-space pages would serve: the next visible-depth pass
-  /// draws every caster (VisibleSamples, which the pages are marked from).
-  bool PagesWanted = false;
   /// Per light slot: the pages kept in the pool of its atlas (LightSpacePages) and the texture
   /// of their table.
   std::vector<csm::PageCache> PageCaches;

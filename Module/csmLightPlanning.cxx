@@ -258,7 +258,6 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
   frame.CastersChanged = !props.Dirty.empty();
   csmMapDrawing::MainView(renderer, renderer->GetActiveCamera(), frame.ViewKey);
   this->FeedVisibleDepths(renderer, window, state, props);
-  state.PagesWanted = false;
   const int shadowingLights = forEachShadowedLight(renderer, maximumLights,
     [&](vtkLight* light, int index)
     { this->PlanLight(renderer, state, props, frame, light, index, planned); });
@@ -397,8 +396,8 @@ void csmLightPlanning::ServeWithPages(vtkRenderer* renderer, csmRendererMaps& st
   // Pages where the cascades would follow the view of a scene light (its one scene-fitted map
   // already serves the whole view with all of the atlas), the casters stay and are not sized on
   // the screen, every receiver is in the view's depth buffer, the view is a perspective one
-  // and the atlas holds a base and its pool; marked from this view's samples, where the depth
-  // pass drew them for the pages (the plan that wants them asks the next pass for them).
+  // and the atlas holds a base and its pool; marked from this view's samples (the depth pass
+  // keeps them where LightSpacePages is on).
   vtkCamera* camera = renderer->GetActiveCamera();
   const int side = this->Options.Resolution;
   const bool followsView = std::any_of(maps.Cascades.begin(), maps.Cascades.end(),
@@ -417,7 +416,6 @@ void csmLightPlanning::ServeWithPages(vtkRenderer* renderer, csmRendererMaps& st
     !frame.ScreenSized && !props.TranslucentReceivers && !camera->GetParallelProjection() &&
     this->Planner->GetDepthClamp() && csm::poolSlots(pageAtlas(side), side / 2) > 0 &&
     (textureLimit <= 0 || pageAtlas(side).height <= textureLimit);
-  state.PagesWanted = state.PagesWanted || serve;
   if (serve && state.VisibleCamera && !state.VisibleSamples.isEmpty() &&
     sameView(state.VisibleCamera, camera, frame.Aspect))
   {

@@ -489,10 +489,9 @@ struct ViewCasters
 
 /// The casters the view's depth is drawn with; screenSized: also those drawn wider than their
 /// data (wide lines, big points, tubes, spheres), whose width in the depth cannot match the
-/// mapper's own rasterization to the pixel; forPages: only casters small on the image stand in
-/// (csm::kPageStandInSpan).
+/// mapper's own rasterization to the pixel.
 ViewCasters viewCasters(vtkCamera* camera, double aspect, const csmFrameCasters& props, int width,
-  int height, bool screenSized, bool forPages)
+  int height, bool screenSized)
 {
   vtkMatrix4x4* worldToClip = camera->GetCompositeProjectionTransformMatrix(aspect, -1, 1);
   // A closed caster seen from outside only (the near plane reaches no point of its box) shows
@@ -509,10 +508,7 @@ ViewCasters viewCasters(vtkCamera* camera, double aspect, const csmFrameCasters&
     csm::BoxStandIn standIn;
     if (screenSized ||
       !csm::boxStandIn(
-        wsToClip, csm::Bounds::fromMinMaxPairs(bounds.data()), cells, width, height, standIn) ||
-      (forPages &&
-        (standIn.rect.x1 - standIn.rect.x0 > 2.0 * csm::kPageStandInSpan ||
-          standIn.rect.y1 - standIn.rect.y0 > 2.0 * csm::kPageStandInSpan)))
+        wsToClip, csm::Bounds::fromMinMaxPairs(bounds.data()), cells, width, height, standIn))
     {
       return false;
     }
@@ -584,8 +580,7 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   int width = 0, height = 0, x = 0, y = 0;
   renderer->GetTiledSizeAndOrigin(&width, &height, &x, &y);
   // (Screen-sized casters only where the depths are read: their depth is cleared after.)
-  ViewCasters casters =
-    viewCasters(camera, aspect, props, width, height, depths != nullptr, samples != nullptr);
+  ViewCasters casters = viewCasters(camera, aspect, props, width, height, depths != nullptr);
   vtkOpenGLState* ostate = window->GetState();
   csmDepthDrawingGuard guard(ostate);
   ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);

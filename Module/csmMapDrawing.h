@@ -103,9 +103,8 @@ public:
   /// error). standInCount: the casters (or blocks) left out, small on the image for their
   /// triangles, whose boxes stand in for their samples (csm::boxStandIn). depths null: the
   /// depth only, nothing read (a view whose depths are known, or a multisampled framebuffer).
-  /// samples: only casters small on the image stand in (csm::kPageStandInSpan) and, where
-  /// read, the depth buffer and the stand-ins kept there (what light-space pages are marked
-  /// from).
+  /// samples: where read, the depth buffer and the stand-ins kept there (what light-space pages
+  /// are marked from).
   bool DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderState* s,
     const csmFrameCasters& props, double depths[2], csm::WindowFootprint& footprint,
     int& standInCount, csm::DepthSamples* samples = nullptr);

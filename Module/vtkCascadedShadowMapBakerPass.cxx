@@ -328,17 +328,6 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   // 2. Plan every shadowed light, and choose the cascades to re-render.
   std::vector<LightMaps> planned;
   this->PlanLights(planning, renderer, window, state, props, maximumLights, asLastFrame, planned);
-  if (this->LightSpacePages && state.PagesWanted && this->Statistics.VisibleDepthsMeasured &&
-    state.VisibleSamples.isEmpty() && props.Dirty.empty())
-  {
-    // A plan that first wants light-space pages (a first frame, a view come close): the view's
-    // depth again with the samples that mark them, and the lights planned anew, rather than
-    // cascades drawn for one frame and the base and pages the next.
-    state.VisibleCamera = nullptr;
-    this->MeasureVisibleDepths(renderer, s, state, props, asLastFrame);
-    planned.clear();
-    this->PlanLights(planning, renderer, window, state, props, maximumLights, asLastFrame, planned);
-  }
   if (this->MeasureTimes)
   {
     this->Statistics.PlanSeconds = std::chrono::duration<double>(Clock::now() - planStart).count();
@@ -417,11 +406,10 @@ void vtkCascadedShadowMapBakerPass::MeasureVisibleDepths(vtkOpenGLRenderer* rend
   double samples[2] = { 1.0, 0.0 };
   csm::WindowFootprint footprint;
   csm::DepthSamples buffer;
-  // (Only casters small on the image stand in where the last plan wanted light-space pages:
-  // they are marked from the samples and the stand-ins' rectangles.)
+  // (The depth buffer and the boxes that stood in kept for light-space pages, marked from them
+  // where a light's plan wants them, this very frame.)
   const bool read = this->Drawing->DrawViewDepth(renderer, s, props, samples, footprint,
-    this->Statistics.DepthPassStandIns,
-    this->LightSpacePages && state.PagesWanted ? &buffer : nullptr);
+    this->Statistics.DepthPassStandIns, this->LightSpacePages ? &buffer : nullptr);
   state.VisibleSamples = std::move(buffer);
   this->Statistics.VisibleDepthsMeasured = true;
   if (read && samples[0] <= samples[1])

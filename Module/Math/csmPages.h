@@ -114,11 +114,6 @@ bool markPages(const PageLevels& levels, const glm::dmat4& windowToBase, double 
   double vsFar, const float* windowDepths, int width, int height,
   const std::vector<BoxStandIn>& standIns, std::size_t mostPages, std::vector<PageKey>& pages);
 
-/// A caster the visible-depth pass leaves out stands in by its box for the pages only where its
-/// rectangle spans at most this share of the image's NDC width and height (its pages are every
-/// page the rectangle touches: few for a box small on the image); a larger one is drawn.
-constexpr double kPageStandInSpan = 0.25;
-
 /// The level the lookup reads at base coordinates (bx, by) for a sample of fineness f (the
 /// dithered band aside): its level (PageLevels::levelAt) where the page table `table`
 /// (PageCache::table's entries for levels.count windows) holds its page there, else 0 (the

@@ -149,7 +149,7 @@ void SamplesFindTheirPages(Field& field, long& needing, long& missing)
 TEST(Pages, AnOrbitDrawsOnlyThePagesThatComeIntoViewAndShadesAsAFreshChain)
 {
   Field moving(0.0);
-  moving.Scene.Frame(); // (paged at once: the depth pass drawn again for the pages' samples)
+  moving.Scene.Frame(); // (paged at once: the visible-depth pass keeps the samples)
   ASSERT_TRUE(moving.Maps().Pages.Active);
   EXPECT_EQ(moving.Baker->GetLastFrameStatistics().PagesDrawn,
     moving.Baker->GetLastFrameStatistics().PagesNeeded);
