@@ -551,7 +551,8 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
               if (o.PerFrame)
                 std::printf(
                   "    %s %s frame %d: %.1f ms, maps %d rendered %d kept (%d moved), "
-                  "%.2f M texels, %.0f k cells (%d blocks), near %.3g; depth pass (%d stood "
+                  "%.2f M texels, %.0f k cells (%d blocks), pages %d drawn of %d needed (%d "
+                  "resident), near %.3g; depth pass (%d stood "
                   "in by their boxes) and plan %.1f ms, maps %.1f ms (clears and moves %.1f), "
                   "view and lookup %.1f ms\n",
                   name.c_str(), pathName.c_str(), i, ms,
@@ -560,6 +561,7 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
                   baker->GetLastFrameStatistics().CascadesMoved,
                   1e-6 * baker->GetLastFrameStatistics().TexelsRendered,
                   1e-3 * baker->GetLastFrameStatistics().CellsDrawn, stats.BlocksDrawn,
+                  stats.PagesDrawn, stats.PagesNeeded, stats.PagesResident,
                   baker->GetLightMaps().empty() ? 0.0 : baker->GetLightMaps()[0].SplitNear,
                   stats.DepthPassStandIns, planMs, mapsMs, clearMs,
                   std::max(0.0, ms - planMs - mapsMs));
