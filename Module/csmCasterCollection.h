@@ -236,7 +236,7 @@ private:
     std::vector<double> Cells;                 ///< per block: its triangles
     /// A mesh prepared at once: each triangle's block, and the cells they were prepared from
     /// (the same cells with moved points keep the blocks, their boxes computed again).
-    std::vector<std::uint8_t> BlockOf;
+    std::vector<std::uint16_t> BlockOf;
     csmCellsKey Source;
     long long SourceFrame = -1; ///< the frame Source was read from the data in (adopted blocks)
     Preparation<csmPreparedBlocks> Pending;

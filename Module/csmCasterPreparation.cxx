@@ -3,6 +3,7 @@
 
 #include "csmCasterBlocks.h"
 #include "csmDigest.h"
+#include "vtkCascadedShadowMapTypes.h" // for MaximumBlocks
 
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
@@ -14,6 +15,10 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+
+// Every block of a prop has its index in BlockOf, kNoBlock apart.
+static_assert(vtkCascadedShadows::MaximumBlocks < csmPreparedBlocks::kNoBlock,
+  "a block's index must fit csmPreparedBlocks::BlockOf");
 
 vtkSmartPointer<vtkDataArray> csmOwnCopy(vtkDataArray* source)
 {
@@ -213,7 +218,7 @@ std::shared_ptr<csmPreparedBlocks> csmPrepareBlocks(
       const auto& [first, count] = order.blocks[b];
       for (size_t i = first; i < first + count; ++i)
       {
-        result->BlockOf[keptTriangle[order.order[i]]] = static_cast<std::uint8_t>(b);
+        result->BlockOf[keptTriangle[order.order[i]]] = static_cast<std::uint16_t>(b);
       }
     }
   }
@@ -288,8 +293,8 @@ csmCellsKey csmCellsOf(vtkPolyData* data)
   return key;
 }
 
-bool csmBlockBounds(vtkPolyData* data, const std::vector<std::uint8_t>& blockOf, std::size_t blocks,
-  std::vector<std::array<double, 6>>& bounds)
+bool csmBlockBounds(vtkPolyData* data, const std::vector<std::uint16_t>& blockOf,
+  std::size_t blocks, std::vector<std::array<double, 6>>& bounds)
 {
   vtkPoints* points = data->GetPoints();
   const vtkIdType pointCount = points ? points->GetNumberOfPoints() : 0;

@@ -32,8 +32,8 @@ struct csmPreparedBlocks
   std::vector<std::array<double, 6>> Bounds;
   /// Per triangle of the data (csmPrepareBlocks' order: polygons as fans, then strips), its
   /// block (kNoBlock: left out, no area or a bad index): the blocks' boxes for new positions.
-  std::vector<std::uint8_t> BlockOf;
-  static constexpr std::uint8_t kNoBlock = 0xff;
+  std::vector<std::uint16_t> BlockOf;
+  static constexpr std::uint16_t kNoBlock = 0xffff;
 };
 
 /// The cells a polydata's triangles come from: its polygon and strip arrays (which ones, when
@@ -56,8 +56,8 @@ csmCellsKey csmCellsOf(vtkPolyData* data);
 /// The blocks' boxes (in the data's coordinates) for the data's points where they are now, from
 /// the block of each triangle that csmPrepareBlocks gave (its BlockOf). False where the data's
 /// triangles are not as many as blockOf holds, or a corner is not finite.
-bool csmBlockBounds(vtkPolyData* data, const std::vector<std::uint8_t>& blockOf, std::size_t blocks,
-  std::vector<std::array<double, 6>>& bounds);
+bool csmBlockBounds(vtkPolyData* data, const std::vector<std::uint16_t>& blockOf,
+  std::size_t blocks, std::vector<std::array<double, 6>>& bounds);
 
 /// A big caster's closed-surface classification.
 struct csmPreparedClosure
