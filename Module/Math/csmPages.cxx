@@ -113,14 +113,41 @@ public:
       return; // outside the base (the lookup finds no map there)
     }
     const int k = this->levelAt(w);
+    const bool finer = k < this->Count && w < this->Finer[k];
+    const bool coarser = k > 1 && w > this->Coarser[k];
+    if (!finer && !coarser && k == this->Alone.level && k >= 1)
+    {
+      // Inside the last lone page, away from its margins: nothing new (neighbouring pixels
+      // mostly land there).
+      const glm::dvec2 u = glm::dvec2(bx, by) * this->Texels[k];
+      if (u.x >= this->Alone.lower.x && u.x <= this->Alone.upper.x && u.y >= this->Alone.lower.y &&
+        u.y <= this->Alone.upper.y)
+      {
+        return;
+      }
+    }
+    this->Alone.level = -1;
     this->at(k, bx, by);
-    if (k < this->Count && w < this->Finer[k])
+    if (finer)
     {
       this->at(k + 1, bx, by); // the dithered band, or the edge
     }
-    if (k > 1 && w > this->Coarser[k])
+    if (coarser)
     {
       this->at(k - 1, bx, by);
+    }
+    if (!finer && !coarser && k >= 1)
+    {
+      // A sample that marks one page alone: the part of that page that marks nothing else.
+      const glm::dvec2 page =
+        glm::floor(glm::dvec2(bx, by) * this->Texels[k] / double(kPageInterior));
+      const glm::dvec2 lower = page * double(kPageInterior) + kPageTexelMargin;
+      const glm::dvec2 upper = (page + 1.0) * double(kPageInterior) - kPageTexelMargin;
+      const glm::dvec2 u = glm::dvec2(bx, by) * this->Texels[k];
+      if (u.x >= lower.x && u.x <= upper.x && u.y >= lower.y && u.y <= upper.y)
+      {
+        this->Alone = { k, lower, upper };
+      }
     }
   }
 
@@ -213,6 +240,12 @@ private:
   std::array<glm::dvec2, kMaxPageLevels + 1> Texels{}, Last{};
   std::array<std::uint64_t, 8> Recent{};
   std::size_t Latest = 0;
+  /// The page the last sample marked alone, and where in it a sample marks nothing else.
+  struct
+  {
+    int level = -1;
+    glm::dvec2 lower{ 0.0 }, upper{ 0.0 };
+  } Alone;
 };
 } // namespace
 

@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The per-frame shadow math for one light: body, splits, warp, matrices and error of every
 // cascade. Run: build/Testing/csmMathBenchmark (see README).
+#include "csmPages.h"
 #include "csmSetup.h"
 
 #include <benchmark/benchmark.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <cmath>
+#include <vector>
 
 namespace
 {
@@ -48,8 +52,57 @@ void UniformSingleWithScene(benchmark::State& state)
 {
   frame(state, csm::WarpMode::None, csm::SplitScheme::Single, true);
 }
+
+// The pages a 640x480 view of a ground marks (csm::markPages, every visible-depth pass of a paged
+// light): the camera 2 above the ground looking 10 ahead and down, the light from above.
+void MarkPages(benchmark::State& state)
+{
+  const int width = 640, height = 480;
+  const double vsNear = 0.1, vsFar = 1000.0;
+  const glm::dvec3 eye(0.0, 2.0, 0.0);
+  const glm::dmat4 worldToView = glm::lookAt(eye, glm::dvec3(0.0, 0.0, -10.0), glm::dvec3(0, 1, 0));
+  const glm::dmat4 viewToClip =
+    glm::perspective(glm::radians(60.0), double(width) / height, vsNear, vsFar);
+  const glm::dmat4 wsToBase = glm::ortho(-100.0, 100.0, -100.0, 100.0, -100.0, 100.0) *
+    glm::lookAt(glm::dvec3(0.0), glm::dvec3(0.1, -1.0, 0.2), glm::dvec3(0, 0, -1));
+  glm::dmat4 toUnit(0.5);
+  toUnit[2][2] = 1.0;
+  toUnit[3] = glm::dvec4(0.5, 0.5, 0.0, 1.0);
+  const glm::dmat4 clipToWorld = glm::inverse(viewToClip * worldToView);
+  const glm::dmat4 windowToBase = toUnit * wsToBase * clipToWorld;
+  std::vector<float> depths(static_cast<std::size_t>(width) * height, 1.0f);
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      const glm::dvec4 far = clipToWorld *
+        glm::dvec4(2.0 * (x + 0.5) / width - 1.0, 2.0 * (y + 0.5) / height - 1.0, 1.0, 1.0);
+      const glm::dvec3 ray = glm::dvec3(far) / far.w - eye;
+      if (ray.y < 0.0)
+      {
+        const glm::dvec3 hit = eye + ray * (-eye.y / ray.y);
+        const double depth = -(worldToView * glm::dvec4(hit, 1.0)).z;
+        depths[static_cast<std::size_t>(y) * width + x] =
+          static_cast<float>(csm::windowDepthFromViewDepth(depth, vsNear, vsFar, false));
+      }
+    }
+  }
+  csm::PageLevels levels;
+  levels.baseTexels = glm::dvec2(1024.0);
+  levels.baseDepth = 100.0;
+  levels.count = 6;
+  std::vector<csm::PageKey> pages;
+  for (auto _ : state)
+  {
+    csm::markPages(
+      levels, windowToBase, vsNear, vsFar, depths.data(), width, height, {}, 100000, pages);
+    benchmark::DoNotOptimize(pages);
+  }
+  state.counters["pages"] = static_cast<double>(pages.size());
+}
 }
 
+BENCHMARK(MarkPages)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
 BENCHMARK(GeneralizedAdaptiveWithScene)
   ->Arg(1)
   ->Arg(2)
