@@ -22,8 +22,6 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
-#include <glm/matrix.hpp>
-
 #include <algorithm>
 #include <iterator>
 #include <map>
@@ -437,10 +435,7 @@ bool csmLightPlanning::PageNeeds(const csmRendererMaps& state, const csmFramePla
   const double nearest =
     csm::viewDepthFromWindowDepth(state.VisibleWindow[0], clip[0], clip[1], false);
   const glm::dmat4 wsToBase = csmFromRowMajor(worldToBase);
-  glm::dmat4 toUnit(0.5); // (clip x, y -> [0, 1])
-  toUnit[2][2] = 1.0;
-  toUnit[3] = glm::dvec4(0.5, 0.5, 0.0, 1.0);
-  const glm::dmat4 windowToBase = toUnit * wsToBase * glm::inverse(viewToClip * worldToView);
+  const glm::dmat4 windowToBase = csm::windowToBase(wsToBase, viewToClip * worldToView);
   const csm::DepthSamples& samples = state.VisibleSamples;
   // At csm::kPageErrorShare of the target where the pool holds those pages, else at the target
   // (the same pages: a level's texels do not depend on the depths it serves).

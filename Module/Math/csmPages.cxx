@@ -249,6 +249,14 @@ private:
 };
 } // namespace
 
+glm::dmat4 windowToBase(const glm::dmat4& wsToBaseClip, const glm::dmat4& wsToViewClip)
+{
+  glm::dmat4 toUnit(0.5); // (clip x, y -> [0, 1])
+  toUnit[2][2] = 1.0;
+  toUnit[3] = glm::dvec4(0.5, 0.5, 0.0, 1.0);
+  return toUnit * wsToBaseClip * glm::inverse(wsToViewClip);
+}
+
 bool markPages(const PageLevels& levels, const glm::dmat4& windowToBase, double vsNear,
   double vsFar, const float* windowDepths, int width, int height,
   const std::vector<BoxStandIn>& standIns, std::size_t mostPages, std::vector<PageKey>& pages)

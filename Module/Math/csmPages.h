@@ -100,6 +100,11 @@ struct PageKey
   bool operator==(const PageKey& o) const { return level == o.level && x == o.x && y == o.y; }
 };
 
+/// Window NDC (x, y, z in [-1, 1]) of a view -> base coordinates [0, 1]^2 in x and y (markPages'
+/// windowToBase): the view's world -> clip matrix undone, the base's applied, its clip x and y
+/// taken to [0, 1]; z and w as the base's clip has them.
+glm::dmat4 windowToBase(const glm::dmat4& wsToBaseClip, const glm::dmat4& wsToViewClip);
+
 /// The pages the visible samples of one view read: each sample of a depth buffer (width x
 /// height window depths, rows from the bottom; 1 the cleared background) at its pixel's centre,
 /// carried to base coordinates by windowToBase (window NDC x, y, z in [-1, 1] -> base [0, 1]^2

@@ -65,11 +65,8 @@ void MarkPages(benchmark::State& state)
     glm::perspective(glm::radians(60.0), double(width) / height, vsNear, vsFar);
   const glm::dmat4 wsToBase = glm::ortho(-100.0, 100.0, -100.0, 100.0, -100.0, 100.0) *
     glm::lookAt(glm::dvec3(0.0), glm::dvec3(0.1, -1.0, 0.2), glm::dvec3(0, 0, -1));
-  glm::dmat4 toUnit(0.5);
-  toUnit[2][2] = 1.0;
-  toUnit[3] = glm::dvec4(0.5, 0.5, 0.0, 1.0);
   const glm::dmat4 clipToWorld = glm::inverse(viewToClip * worldToView);
-  const glm::dmat4 windowToBase = toUnit * wsToBase * clipToWorld;
+  const glm::dmat4 windowToBase = csm::windowToBase(wsToBase, viewToClip * worldToView);
   std::vector<float> depths(static_cast<std::size_t>(width) * height, 1.0f);
   for (int y = 0; y < height; ++y)
   {

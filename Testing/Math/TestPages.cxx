@@ -184,6 +184,24 @@ TEST(Pages, SamplesMarkThePagesOfTheirLevelAndOfTheBandAndEdges)
   EXPECT_EQ(pages.size(), 6u);
 }
 
+// A view's window NDC goes to the base's map coordinates: a world point seen by the view lands
+// where the base's clip space puts it, x and y taken to [0, 1].
+TEST(Pages, WindowToBaseUndoesTheViewAndAppliesTheBase)
+{
+  const glm::dmat4 wsToView = glm::perspective(glm::radians(60.0), 4.0 / 3.0, 0.1, 100.0) *
+    glm::lookAt(glm::dvec3(1.0, 2.0, 3.0), glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0));
+  const glm::dmat4 wsToBase = baseClip(20.0);
+  const glm::dmat4 windowToBase = csm::windowToBase(wsToBase, wsToView);
+  for (const glm::dvec3 p : { glm::dvec3(0.0), glm::dvec3(0.5, -0.25, 1.0), glm::dvec3(-1, 0, -2) })
+  {
+    const glm::dvec4 view = wsToView * glm::dvec4(p, 1.0);
+    const glm::dvec4 b = windowToBase * (view / view.w);
+    const glm::dvec4 base = wsToBase * glm::dvec4(p, 1.0);
+    EXPECT_NEAR(b.x / b.w, 0.5 * base.x / base.w + 0.5, 1e-12);
+    EXPECT_NEAR(b.y / b.w, 0.5 * base.y / base.w + 0.5, 1e-12);
+  }
+}
+
 // A box that stands in for a caster deep along the view marks, at each level, the pages of the
 // part of it whose depths that level serves: every page a sample inside it would mark, and at
 // the finest level only those of its near part.
