@@ -38,11 +38,19 @@ constexpr int kMaxCascades = vtkCascadedShadowMapPlanner::MAXIMUM_NUMBER_OF_CASC
 // fitted to the body, has none either (the lookup clamps its taps to the map).
 constexpr double kReuseMarginTexels = 0.0;
 
-/// The atlas of a light refined by light-space pages, for maps of resolution texels a side:
-/// its base (half that a side) and the pool of pages beside and above it.
+/// The base of a light refined by light-space pages, for maps of resolution texels a side: its
+/// scene-fitted map as it serves alone (the planner's whole atlas of 2 x 2 tiles), so that a
+/// view that comes close keeps that map as the base, and one that moves away keeps the pages.
+int pageBaseSide(int resolution)
+{
+  return 2 * resolution;
+}
+
+/// The atlas of such a light: its base in the lower left, the pool of pages beside and above
+/// it.
 csm::MapSize pageAtlas(int resolution)
 {
-  return csm::MapSize(2 * resolution, 3 * resolution);
+  return csm::MapSize(3 * resolution, 3 * resolution);
 }
 
 /// Frames in a row with changed casters after which they count as changing every frame
@@ -392,27 +400,31 @@ void csmLightPlanning::ServeWithPages(vtkRenderer* renderer, csmRendererMaps& st
   const csmFrameCasters& props, const csmFramePlan& frame, size_t slot, LightMaps& maps)
 {
   // Pages where the cascades would follow the view of a scene light (its one scene-fitted map
-  // already serves the whole view with all of the atlas), the casters stay and are not sized on
-  // the screen, every receiver is in the view's depth buffer, the view is a perspective one
-  // and the atlas holds a base and its pool; marked from this view's samples (the depth pass
-  // keeps them where LightSpacePages is on).
+  // already serves the whole view with all of the atlas; the pages refine that map, so not
+  // where scene-fitted maps are off), the casters stay and are not sized on the screen, every
+  // receiver is in the view's depth buffer, the view is a perspective one and the atlas holds a
+  // base and its pool; marked from this view's samples (the depth pass keeps them where
+  // LightSpacePages is on).
   vtkCamera* camera = renderer->GetActiveCamera();
   const int side = this->Options.Resolution;
   const bool followsView = std::any_of(maps.Cascades.begin(), maps.Cascades.end(),
     [](const CascadeMap& map) { return map.Kind == MapKind::FollowsView; });
+  const bool sceneFittedAlone = maps.Cascades.size() == 1 && maps.Cascades[0].IsSceneFitted();
   const bool otherKinds = std::any_of(maps.Cascades.begin(), maps.Cascades.end(),
     [](const CascadeMap& map)
     { return map.Kind != MapKind::FollowsView && map.Kind != MapKind::SceneFitted; });
   const int textureLimit = this->Planner->GetMaximumTextureSize();
   // (Casters that changed: only where the last frame's maps were this light's pages, which the
-  // changes patch, and not every frame.)
+  // changes patch, and not every frame. A light paged in the last frame stays paged where its
+  // scene-fitted map alone would serve: that map is the base, and the pages are kept.)
   const bool lastPaged = slot < state.Maps.size() && state.Maps[slot].Pages.Active &&
     state.Maps[slot].Light == maps.Light;
-  const bool serve = this->Options.LightSpacePages && !this->Distributed() && followsView &&
+  const bool serve = this->Options.LightSpacePages && !this->Distributed() &&
+    this->Planner->GetSceneFittedCascades() && (followsView || (sceneFittedAlone && lastPaged)) &&
     !otherKinds && maps.Kind == LightKind::Directional && maps.Light->LightTypeIsSceneLight() &&
     (!frame.CastersChanged || (lastPaged && !this->Statistics.CastersChanging)) &&
     !frame.ScreenSized && !props.TranslucentReceivers && !camera->GetParallelProjection() &&
-    this->Planner->GetDepthClamp() && csm::poolSlots(pageAtlas(side), side / 2) > 0 &&
+    this->Planner->GetDepthClamp() && csm::poolSlots(pageAtlas(side), pageBaseSide(side)) > 0 &&
     (textureLimit <= 0 || pageAtlas(side).height <= textureLimit);
   if (serve && state.VisibleCamera && !state.VisibleSamples.isEmpty() &&
     sameView(state.VisibleCamera, camera, frame.Aspect))
@@ -455,13 +467,12 @@ bool csmLightPlanning::PageNeeds(const csmRendererMaps& state, const csmFramePla
 void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& props,
   const csmFramePlan& frame, size_t slot, LightMaps& maps)
 {
-  // The base: the scene-fitted map in the lower left of an atlas of twice Resolution a side,
-  // half Resolution a side itself, fixed while the scene and the light stay (where it meets the
-  // target, the far view, it needs few texels; the pages refine the rest, which they fill).
+  // The base: the scene-fitted map as it serves alone, in the lower left of the atlas, fixed
+  // while the scene and the light stay; the pages refine it where the view needs finer texels.
   // Where the pages this view needs do not fit, or need more levels than there are, the
   // cascades serve.
   const csm::MapSize atlas = pageAtlas(this->Options.Resolution);
-  const int side = this->Options.Resolution / 2;
+  const int side = pageBaseSide(this->Options.Resolution);
   const double direction[3] = { maps.FocalPoint[0] - maps.Position[0],
     maps.FocalPoint[1] - maps.Position[1], maps.FocalPoint[2] - maps.Position[2] };
   double worldToBase[16];
@@ -473,15 +484,20 @@ void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& 
   {
     return;
   }
-  // The pool keeps its pages while the last frame's maps of this light were this base's in
-  // this very texture.
+  // The base is kept where the last frame's maps of this light were this very map in this
+  // texture: its base, or its scene-fitted map alone (the atlas grows around it, keeping its
+  // texels); the pool keeps its pages where they were its base's.
   const LightMaps* last = slot < state.Maps.size() ? &state.Maps[slot] : nullptr;
-  const bool keep = !frame.Changed && last && last->Light == maps.Light && last->Pages.Active &&
-    sameLightGeometry(*last, maps) && last->AtlasSize[0] == atlas.width &&
-    last->AtlasSize[1] == atlas.height && last->Cascades.size() == 1 &&
+  const bool sameMap = !frame.Changed && last && last->Light == maps.Light &&
+    sameLightGeometry(*last, maps) && last->Cascades.size() == 1 &&
+    last->Cascades[0].IsSceneFitted() && last->Cascades[0].Tile[0] == 0 &&
+    last->Cascades[0].Tile[1] == 0 && last->Cascades[0].Resolution[0] == side &&
+    last->Cascades[0].Resolution[1] == side &&
     std::equal(worldToBase, worldToBase + 16, last->Cascades[0].WorldToMap) &&
     slot < state.AtlasPool.size() && state.AtlasPool[slot]->GetHandle() &&
     state.AtlasPool[slot]->GetContext() == state.Window;
+  const bool keep = sameMap && last->Pages.Active && last->AtlasSize[0] == atlas.width &&
+    last->AtlasSize[1] == atlas.height;
   if (state.PageCaches.size() <= slot)
   {
     state.PageCaches.resize(slot + 1);
@@ -493,11 +509,11 @@ void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& 
   }
   CascadeMap base;
   base.Kind = MapKind::SceneFitted;
-  base.Action = keep ? MapAction::Keep : MapAction::Draw;
+  base.Action = sameMap ? MapAction::Keep : MapAction::Draw;
   std::copy(worldToBase, worldToBase + 16, base.WorldToMap);
   base.Tile[2] = base.Tile[3] = base.Resolution[0] = base.Resolution[1] = side;
   base.SplitFar = maps.Cascades.back().SplitFar;
-  if (keep && frame.CastersChanged)
+  if (sameMap && frame.CastersChanged)
   {
     // The base's texels the changed casters' boxes cover drawn again (or all of it), the pages
     // their boxes reach across the light given up (drawn again where this view needs them).

@@ -62,7 +62,7 @@ bool bindScratch(vtkOpenGLRenderWindow* window, csmRendererMaps& state, int side
 
 int csmPageDrawing::DrawPages(csmMapDrawing& drawing, vtkOpenGLRenderer* renderer,
   vtkOpenGLRenderWindow* window, csmRendererMaps& state, const csmFrameCasters& props,
-  LightMaps& maps, int baseSide, bool depthClamp, FrameStatistics& statistics)
+  LightMaps& maps, int scratchSide, bool depthClamp, FrameStatistics& statistics)
 {
   // The pages a view brings in together drawn in one pass a block (a caster pass costs its
   // triangles whatever it covers; a block's clip space whatever pages come with it, so that a
@@ -101,7 +101,7 @@ int csmPageDrawing::DrawPages(csmMapDrawing& drawing, vtkOpenGLRenderer* rendere
   {
     keys.push_back(csm::PageKey{ page[0], page[1], page[2] });
   }
-  const int side = baseSide;
+  const int side = scratchSide;
   if (!bindScratch(window, state, side))
   {
     for (size_t i = 0; i < keys.size(); ++i)

@@ -258,6 +258,25 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
   {
     return true;
   }
+  // Kept maps in a texture of another size (a light's scene-fitted map becoming the base of its
+  // pages): the part both sizes share is carried over, through a texture of that size.
+  const unsigned int sharedWidth = std::min(width, atlas->GetWidth());
+  const unsigned int sharedHeight = std::min(height, atlas->GetHeight());
+  const bool kept = std::any_of(maps.Cascades.begin(), maps.Cascades.end(),
+    [](const CascadeMap& map) { return map.Action != MapAction::Draw; });
+  vtkNew<vtkTextureObject> held;
+  bool carried = kept && atlas->GetContext() == window && atlas->GetHandle() && sharedWidth > 0 &&
+    sharedHeight > 0 && (GLEW_VERSION_4_3 || GLEW_ARB_copy_image);
+  if (carried)
+  {
+    held->SetContext(window);
+    carried = held->AllocateDepth(sharedWidth, sharedHeight, vtkTextureObject::Float32);
+    if (carried)
+    {
+      glCopyImageSubData(atlas->GetHandle(), GL_TEXTURE_2D, 0, 0, 0, 0, held->GetHandle(),
+        GL_TEXTURE_2D, 0, 0, 0, 0, sharedWidth, sharedHeight, 1);
+    }
+  }
   atlas->ReleaseGraphicsResources(window);
   atlas->SetContext(window);
   atlas->SetWrapS(vtkTextureObject::ClampToEdge);
@@ -277,6 +296,24 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
   // did not change the object when the values were the same as before.
   atlas->Modified();
   reallocated = true;
+  if (carried)
+  {
+    glCopyImageSubData(held->GetHandle(), GL_TEXTURE_2D, 0, 0, 0, 0, atlas->GetHandle(),
+      GL_TEXTURE_2D, 0, 0, 0, 0, sharedWidth, sharedHeight, 1);
+    held->ReleaseGraphicsResources(window);
+    // (A map outside the shared part is drawn whole.)
+    for (CascadeMap& map : maps.Cascades)
+    {
+      if (static_cast<unsigned int>(map.Tile[0] + map.Tile[2]) > sharedWidth ||
+        static_cast<unsigned int>(map.Tile[1] + map.Tile[3]) > sharedHeight)
+      {
+        map.Action = MapAction::Draw;
+        map.Patches.clear();
+        map.Moved[0] = map.Moved[1] = 0;
+      }
+    }
+    reallocated = false;
+  }
   return true;
 }
 

@@ -597,6 +597,7 @@ std::string vtkCascadedShadowMapPass::GetShaderDefinitions(
        << "#define CSM_PAGE_INTERIOR " << csm::kPageInterior << "\n"
        << "#define CSM_PAGE_TABLE_SIDE " << csm::kPageTableSide << "\n"
        << "#define CSM_PAGE_BAND " << csm::kPageBlendBand << "\n"
+       << "#define CSM_PAGE_BASE_BIAS " << csm::kPageBaseBias << "\n"
        << "#define CSM_KERNEL_GRID " << KERNEL_GRID << "\n"
        << "#define CSM_KERNEL_JITTERED " << KERNEL_JITTERED << "\n"
        << "#define CSM_KERNEL " << kernel << "\n"

@@ -462,10 +462,11 @@ vec4 csmPagedShadow(sampler2DShadow map, sampler2DShadow nearest, sampler2D page
     return vec4(1.0, -1.0, 0.0, 1.0); // outside the base: lit as without shadows
   }
   // The constant bias, in the base's depth (the whole scene along the light), shrinks with the
-  // texel: a level's texels meet the target at a view 2^k times nearer.
+  // texel: the base's share of it, halved a level (a level's texels meet the target at a view
+  // 2^k times nearer).
   float m;
-  float visibility = csmVisibility(map, nearest, tile, texel, hPage,
-    vec4(hx.xy * scale, hx.zw), vec4(hy.xy * scale, hy.zw), paged ? exp2(-float(k)) : 1.0,
+  float visibility = csmVisibility(map, nearest, tile, texel, hPage, vec4(hx.xy * scale, hx.zw),
+    vec4(hy.xy * scale, hy.zw), CSM_PAGE_BASE_BIAS * exp2(-float(paged ? k : 0)),
     csmHandedness[base], m);
   float read = paged ? float(k) : (k > 0 ? -2.0 : 0.0);
   return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), read, m, visibility);

@@ -268,3 +268,51 @@ TEST(Pages, AMovedPostRedrawsOnlyThePagesItsBoxesReachAndShadesAsAFreshChain)
   auto back = moving.Scene.Frame();
   EXPECT_GT(csmTest::DifferingPixels(image, back, 24), 50);
 }
+
+// The scene-fitted map that serves a far view alone is the base of the pages a near view needs:
+// coming close draws only the pages (the map kept, its texels carried into the larger atlas),
+// each frame as a fresh chain's, and moving away again keeps the pages and draws nothing.
+TEST(Pages, TheSceneFittedMapOfAFarViewIsTheBaseOfTheNearViewsPages)
+{
+  Field field(0.0);
+  vtkCamera* camera = field.Scene.Renderer->GetActiveCamera();
+  camera->Dolly(0.2);
+  field.Scene.Renderer->ResetCameraClippingRange();
+  auto far = field.Scene.Frame();
+  ASSERT_FALSE(field.Maps().Pages.Active);
+  ASSERT_EQ(field.Maps().Cascades.size(), 1u);
+  EXPECT_TRUE(field.Maps().Cascades[0].IsSceneFitted());
+  camera->Dolly(5.0);
+  field.Scene.Renderer->ResetCameraClippingRange();
+  auto nearImage = field.Scene.Frame();
+  const auto& stats = field.Baker->GetLastFrameStatistics();
+  ASSERT_TRUE(field.Maps().Pages.Active);
+  EXPECT_EQ(stats.CascadesRendered, 0); // the scene-fitted map kept as the base
+  EXPECT_GT(stats.PagesDrawn, 0);
+  EXPECT_EQ(stats.PagesDrawn, stats.PagesNeeded);
+  EXPECT_LE(stats.TexelsRendered,
+    double(stats.PagesDrawn) * (csm::kPageTexels + csm::kPageInterior) *
+      (csm::kPageTexels + csm::kPageInterior));
+  Field fresh(0.0);
+  auto again = fresh.Scene.Frame();
+  ASSERT_TRUE(fresh.Maps().Pages.Active);
+  EXPECT_LE(csmTest::DifferingPixels(nearImage, again, 0), 8);
+  EXPECT_EQ(csmTest::DifferingPixels(nearImage, again, 24), 0);
+  camera->Dolly(0.2);
+  field.Scene.Renderer->ResetCameraClippingRange();
+  auto farAgain = field.Scene.Frame();
+  ASSERT_TRUE(field.Maps().Pages.Active); // (stays paged: nothing to draw)
+  EXPECT_EQ(field.Baker->GetLastFrameStatistics().CascadesRendered, 0);
+  EXPECT_EQ(field.Baker->GetLastFrameStatistics().PagesDrawn, 0);
+  EXPECT_EQ(field.Baker->GetLastFrameStatistics().TexelsRendered, 0.0);
+  fresh.Scene.Renderer->SetPass(nullptr);
+  auto plain = fresh.Scene.Frame();
+  EXPECT_GT(csmTest::DifferingPixels(again, plain, 24), 2000); // the posts' shadows
+  // Far again, the same shadows as the scene-fitted map alone drew, but where pages refine it
+  // (the pages meet a share of the target: a few pixels along the shadows' edges).
+  field.Scene.Renderer->SetPass(nullptr);
+  auto plainFar = field.Scene.Frame();
+  const long shadowed = csmTest::DifferingPixels(far, plainFar, 24);
+  EXPECT_GT(shadowed, 1000);
+  EXPECT_LT(csmTest::DifferingPixels(far, farAgain, 24) * 20, shadowed);
+}
