@@ -47,10 +47,13 @@ int pageBaseSide(int resolution)
 }
 
 /// The atlas of such a light: its base in the lower left, the pool of pages beside and above
-/// it.
+/// it (416 pages at the default Resolution: the towers' orbit needs up to 311 at once, and 320
+/// made the orbit draw pages it had given up, Results.md, "Light-space pages"), in whole pages.
 csm::MapSize pageAtlas(int resolution)
 {
-  return csm::MapSize(3 * resolution, 3 * resolution);
+  const auto pages = [](int texels)
+  { return (texels + csm::kPageTexels - 1) / csm::kPageTexels * csm::kPageTexels; };
+  return csm::MapSize(pages(3 * resolution), pages(7 * resolution / 2));
 }
 
 /// Frames in a row with changed casters after which they count as changing every frame
