@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapPass.h"
 
-#include "csmAtlas.h" // csm::kAtlasFullMaps
-#include "csmPages.h" // csm::kPageTexels and the other page constants
-#include "csmProps.h" // csmScreenSizes
+#include "csmAtlas.h"    // csm::kAtlasFullMaps
+#include "csmPages.h"    // csm::kPageTexels and the other page constants
+#include "csmProps.h"    // csmScreenSizes
+#include "csmSceneFit.h" // csm::sceneFittedBiasShare
 #include "csmScreenCache.h"
 
 #include "vtkAbstractMapper.h"
@@ -224,6 +225,10 @@ void vtkCascadedShadowMapPass::PackMaps(
       }
     }
     u.Handedness.push_back(vtkMatrix4x4::Determinant(mapFromView) < 0.0 ? -1.0f : 1.0f);
+    u.BiasShare.push_back(c < count && map.IsSceneFitted()
+        ? static_cast<float>(
+            csm::sceneFittedBiasShare(std::max(map.Resolution[0], map.Resolution[1])))
+        : 1.0f);
     // The map's rectangle in the atlas (the lower left of its tile), in [0, 1].
     u.Tile.push_back(static_cast<float>(map.Tile[0] / atlasWidth));
     u.Tile.push_back(static_cast<float>(map.Tile[1] / atlasHeight));
@@ -597,7 +602,6 @@ std::string vtkCascadedShadowMapPass::GetShaderDefinitions(
        << "#define CSM_PAGE_INTERIOR " << csm::kPageInterior << "\n"
        << "#define CSM_PAGE_TABLE_SIDE " << csm::kPageTableSide << "\n"
        << "#define CSM_PAGE_BAND " << csm::kPageBlendBand << "\n"
-       << "#define CSM_PAGE_BASE_BIAS " << csm::kPageBaseBias << "\n"
        << "#define CSM_KERNEL_GRID " << KERNEL_GRID << "\n"
        << "#define CSM_KERNEL_JITTERED " << KERNEL_JITTERED << "\n"
        << "#define CSM_KERNEL " << kernel << "\n"
@@ -748,6 +752,7 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   program->SetUniformMatrix4x4v(
     "csmToMap", lights * kMaxCascades, const_cast<float*>(u.ToMap.data()));
   program->SetUniform1fv("csmHandedness", lights * kMaxCascades, u.Handedness.data());
+  program->SetUniform1fv("csmBiasShare", lights * kMaxCascades, u.BiasShare.data());
   program->SetUniform4fv("csmTile", lights * kMaxCascades, u.Tile.data());
   program->SetUniform2fv("csmTexel", lights * kMaxCascades, u.Texel.data());
   program->SetUniform1fv("csmSplitFar", lights * kMaxCascades, u.SplitFar.data());

@@ -90,7 +90,9 @@ public:
   ///@}
 
   ///@{
-  /// Constant depth bias, in the map's [0,1] depth (Barroso & Celes Table 1 (a)). Default 0.002.
+  /// Constant depth bias, in the map's [0,1] depth (Barroso & Celes Table 1 (a)); a scene-fitted
+  /// map, whose depth is the whole scene along the light, and its light-space pages take a share
+  /// by their texel (csm::sceneFittedBiasShare). Default 0.002.
   vtkSetFiniteClampMacro(ConstantBias, double, 0.0, 1.0);
   vtkGetMacro(ConstantBias, double);
   ///@}
@@ -221,6 +223,7 @@ protected:
     std::vector<float> SplitNear, Attenuation; ///< per light
     std::vector<float> ToMap;                  ///< per cascade: view -> map, 16 floats column-major
     std::vector<float> Handedness;             ///< per cascade: the sign of ToMap's determinant
+    std::vector<float> BiasShare;              ///< per cascade: its share of the constant bias
     std::vector<float> Tile;                   ///< per cascade: atlas offset and scale, 4 floats
     std::vector<float> SplitFar;               ///< per cascade
     std::vector<float>

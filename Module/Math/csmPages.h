@@ -46,13 +46,6 @@ constexpr int kMaxPageLevels = 12;
 /// pages"); at this share, as many.
 constexpr double kPageErrorShare = 0.70710678118654752;
 
-/// Share of the constant depth bias (a share of the base's depth range: the whole scene along
-/// the light) that the base's texels take; level k takes 2^-k of it. The bias follows the texel:
-/// the base, a scene-fitted map of twice Resolution a side, takes what a map of half Resolution
-/// a side takes at its full share, by the ratio of their texels (the full share on the base let
-/// light through contacts, Results.md, "Light-space pages").
-constexpr double kPageBaseBias = 0.25;
-
 /// Share of a level's octave of view depth (its nearest part) whose samples take the next finer
 /// level in a dithered share growing from 0 to 1 toward it (the seam between two levels becomes
 /// a dithered band, both sides meeting the target); the samples there need both levels' pages.

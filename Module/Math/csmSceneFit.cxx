@@ -140,4 +140,9 @@ bool sceneFit(const glm::dvec3& wsLightDirection, const Bounds& sceneBounds,
   return true;
 }
 
+double sceneFittedBiasShare(double texels)
+{
+  return texels > kSceneFittedBiasTexels ? kSceneFittedBiasTexels / texels : 1.0;
+}
+
 } // namespace csm

@@ -29,4 +29,16 @@ namespace csm
 bool sceneFit(const glm::dvec3& wsLightDirection, const Bounds& sceneBounds,
   const std::vector<CasterLoad>& casters, const std::vector<Bounds>* receiverParts, SceneFit& fit);
 
+/// Texels a side of a scene-fitted map whose lookup takes the whole constant depth bias.
+constexpr double kSceneFittedBiasTexels = 1024.0;
+
+/// Share of the constant depth bias the lookup takes on a scene-fitted map of `texels` texels a
+/// side (on the finer of its sides). The constant bias is a share of a map's depth range; a
+/// scene-fitted map's is the whole scene along the light, so the bias follows its texel:
+/// kSceneFittedBiasTexels / texels, at most 1 (light-space pages of level k take 2^-k of their
+/// base's). At the full share the 4096² scene-fitted map let light through contacts and along
+/// shadows' edges on grazing receivers (Results.md, "Light-space pages"). 1 where texels is
+/// not a positive number.
+double sceneFittedBiasShare(double texels);
+
 } // namespace csm

@@ -301,6 +301,7 @@ float csmDither()
 // and t (in the cascade's [0,1]), far split depths.
 uniform mat4 csmToMap[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmHandedness[CSM_LIGHTS * CSM_MAX_CASCADES];
+uniform float csmBiasShare[CSM_LIGHTS * CSM_MAX_CASCADES]; // of the constant bias
 uniform vec4 csmTile[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform vec2 csmTexel[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmSplitFar[CSM_LIGHTS * CSM_MAX_CASCADES];
@@ -369,7 +370,7 @@ vec4 csmShadowIn(
   }
   int cascade = j * CSM_MAX_CASCADES + chosen;
   float m;
-  float biasScale = 1.0;
+  float biasScale = csmBiasShare[cascade];
 #ifdef CSM_CAMERA_SPACE
   biasScale = csmDepthBiasScale(cascade, h); // camera space maps (csmComparisonFS.glsl)
 #endif
@@ -461,12 +462,12 @@ vec4 csmPagedShadow(sampler2DShadow map, sampler2DShadow nearest, sampler2D page
   {
     return vec4(1.0, -1.0, 0.0, 1.0); // outside the base: lit as without shadows
   }
-  // The constant bias, in the base's depth (the whole scene along the light), shrinks with the
+  // The constant bias, in the base's depth (the whole scene along the light), follows the
   // texel: the base's share of it, halved a level (a level's texels meet the target at a view
   // 2^k times nearer).
   float m;
   float visibility = csmVisibility(map, nearest, tile, texel, hPage, vec4(hx.xy * scale, hx.zw),
-    vec4(hy.xy * scale, hy.zw), CSM_PAGE_BASE_BIAS * exp2(-float(paged ? k : 0)),
+    vec4(hy.xy * scale, hy.zw), csmBiasShare[base] * exp2(-float(paged ? k : 0)),
     csmHandedness[base], m);
   float read = paged ? float(k) : (k > 0 ? -2.0 : 0.0);
   return vec4(1.0 - csmAttenuation[j] * (1.0 - visibility), read, m, visibility);

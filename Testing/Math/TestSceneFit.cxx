@@ -179,3 +179,14 @@ TEST(Steps, SceneFittedCascadeServesEveryViewThatItMeets)
                  .cascades.back()
                  .sceneFitted);
 }
+
+// The constant bias on a scene-fitted map follows its texel: the whole of it at
+// kSceneFittedBiasTexels a side and coarser, a quarter at four times as many texels.
+TEST(Steps, SceneFittedBiasShareFollowsTheTexel)
+{
+  EXPECT_DOUBLE_EQ(csm::sceneFittedBiasShare(csm::kSceneFittedBiasTexels), 1.0);
+  EXPECT_DOUBLE_EQ(csm::sceneFittedBiasShare(512.0), 1.0);
+  EXPECT_DOUBLE_EQ(csm::sceneFittedBiasShare(4.0 * csm::kSceneFittedBiasTexels), 0.25);
+  EXPECT_DOUBLE_EQ(csm::sceneFittedBiasShare(0.0), 1.0);
+  EXPECT_DOUBLE_EQ(csm::sceneFittedBiasShare(std::nan("")), 1.0);
+}
