@@ -290,6 +290,13 @@ void csmMapDrawing::ClearMap(vtkOpenGLState* ostate, const LightMaps& maps, int 
   }
 }
 
+void csmMapDrawing::CopyTexels(vtkTextureObject* from, int fromX, int fromY, vtkTextureObject* to,
+  int toX, int toY, int width, int height)
+{
+  glCopyImageSubData(from->GetHandle(), GL_TEXTURE_2D, 0, fromX, fromY, 0, to->GetHandle(),
+    GL_TEXTURE_2D, 0, toX, toY, 0, width, height, 1);
+}
+
 std::vector<csm::TexelRect> csmMapDrawing::MovedStrips(const vtkCascadedShadows::CascadeMap& map)
 {
   csm::MapPan pan;
@@ -333,10 +340,8 @@ bool csmMapDrawing::MoveMap(
     const int band = t >= 0 ? b : bands - 1 - b;
     const int row = band * kMoveBandRows;
     const int rows = std::min(kMoveBandRows, height - row);
-    glCopyImageSubData(maps.Atlas->GetHandle(), GL_TEXTURE_2D, 0, fromX, fromY + row, 0,
-      buffer->GetHandle(), GL_TEXTURE_2D, 0, 0, 0, 0, width, rows, 1);
-    glCopyImageSubData(buffer->GetHandle(), GL_TEXTURE_2D, 0, 0, 0, 0, maps.Atlas->GetHandle(),
-      GL_TEXTURE_2D, 0, toX, toY + row, 0, width, rows, 1);
+    csmMapDrawing::CopyTexels(maps.Atlas, fromX, fromY + row, buffer, 0, 0, width, rows);
+    csmMapDrawing::CopyTexels(buffer, 0, 0, maps.Atlas, toX, toY + row, width, rows);
   }
   if (glGetError() != GL_NO_ERROR)
   {

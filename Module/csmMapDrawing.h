@@ -77,6 +77,11 @@ public:
   /// from the map's lower left).
   static void ClearMap(vtkOpenGLState* ostate, const LightMaps& maps, int c, const int* rect);
 
+  /// Copies width x height texels of one depth texture from (fromX, fromY) to another at
+  /// (toX, toY) (GL 4.3 image copies; the caller checks that the GL has them).
+  static void CopyTexels(vtkTextureObject* from, int fromX, int fromY, vtkTextureObject* to,
+    int toX, int toY, int width, int height);
+
   /// Moves cascade c's map with the view (its Moved texels, csm::panKeptMap): shifts the texels
   /// it keeps by -Moved through `buffer` (a band of rows at a time, in the order that reads
   /// each row before it is written over) and gives the strips that came in far depth. False

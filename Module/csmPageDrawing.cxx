@@ -121,9 +121,8 @@ int csmPageDrawing::DrawPages(csmMapDrawing& drawing, vtkOpenGLRenderer* rendere
     for (const size_t i : batch.pages)
     {
       const glm::ivec2 from = (glm::ivec2(keys[i].x, keys[i].y) - batch.first) * csm::kPageInterior;
-      glCopyImageSubData(state.PageScratch->GetHandle(), GL_TEXTURE_2D, 0, from.x, from.y, 0,
-        maps.Atlas->GetHandle(), GL_TEXTURE_2D, 0, pages.Drawn[i][3], pages.Drawn[i][4], 0,
-        csm::kPageTexels, csm::kPageTexels, 1);
+      csmMapDrawing::CopyTexels(state.PageScratch, from.x, from.y, maps.Atlas, pages.Drawn[i][3],
+        pages.Drawn[i][4], csm::kPageTexels, csm::kPageTexels);
     }
   }
   state.FrameBuffer->Bind();

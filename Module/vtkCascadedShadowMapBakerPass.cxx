@@ -273,8 +273,8 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
     carried = held->AllocateDepth(sharedWidth, sharedHeight, vtkTextureObject::Float32);
     if (carried)
     {
-      glCopyImageSubData(atlas->GetHandle(), GL_TEXTURE_2D, 0, 0, 0, 0, held->GetHandle(),
-        GL_TEXTURE_2D, 0, 0, 0, 0, sharedWidth, sharedHeight, 1);
+      csmMapDrawing::CopyTexels(
+        atlas, 0, 0, held, 0, 0, static_cast<int>(sharedWidth), static_cast<int>(sharedHeight));
     }
   }
   atlas->ReleaseGraphicsResources(window);
@@ -298,8 +298,8 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
   reallocated = true;
   if (carried)
   {
-    glCopyImageSubData(held->GetHandle(), GL_TEXTURE_2D, 0, 0, 0, 0, atlas->GetHandle(),
-      GL_TEXTURE_2D, 0, 0, 0, 0, sharedWidth, sharedHeight, 1);
+    csmMapDrawing::CopyTexels(
+      held, 0, 0, atlas, 0, 0, static_cast<int>(sharedWidth), static_cast<int>(sharedHeight));
     held->ReleaseGraphicsResources(window);
     // (A map outside the shared part is drawn whole.)
     for (CascadeMap& map : maps.Cascades)
