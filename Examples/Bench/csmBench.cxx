@@ -308,7 +308,7 @@ void Apply(const View& v, vtkRenderer* renderer, vtkLight* light, const csmScene
 /// render darkened.
 bool WriteErrorImage(const std::string& file, vtkImageData* plain,
   const std::vector<char>& comparable, const std::vector<char>& occluded,
-  const std::vector<float>& factor)
+  const std::vector<float>& factor, const std::vector<char>& edges)
 {
   vtkNew<vtkImageData> image;
   image->DeepCopy(plain);
@@ -321,11 +321,11 @@ bool WriteErrorImage(const std::string& file, vtkImageData* plain,
     unsigned char out[3] = { grey, grey, grey };
     switch (csmTruth::ClassifyPixel(comparable[k], occluded[k], factor[k]))
     {
-      case csmTruth::PixelClass::FalseShadow:
-        out[0] = 255, out[1] = out[2] = 0;
+      case csmTruth::PixelClass::FalseShadow: // (dark red where a shadow edge crosses the pixel)
+        out[0] = edges[k] ? 150 : 255, out[1] = out[2] = 0;
         break;
-      case csmTruth::PixelClass::FalseLight:
-        out[2] = 255, out[0] = out[1] = 0;
+      case csmTruth::PixelClass::FalseLight: // (dark blue there)
+        out[2] = edges[k] ? 150 : 255, out[0] = out[1] = 0;
         break;
       case csmTruth::PixelClass::Shadowed:
         out[0] = out[1] = out[2] = 90;
@@ -639,7 +639,8 @@ Options Parse(int argc, char** argv)
         "--labels a,b,...: only these techniques (their labels as in the CSV; the comparison\n"
         "techniques fp-w, fp-zp-w and cssm in a build with -DCSM_COMPARISON_TECHNIQUES=ON).\n"
         "--error-images DIR: per measured view and technique, DIR/scene-label-view.png:\n"
-        "false shadow red, false light blue, right light / dark grey, not compared dark.\n"
+        "false shadow red, false light blue (darker where a shadow edge crosses the pixel),\n"
+        "right light / dark grey, not compared dark.\n"
         "\nThe other modes:\n\n%s\n%s",
         csmWalk::Usage().c_str(), csmChanges::Usage().c_str());
       std::exit(0);
@@ -767,7 +768,8 @@ int main(int argc, char** argv)
          "storage,frames,measured_pixels,interactive_ms,still_ms,plan_ms,map_ms,map_ms_per_map,"
          "texels_per_map,flicker_pct,k_used,near_fit,storage_over_optimal,"
          "maps_rendered_per_frame,maps_kept_per_frame,depth_passes_per_frame\n";
-  detail << "scene,label,view,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m\n";
+  detail << "scene,label,view,mismatch_pct,false_shadow_pct,false_light_pct,max_m,p95_m,mean_m,"
+            "off_edge_mismatch_pct\n";
   std::vector<std::pair<std::string, std::vector<Technique>>> results;
 
   for (const std::string& sceneName : o.Scenes)
@@ -962,6 +964,8 @@ int main(int argc, char** argv)
       std::vector<char> occluded(surfaces.size(), 0);
       for (size_t k = 0; k < surfaces.size(); ++k)
         occluded[k] = comparable[k] && rays.Occluded(surfaces[k], v.Light);
+      const auto edges = rays.ShadowEdges(
+        renderer->GetActiveCamera(), o.Width, o.Height, surfaces, comparable, occluded, v.Light);
       for (Technique& t : techniques)
       {
         renderer->SetPass(t.Chain);
@@ -969,17 +973,16 @@ int main(int argc, char** argv)
         auto shadowed = csmWalk::GrabFrame(window);
         const auto factor = csmTruth::FactorFromRenders(shadowed, plain);
         const csmTruth::Classification c =
-          csmTruth::Classify(surfaces, comparable, occluded, factor);
+          csmTruth::Classify(surfaces, comparable, occluded, factor, &edges);
         if (!o.ErrorImages.empty())
         {
           std::string name = sceneName + "-" + t.Label + "-" + v.Name + ".png";
           std::replace(name.begin(), name.end(), ' ', '_');
-          if (!WriteErrorImage(o.ErrorImages + "/" + name, plain, comparable, occluded, factor))
+          if (!WriteErrorImage(
+                o.ErrorImages + "/" + name, plain, comparable, occluded, factor, edges))
             std::exit(1); // (said why)
         }
-        t.Errors.Considered += c.Considered;
-        t.Errors.FalseShadow += c.FalseShadow;
-        t.Errors.FalseLight += c.FalseLight;
+        t.Errors.Add(c);
         std::vector<double> m;
         for (size_t k = 0; k < surfaces.size(); k += 1)
         {
@@ -993,7 +996,7 @@ int main(int argc, char** argv)
         t.M.insert(t.M.end(), m.begin(), m.end());
         detail << sceneName << "," << t.Label << "," << v.Name << "," << c.MismatchPct() << ","
                << c.FalseShadowPct() << "," << c.FalseLightPct() << "," << ms.Max << "," << ms.P95
-               << "," << ms.Mean << "\n";
+               << "," << ms.Mean << "," << c.OffEdgeMismatchPct() << "\n";
         if (t.Passes.Cascaded)
         {
           // The analytic storage factor of this frame and the time of the math that plans it.
@@ -1111,10 +1114,10 @@ int main(int argc, char** argv)
           << (csm ? double(t.MapsRendered) / timedFrames(t) : NAN) << ","
           << (csm ? double(t.MapsKept) / timedFrames(t) : NAN) << ","
           << (csm ? double(t.DepthPasses) / timedFrames(t) : NAN) << "\n";
-      std::printf("  %-16s %8.1f ms  mismatch %6.3f%% (shadow %6.3f%%, light %6.3f%%)  max m %8.2f"
-                  "  p95 m %6.2f  flicker %5.2f%%\n",
+      std::printf("  %-16s %8.1f ms  mismatch %6.3f%% (shadow %6.3f%%, light %6.3f%%, off shadow "
+                  "edges %6.3f%%)  max m %8.2f  p95 m %6.2f  flicker %5.2f%%\n",
         t.Label.c_str(), Median(t.Times), t.Errors.MismatchPct(), t.Errors.FalseShadowPct(),
-        t.Errors.FalseLightPct(), ms.Max, ms.P95, t.FlickerPct());
+        t.Errors.FalseLightPct(), t.Errors.OffEdgeMismatchPct(), ms.Max, ms.P95, t.FlickerPct());
       if (t.Label != "vtk")
       {
         const Technique& vtk = techniques.front();

@@ -434,7 +434,7 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
     walkFail("cannot write '" + o.Out + "'");
   csv << "scene,path,light,label,median_ms,frames,maps_rendered_per_frame,maps_kept_per_frame,"
          "texels_per_frame,caster_cells_per_frame,maps_moved_per_frame,misclassified_pct,"
-         "flicker_pct\n";
+         "flicker_pct,off_edge_misclassified_pct\n";
   std::printf("walk: %dx%d, 60 degree view, %d frames a path, %d rounds; %s light\n", o.Size[0],
     o.Size[1], o.Frames, o.Rounds, o.CameraLight ? "camera" : "scene");
   for (const std::string& name : o.Scenes)
@@ -641,8 +641,9 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
         for (size_t t = 0; t < a.size(); ++t)
         {
           accuracy[{ path, labels[t] }] = a[t];
-          std::printf("%s %s %.3f %% misclassified, flicker %.3f %%", t ? ";" : ":",
-            labels[t].c_str(), a[t].Errors.MismatchPct(), a[t].FlickerPct());
+          std::printf("%s %s %.3f %% misclassified (%.3f %% off shadow edges), flicker %.3f %%",
+            t ? ";" : ":", labels[t].c_str(), a[t].Errors.MismatchPct(),
+            a[t].Errors.OffEdgeMismatchPct(), a[t].FlickerPct());
         }
         std::printf("\n");
       }
@@ -653,7 +654,8 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
       {
         const auto found = accuracy.find({ path, label });
         csv << row << "," << (found == accuracy.end() ? NAN : found->second.Errors.MismatchPct())
-            << "," << (found == accuracy.end() ? NAN : found->second.FlickerPct()) << "\n";
+            << "," << (found == accuracy.end() ? NAN : found->second.FlickerPct()) << ","
+            << (found == accuracy.end() ? NAN : found->second.Errors.OffEdgeMismatchPct()) << "\n";
       }
     }
   }
@@ -681,6 +683,8 @@ csmWalk::FrameTruth csmWalk::CastTruth(
   truth.Occluded.assign(truth.Surfaces.size(), 0);
   for (size_t k = 0; k < truth.Surfaces.size(); ++k)
     truth.Occluded[k] = truth.Comparable[k] && rays.Occluded(truth.Surfaces[k], travel) ? 1 : 0;
+  truth.Edges = rays.ShadowEdges(
+    camera, width, height, truth.Surfaces, truth.Comparable, truth.Occluded, travel);
   return truth;
 }
 
@@ -689,7 +693,7 @@ csmTruth::Classification csmWalk::ClassifyFrame(vtkRenderWindow* window, vtkImag
 {
   std::vector<float> factor = csmTruth::FactorFromRenders(csmWalk::GrabFrame(window), plain);
   const csmTruth::Classification c =
-    csmTruth::Classify(truth.Surfaces, truth.Comparable, truth.Occluded, factor);
+    csmTruth::Classify(truth.Surfaces, truth.Comparable, truth.Occluded, factor, &truth.Edges);
   if (factors)
     *factors = std::move(factor);
   return c;

@@ -35,6 +35,7 @@ struct FrameTruth
 {
   std::vector<csmTruth::Surface> Surfaces;
   std::vector<char> Comparable, Occluded;
+  std::vector<char> Edges; ///< the pixels a shadow edge crosses (RayScene::ShadowEdges)
 };
 FrameTruth CastTruth(
   const csmTruth::RayScene& rays, vtkCamera* camera, int width, int height, const double travel[3]);

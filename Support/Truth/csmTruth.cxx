@@ -220,6 +220,27 @@ long long RayScene::Build(vtkRenderer* renderer, int height)
   return triangles;
 }
 
+namespace
+{
+/// The primary ray through window point (px, py) (in pixels from the lower left) of a
+/// width x height view whose clip -> world matrix is clipToWorld: its origin on the near plane,
+/// the vector to the far plane, and that vector's length.
+double PrimaryRay(vtkMatrix4x4* clipToWorld, double px, double py, int width, int height,
+  double origin[3], double dir[3])
+{
+  const double x = 2.0 * px / width - 1.0, y = 2.0 * py / height - 1.0;
+  double nearH[4] = { x, y, -1, 1 }, farH[4] = { x, y, 1, 1 }, a[4], b[4];
+  clipToWorld->MultiplyPoint(nearH, a);
+  clipToWorld->MultiplyPoint(farH, b);
+  for (int c = 0; c < 3; ++c)
+  {
+    origin[c] = a[c] / a[3];
+    dir[c] = b[c] / b[3] - origin[c];
+  }
+  return std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+}
+} // namespace
+
 std::vector<Surface> RayScene::CastPrimary(vtkCamera* camera, int width, int height) const
 {
   const auto& in = *this->Internal;
@@ -235,17 +256,8 @@ std::vector<Surface> RayScene::CastPrimary(vtkCamera* camera, int width, int hei
   {
     for (int i = 0; i < width; ++i)
     {
-      const double x = 2.0 * (i + 0.5) / width - 1.0, y = 2.0 * (j + 0.5) / height - 1.0;
-      double nearH[4] = { x, y, -1, 1 }, farH[4] = { x, y, 1, 1 }, a[4], b[4];
-      inverse->MultiplyPoint(nearH, a);
-      inverse->MultiplyPoint(farH, b);
       double origin[3], dir[3];
-      for (int c = 0; c < 3; ++c)
-      {
-        origin[c] = a[c] / a[3];
-        dir[c] = b[c] / b[3] - origin[c];
-      }
-      const double length = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+      const double length = PrimaryRay(inverse, i + 0.5, j + 0.5, width, height, origin, dir);
       RTCRayHit rh;
       rh.ray.org_x = float(origin[0] - in.Origin[0]);
       rh.ray.org_y = float(origin[1] - in.Origin[1]);
@@ -317,6 +329,58 @@ bool RayScene::Occluded(const Surface& s, const double lightDirection[3]) const
   return ray.tfar < 0.0f; // Embree sets tfar to -inf on a hit
 }
 
+std::vector<char> RayScene::ShadowEdges(vtkCamera* camera, int width, int height,
+  const std::vector<Surface>& surfaces, const std::vector<char>& comparable,
+  const std::vector<char>& occluded, const double lightDirection[3]) const
+{
+  const size_t n = static_cast<size_t>(width) * height;
+  std::vector<char> edges(n, 0);
+  if (!this->Internal->Scene || surfaces.size() != n || comparable.size() != n ||
+    occluded.size() != n)
+    return edges;
+  vtkNew<vtkMatrix4x4> inverse;
+  vtkMatrix4x4::Invert(
+    camera->GetCompositeProjectionTransformMatrix(double(width) / height, -1, 1), inverse);
+  for (int j = 0; j < height; ++j)
+  {
+    for (int i = 0; i < width; ++i)
+    {
+      const size_t k = static_cast<size_t>(j) * width + i;
+      if (!comparable[k])
+        continue;
+      const Surface& s = surfaces[k];
+      for (int corner = 0; corner < 4 && !edges[k]; ++corner)
+      {
+        double origin[3], dir[3];
+        PrimaryRay(inverse, i + (corner & 1), j + (corner >> 1), width, height, origin, dir);
+        // Where that ray meets the plane of the centre's surface.
+        double toPlane = 0.0, along = 0.0;
+        for (int c = 0; c < 3; ++c)
+        {
+          toPlane += (s.Position[c] - origin[c]) * s.Normal[c];
+          along += dir[c] * s.Normal[c];
+        }
+        if (along == 0.0 || !std::isfinite(toPlane / along) || toPlane / along <= 0.0)
+        {
+          edges[k] = 1; // the plane seen edge-on there: nothing sure about this pixel
+          break;
+        }
+        Surface q = s;
+        const double t = toPlane / along;
+        double length = 0.0;
+        for (int c = 0; c < 3; ++c)
+        {
+          q.Position[c] = origin[c] + t * dir[c];
+          length += (t * dir[c]) * (t * dir[c]);
+        }
+        q.Distance = std::sqrt(length);
+        edges[k] = this->Occluded(q, lightDirection) != (occluded[k] != 0);
+      }
+    }
+  }
+  return edges;
+}
+
 std::vector<char> ComparablePixels(
   const std::vector<Surface>& surfaces, int width, int height, const double lightDirection[3])
 {
@@ -357,15 +421,22 @@ PixelClass ClassifyPixel(bool comparable, bool occluded, float factor)
 }
 
 Classification Classify(const std::vector<Surface>& surfaces, const std::vector<char>& comparable,
-  const std::vector<char>& occluded, const std::vector<float>& factor)
+  const std::vector<char>& occluded, const std::vector<float>& factor,
+  const std::vector<char>* edges)
 {
   Classification c;
+  const bool withEdges = edges && edges->size() == surfaces.size();
   for (size_t k = 0; k < surfaces.size(); ++k)
   {
     const PixelClass p = ClassifyPixel(comparable[k], occluded[k], factor[k]);
     c.Considered += p != PixelClass::NotCompared;
     c.FalseShadow += p == PixelClass::FalseShadow;
     c.FalseLight += p == PixelClass::FalseLight;
+    if (withEdges && p != PixelClass::NotCompared && !(*edges)[k])
+    {
+      ++c.OffEdge;
+      c.OffEdgeWrong += p == PixelClass::FalseShadow || p == PixelClass::FalseLight;
+    }
   }
   return c;
 }

@@ -3,6 +3,7 @@
 // misclassified pixels against the truth, and the perspective aliasing m of Lloyd et al.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -55,6 +56,16 @@ public:
   /// along lightDirection.
   bool Occluded(const Surface& s, const double lightDirection[3]) const;
 
+  /// The pixels a shadow edge crosses: among `comparable` ones, those where the truth at one of
+  /// the pixel's four corners (the primary ray through the corner met on the plane of the surface
+  /// seen at the pixel's centre) differs from `occluded`, the truth at its centre. There a lookup
+  /// that places the edge anywhere within the pixel is as right as the centre's truth; a light
+  /// leak or acne shows in the other pixels. surfaces, comparable, occluded: as CastPrimary,
+  /// ComparablePixels and Occluded give them for this camera and size.
+  std::vector<char> ShadowEdges(vtkCamera* camera, int width, int height,
+    const std::vector<Surface>& surfaces, const std::vector<char>& comparable,
+    const std::vector<char>& occluded, const double lightDirection[3]) const;
+
 private:
   struct Internals;
   std::unique_ptr<Internals> Internal;
@@ -66,18 +77,29 @@ struct Classification
   long Considered = 0;  ///< visible pixels that face the light, away from silhouettes
   long FalseShadow = 0; ///< factor < 0.5 but lit (acne, widened shadows)
   long FalseLight = 0;  ///< factor >= 0.5 but occluded (leaks, peter-panning, lost thin casters)
+  /// With the shadow edges given (RayScene::ShadowEdges): the considered pixels no edge crosses,
+  /// and how many of those are misclassified (0 and 0 without them).
+  long OffEdge = 0;
+  long OffEdgeWrong = 0;
   double MismatchPct() const
   {
     return Considered ? 100.0 * (FalseShadow + FalseLight) / Considered : 0.0;
   }
   double FalseShadowPct() const { return Considered ? 100.0 * FalseShadow / Considered : 0.0; }
   double FalseLightPct() const { return Considered ? 100.0 * FalseLight / Considered : 0.0; }
+  /// Misclassified pixels that no shadow edge crosses, of all considered (NaN without edges).
+  double OffEdgeMismatchPct() const
+  {
+    return Considered && OffEdge ? 100.0 * OffEdgeWrong / Considered : NAN;
+  }
   /// Another image's counts added to these.
   void Add(const Classification& other)
   {
     Considered += other.Considered;
     FalseShadow += other.FalseShadow;
     FalseLight += other.FalseLight;
+    OffEdge += other.OffEdge;
+    OffEdgeWrong += other.OffEdgeWrong;
   }
 };
 
@@ -99,9 +121,11 @@ enum class PixelClass
 /// The class of one pixel (factor: 0 shadowed .. 1 lit, NaN where it cannot be measured).
 PixelClass ClassifyPixel(bool comparable, bool occluded, float factor);
 
-/// factor: per pixel, 0 (shadowed) .. 1 (lit), NaN where it cannot be measured.
+/// factor: per pixel, 0 (shadowed) .. 1 (lit), NaN where it cannot be measured. edges
+/// (optional, RayScene::ShadowEdges): the pixels a shadow edge crosses, for the OffEdge counts.
 Classification Classify(const std::vector<Surface>& surfaces, const std::vector<char>& comparable,
-  const std::vector<char>& occluded, const std::vector<float>& factor);
+  const std::vector<char>& occluded, const std::vector<float>& factor,
+  const std::vector<char>* edges = nullptr);
 
 /// Shadow factor of a technique: the render with shadows over the render without, for a scene
 /// lit by one white light with only diffuse reflection (NaN where the plain render is dark).

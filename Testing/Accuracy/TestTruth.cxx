@@ -113,6 +113,71 @@ TEST(Truth, OurPassMisclassifiesUnderHalfAPercent)
   EXPECT_EQ(n.FalseShadow, 0);
 }
 
+// The pixels a shadow edge crosses are those of the outline: on the ground, every comparable pixel
+// that is an edge lies within a pixel's width of the box's shadow outline, and every pixel whose
+// footprint the outline crosses is one; the pass misclassifies no pixel beyond them.
+TEST(Truth, ShadowEdgesAreThePixelsTheOutlineCrosses)
+{
+  Fixture f;
+  auto plain = f.Render();
+  vtkCascadedShadowMapPass::UseShadowsOn(f.Renderer);
+  auto shadowed = f.Render();
+  csmTruth::RayScene rays;
+  rays.Build(f.Renderer);
+  vtkCamera* camera = f.Renderer->GetActiveCamera();
+  const auto surfaces = rays.CastPrimary(camera, W, H);
+  const auto comparable = csmTruth::ComparablePixels(surfaces, W, H, kDown);
+  std::vector<char> occluded(surfaces.size(), 0);
+  for (size_t k = 0; k < surfaces.size(); ++k)
+    occluded[k] = comparable[k] && rays.Occluded(surfaces[k], kDown);
+  const auto edges = rays.ShadowEdges(camera, W, H, surfaces, comparable, occluded, kDown);
+  ASSERT_EQ(edges.size(), surfaces.size());
+  // A ground pixel's world size there: the distance to its right neighbour's hit.
+  long onOutline = 0, crossed = 0, far = 0, farEdges = 0;
+  for (int j = 0; j < H; ++j)
+  {
+    for (int i = 0; i + 1 < W; ++i)
+    {
+      const size_t k = static_cast<size_t>(j) * W + i;
+      const auto& s = surfaces[k];
+      const auto& right = surfaces[k + 1];
+      if (!comparable[k] || !right.Hit || std::abs(s.Position[1]) > 1e-4 ||
+        std::abs(right.Position[1]) > 1e-4)
+        continue;
+      const double pixel =
+        std::hypot(right.Position[0] - s.Position[0], right.Position[2] - s.Position[2]);
+      // Distance from the outline of the square |x|, |z| <= 1.
+      const double ax = std::abs(s.Position[0]), az = std::abs(s.Position[2]);
+      const double outside = std::hypot(std::max(ax - 1.0, 0.0), std::max(az - 1.0, 0.0));
+      const double distance = outside > 0.0 ? outside : std::min(1.0 - ax, 1.0 - az);
+      if (distance < 0.25 * pixel)
+      {
+        ++onOutline;
+        crossed += edges[k] != 0;
+      }
+      else if (distance > 1.5 * pixel)
+      {
+        ++far;
+        farEdges += edges[k] != 0;
+      }
+    }
+  }
+  EXPECT_GT(onOutline, 50);
+  EXPECT_EQ(crossed, onOutline);
+  EXPECT_GT(far, 50000);
+  EXPECT_EQ(farEdges, 0);
+  const auto factor = csmTruth::FactorFromRenders(shadowed, plain);
+  const csmTruth::Classification c =
+    csmTruth::Classify(surfaces, comparable, occluded, factor, &edges);
+  std::printf("%ld of %ld considered pixels off the edges, %ld misclassified (%ld in all)\n",
+    c.OffEdge, c.Considered, c.OffEdgeWrong, c.FalseShadow + c.FalseLight);
+  EXPECT_GT(c.OffEdge, c.Considered - 2 * onOutline - 1000);
+  EXPECT_EQ(c.OffEdgeWrong, 0);
+  // Without shadows every occluded pixel off the edges is wrong: the measure can fail.
+  const auto none = csmTruth::FactorFromRenders(plain, plain);
+  EXPECT_GT(csmTruth::Classify(surfaces, comparable, occluded, none, &edges).OffEdgeWrong, 1000);
+}
+
 // A bar over a large ground (6 km a side) under a light 5 degrees above the horizon: the bar's
 // shadow lies 23 units downstream and is 2.5 units long; the truth must find its edges within
 // 0.05 units. The ray's lift off the ground moves the shadow by lift / tan(5 deg), so a lift
