@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Light-space pages (vtkCascadedShadowMapBakerPass::LightSpacePages): a camera turning over a
 // field of posts draws only the pages that come into view, keeps the base, shades every frame as
-// a chain that draws every page afresh, every visible sample finds the page of its level, and the
-// lights and views pages cannot serve keep the cascades.
+// a chain that draws every page afresh, every visible sample finds the page of its level, two
+// viewports sharing a pass keep their own pages, and the lights and views pages cannot serve keep
+// the cascades.
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
@@ -21,6 +22,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <vector>
@@ -32,9 +34,10 @@ using csmTest::BoxOverPlaneSettings;
 
 /// A field of 15 x 15 posts on a wide ground seen from close by, the light from the side: the
 /// cascades would follow the view (the one scene-fitted map is far too coarse near the eye).
-BoxOverPlaneSettings FieldSettings()
+BoxOverPlaneSettings FieldSettings(int width = 320)
 {
   BoxOverPlaneSettings settings;
+  settings.Size[0] = width;
   settings.GroundHalfWidth = 24.0;
   settings.LightPosition[0] = 6.0;
   settings.LightPosition[1] = 10.0;
@@ -47,8 +50,8 @@ BoxOverPlaneSettings FieldSettings()
 
 struct Field
 {
-  explicit Field(double azimuth)
-    : Scene(FieldSettings())
+  explicit Field(double azimuth, int width = 320)
+    : Scene(FieldSettings(width))
   {
     this->Scene.Renderer->RemoveActor(this->Scene.Box);
     this->Post->SetBounds(-0.2, 0.2, 0.0, 2.0, -0.2, 0.2);
@@ -190,6 +193,76 @@ TEST(Pages, AnOrbitDrawsOnlyThePagesThatComeIntoViewAndShadesAsAFreshChain)
     }
   }
   EXPECT_LT(drawn, needed / 4); // a turn of 2 degrees brings in few pages
+}
+
+// Two viewports of one window sharing one pass chain, each close to the field from its own side:
+// each renderer keeps its own base and pages, and each half of every frame of an orbit is what
+// its view alone draws.
+TEST(Pages, TwoViewportsSharingAPassKeepTheirOwnPages)
+{
+  Field pair(0.0, 640);
+  vtkRenderer* left = pair.Scene.Renderer;
+  left->SetViewport(0.0, 0.0, 0.5, 1.0);
+  vtkNew<vtkRenderer> right;
+  right->SetViewport(0.5, 0.0, 1.0, 1.0);
+  right->SetBackground(left->GetBackground());
+  right->AutomaticLightCreationOff();
+  right->AddLight(pair.Scene.Light);
+  right->AddActor(pair.Scene.Ground);
+  for (const auto& post : pair.Posts)
+  {
+    right->AddActor(post);
+  }
+  right->GetActiveCamera()->DeepCopy(left->GetActiveCamera());
+  pair.Scene.Window->AddRenderer(right);
+  right->SetPass(left->GetPass());
+  const double rightFrom = 130.0;
+  right->GetActiveCamera()->Azimuth(rightFrom);
+  right->ResetCameraClippingRange();
+  pair.Scene.Frame();
+  for (int frame = 1; frame <= 3; ++frame)
+  {
+    pair.Turn(2.0);
+    right->GetActiveCamera()->Azimuth(2.0);
+    right->ResetCameraClippingRange();
+    auto both = pair.Scene.Frame();
+    for (vtkRenderer* renderer : { left, static_cast<vtkRenderer*>(right) })
+    {
+      const auto& maps = pair.Baker->GetLightMaps(renderer);
+      ASSERT_EQ(maps.size(), 1u);
+      EXPECT_TRUE(maps[0].Pages.Active) << frame;
+    }
+    for (int half = 0; half < 2; ++half)
+    {
+      // (Alone in the same half of the same window: the blend bands' dither is by window pixel.)
+      Field alone((half ? rightFrom : 0.0) + 2.0 * frame, 640);
+      alone.Scene.Renderer->SetViewport(0.5 * half, 0.0, 0.5 + 0.5 * half, 1.0);
+      auto image = alone.Scene.Frame();
+      long differing = 0, far = 0;
+      for (int y = 0; y < 240; ++y)
+      {
+        for (int x = 0; x < 320; ++x)
+        {
+          int most = 0;
+          for (int c = 0; c < 3; ++c)
+          {
+            most = std::max(most,
+              static_cast<int>(std::abs(both->GetScalarComponentAsDouble(x + 320 * half, y, 0, c) -
+                image->GetScalarComponentAsDouble(x + 320 * half, y, 0, c))));
+          }
+          differing += most > 0;
+          far += most > 24;
+        }
+      }
+      EXPECT_LE(differing, 8) << frame << " " << half;
+      EXPECT_EQ(far, 0) << frame << " " << half;
+      if (frame == 3)
+      {
+        alone.Scene.Renderer->SetPass(nullptr);
+        EXPECT_GT(csmTest::DifferingPixels(image, alone.Scene.Frame(), 24), 2000); // shadows
+      }
+    }
+  }
 }
 
 // Pages serve a scene light seen through a perspective view; a light that follows the camera
