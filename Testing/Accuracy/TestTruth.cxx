@@ -13,11 +13,13 @@
 #include "vtkNew.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace
 {
@@ -87,27 +89,45 @@ TEST(Truth, MatchesTheAnalyticOutline)
   EXPECT_GT(top, 100);
 }
 
+namespace
+{
+/// The fixture rendered without and with our pass, and the truth at each pixel.
+struct Measured
+{
+  Measured()
+  {
+    this->Plain = this->Scene.Render();
+    vtkCascadedShadowMapPass::UseShadowsOn(this->Scene.Renderer);
+    this->Shadowed = this->Scene.Render();
+    this->Rays.Build(this->Scene.Renderer);
+    this->Surfaces = this->Rays.CastPrimary(this->Scene.Renderer->GetActiveCamera(), W, H);
+    this->Comparable = csmTruth::ComparablePixels(this->Surfaces, W, H, kDown);
+    this->Occluded.assign(this->Surfaces.size(), 0);
+    for (size_t k = 0; k < this->Surfaces.size(); ++k)
+      this->Occluded[k] = this->Comparable[k] && this->Rays.Occluded(this->Surfaces[k], kDown);
+  }
+  Fixture Scene;
+  vtkSmartPointer<vtkImageData> Plain, Shadowed;
+  csmTruth::RayScene Rays;
+  std::vector<csmTruth::Surface> Surfaces;
+  std::vector<char> Comparable, Occluded;
+};
+} // namespace
+
 TEST(Truth, OurPassMisclassifiesUnderHalfAPercent)
 {
-  Fixture f;
-  auto plain = f.Render();
-  vtkCascadedShadowMapPass::UseShadowsOn(f.Renderer);
-  auto shadowed = f.Render();
-  csmTruth::RayScene rays;
-  rays.Build(f.Renderer);
-  const auto surfaces = rays.CastPrimary(f.Renderer->GetActiveCamera(), W, H);
-  const auto comparable = csmTruth::ComparablePixels(surfaces, W, H, kDown);
-  std::vector<char> occluded(surfaces.size(), 0);
-  for (size_t k = 0; k < surfaces.size(); ++k)
-    occluded[k] = comparable[k] && rays.Occluded(surfaces[k], kDown);
-  const auto factor = csmTruth::FactorFromRenders(shadowed, plain);
+  Measured m;
+  const auto& surfaces = m.Surfaces;
+  const auto& comparable = m.Comparable;
+  const auto& occluded = m.Occluded;
+  const auto factor = csmTruth::FactorFromRenders(m.Shadowed, m.Plain);
   const csmTruth::Classification c = csmTruth::Classify(surfaces, comparable, occluded, factor);
   std::printf("considered %ld, false shadow %ld, false light %ld: %.3f%% misclassified\n",
     c.Considered, c.FalseShadow, c.FalseLight, c.MismatchPct());
   EXPECT_GT(c.Considered, 50000);
   EXPECT_LT(c.MismatchPct(), 0.5);
   // And without shadows every occluded pixel is a false light: the measure can fail.
-  const auto none = csmTruth::FactorFromRenders(plain, plain);
+  const auto none = csmTruth::FactorFromRenders(m.Plain, m.Plain);
   const csmTruth::Classification n = csmTruth::Classify(surfaces, comparable, occluded, none);
   EXPECT_GT(n.FalseLight, 1000);
   EXPECT_EQ(n.FalseShadow, 0);
@@ -118,19 +138,12 @@ TEST(Truth, OurPassMisclassifiesUnderHalfAPercent)
 // footprint the outline crosses is one; the pass misclassifies no pixel beyond them.
 TEST(Truth, ShadowEdgesAreThePixelsTheOutlineCrosses)
 {
-  Fixture f;
-  auto plain = f.Render();
-  vtkCascadedShadowMapPass::UseShadowsOn(f.Renderer);
-  auto shadowed = f.Render();
-  csmTruth::RayScene rays;
-  rays.Build(f.Renderer);
-  vtkCamera* camera = f.Renderer->GetActiveCamera();
-  const auto surfaces = rays.CastPrimary(camera, W, H);
-  const auto comparable = csmTruth::ComparablePixels(surfaces, W, H, kDown);
-  std::vector<char> occluded(surfaces.size(), 0);
-  for (size_t k = 0; k < surfaces.size(); ++k)
-    occluded[k] = comparable[k] && rays.Occluded(surfaces[k], kDown);
-  const auto edges = rays.ShadowEdges(camera, W, H, surfaces, comparable, occluded, kDown);
+  Measured m;
+  const auto& surfaces = m.Surfaces;
+  const auto& comparable = m.Comparable;
+  const auto& occluded = m.Occluded;
+  const auto edges = m.Rays.ShadowEdges(
+    m.Scene.Renderer->GetActiveCamera(), W, H, surfaces, comparable, occluded, kDown);
   ASSERT_EQ(edges.size(), surfaces.size());
   // A ground pixel's world size there: the distance to its right neighbour's hit.
   long onOutline = 0, crossed = 0, far = 0, farEdges = 0;
@@ -166,7 +179,7 @@ TEST(Truth, ShadowEdgesAreThePixelsTheOutlineCrosses)
   EXPECT_EQ(crossed, onOutline);
   EXPECT_GT(far, 50000);
   EXPECT_EQ(farEdges, 0);
-  const auto factor = csmTruth::FactorFromRenders(shadowed, plain);
+  const auto factor = csmTruth::FactorFromRenders(m.Shadowed, m.Plain);
   const csmTruth::Classification c =
     csmTruth::Classify(surfaces, comparable, occluded, factor, &edges);
   std::printf("%ld of %ld considered pixels off the edges, %ld misclassified (%ld in all)\n",
@@ -174,7 +187,7 @@ TEST(Truth, ShadowEdgesAreThePixelsTheOutlineCrosses)
   EXPECT_GT(c.OffEdge, c.Considered - 2 * onOutline - 1000);
   EXPECT_EQ(c.OffEdgeWrong, 0);
   // Without shadows every occluded pixel off the edges is wrong: the measure can fail.
-  const auto none = csmTruth::FactorFromRenders(plain, plain);
+  const auto none = csmTruth::FactorFromRenders(m.Plain, m.Plain);
   EXPECT_GT(csmTruth::Classify(surfaces, comparable, occluded, none, &edges).OffEdgeWrong, 1000);
 }
 
