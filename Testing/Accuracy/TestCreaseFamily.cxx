@@ -176,9 +176,11 @@ std::vector<Measure> MeasureFamily(bool full)
       for (size_t k = 0; k < surfaces.size(); ++k)
         occluded[k] = comparable[k] && rays.Occluded(surfaces[k], direction);
       const auto factor = csmTruth::FactorFromRenders(shadowed, plain);
+      const auto edges = rays.ShadowEdges(
+        renderer->GetActiveCamera(), W, H, surfaces, comparable, occluded, direction);
       Measure measure;
       measure.View = view;
-      measure.Pixels = csmTruth::Classify(surfaces, comparable, occluded, factor);
+      measure.Pixels = csmTruth::Classify(surfaces, comparable, occluded, factor, &edges);
       measure.FalseLightWithoutShadows = csmTruth::Classify(
         surfaces, comparable, occluded, csmTruth::FactorFromRenders(plain, plain))
                                            .FalseLight;
@@ -205,8 +207,8 @@ void Report(const std::vector<Measure>& measures, const std::vector<csmScenes::S
   if (csv)
     std::fprintf(csv,
       "member,camera,elevation,azimuth,considered,false_shadow,false_light,"
-      "misclassified_pct,longest_false_light,longest_dotted\n");
-  double sum = 0.0, worst = 0.0;
+      "misclassified_pct,longest_false_light,longest_dotted,off_edge_misclassified_pct\n");
+  double sum = 0.0, worst = 0.0, offEdgeSum = 0.0, offEdgeWorst = 0.0;
   int longest = 0, dotted = 0;
   for (const auto& m : measures)
   {
@@ -215,21 +217,26 @@ void Report(const std::vector<Measure>& measures, const std::vector<csmScenes::S
     worst = std::max(worst, p.MismatchPct());
     longest = std::max(longest, m.LongestFalseLight);
     dotted = std::max(dotted, m.LongestDotted);
+    offEdgeSum += p.OffEdgeMismatchPct();
+    offEdgeWorst = std::max(offEdgeWorst, p.OffEdgeMismatchPct());
     std::printf("%-15s %-5s el %4.0f az %4.0f: considered %6ld, false shadow %4ld, false light "
                 "%4ld, %.3f%%, longest false light %d px (dotted %d px)\n",
       members[m.View.Member].Name.c_str(), m.View.Close ? "close" : "far", m.View.Elevation,
       m.View.Azimuth, p.Considered, p.FalseShadow, p.FalseLight, p.MismatchPct(),
       m.LongestFalseLight, m.LongestDotted);
     if (csv)
-      std::fprintf(csv, "%s,%s,%g,%g,%ld,%ld,%ld,%.4f,%d,%d\n", members[m.View.Member].Name.c_str(),
-        m.View.Close ? "close" : "far", m.View.Elevation, m.View.Azimuth, p.Considered,
-        p.FalseShadow, p.FalseLight, p.MismatchPct(), m.LongestFalseLight, m.LongestDotted);
+      std::fprintf(csv, "%s,%s,%g,%g,%ld,%ld,%ld,%.4f,%d,%d,%.4f\n",
+        members[m.View.Member].Name.c_str(), m.View.Close ? "close" : "far", m.View.Elevation,
+        m.View.Azimuth, p.Considered, p.FalseShadow, p.FalseLight, p.MismatchPct(),
+        m.LongestFalseLight, m.LongestDotted, p.OffEdgeMismatchPct());
   }
   if (csv)
     std::fclose(csv);
   const double mean = measures.empty() ? 0.0 : sum / measures.size();
-  std::printf("%zu views: mean %.4f%%, worst %.4f%%, longest false light %d px (dotted %d px)\n",
-    measures.size(), mean, worst, longest, dotted);
+  std::printf("%zu views: mean %.4f%%, worst %.4f%%, longest false light %d px (dotted %d px); "
+              "off shadow edges mean %.4f%%, worst %.4f%%\n",
+    measures.size(), mean, worst, longest, dotted,
+    measures.empty() ? 0.0 : offEdgeSum / measures.size(), offEdgeWorst);
 }
 } // namespace
 
