@@ -46,14 +46,23 @@ int pageBaseSide(int resolution)
   return 2 * resolution;
 }
 
-/// The atlas of such a light: its base in the lower left, the pool of pages beside and above
-/// it (416 pages at the default Resolution: the towers' orbit needs up to 311 at once, and 320
-/// made the orbit draw pages it had given up, Results.md, "Light-space pages"), in whole pages.
+/// Pages the pool of a paged light is sized for: the pages a view reads depend on its pixels and
+/// depths, not on Resolution (the towers' orbit at 640x480 needs up to 311 at once, and 320 made
+/// it draw pages it had given up, Results.md, "Light-space pages").
+constexpr int kPoolPages = 416;
+
+/// The atlas of such a light, in whole pages: its base in the lower left, the pool beside and
+/// above it; 3 x 3.5 Resolution, but no more rows above the base than kPoolPages need (416 pages
+/// at 2048; at 4096 the pages beside the base alone, 512, in 12288 x 8192 texels: 402 MB where
+/// 3 x 3.5 would be 704 MB).
 csm::MapSize pageAtlas(int resolution)
 {
-  const auto pages = [](int texels)
-  { return (texels + csm::kPageTexels - 1) / csm::kPageTexels * csm::kPageTexels; };
-  return csm::MapSize(pages(3 * resolution), pages(7 * resolution / 2));
+  const auto pages = [](int texels) { return (texels + csm::kPageTexels - 1) / csm::kPageTexels; };
+  const int base = pages(pageBaseSide(resolution));
+  const int columns = pages(3 * resolution);
+  const int rows = std::max(
+    base, std::min(pages(7 * resolution / 2), (base * base + kPoolPages + columns - 1) / columns));
+  return csm::MapSize(columns * csm::kPageTexels, rows * csm::kPageTexels);
 }
 
 /// Frames in a row with changed casters after which they count as changing every frame
@@ -428,7 +437,7 @@ void csmLightPlanning::ServeWithPages(vtkRenderer* renderer, csmRendererMaps& st
     (!frame.CastersChanged || (lastPaged && !this->Statistics.CastersChanging)) &&
     !frame.ScreenSized && !props.TranslucentReceivers && !camera->GetParallelProjection() &&
     this->Planner->GetDepthClamp() && csm::poolSlots(pageAtlas(side), pageBaseSide(side)) > 0 &&
-    (textureLimit <= 0 || pageAtlas(side).height <= textureLimit);
+    (textureLimit <= 0 || std::max(pageAtlas(side).width, pageAtlas(side).height) <= textureLimit);
   if (serve && state.VisibleCamera && !state.VisibleSamples.isEmpty() &&
     sameView(state.VisibleCamera, camera, frame.Aspect))
   {

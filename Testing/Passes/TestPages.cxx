@@ -265,6 +265,36 @@ TEST(Pages, TwoViewportsSharingAPassKeepTheirOwnPages)
   }
 }
 
+// The pool holds the pages a view reads, whatever Resolution: at 4096 the atlas keeps the base
+// (8192 a side) and the pages beside it (12288 x 8192 texels, 402 MB, where 3 x 3.5 Resolution
+// would be 704 MB); at the default 2048 it is 3 x 3.5 Resolution. Every visible sample still
+// finds the page of its level.
+TEST(Pages, ThePoolIsSizedForTheViewNotForTheResolution)
+{
+  for (const int resolution : { 2048, 4096 })
+  {
+    Field field(0.0);
+    field.Baker->SetResolution(resolution);
+    field.Scene.Renderer->GetActiveCamera()->Dolly(3.0); // (close enough for pages at 4096)
+    field.Scene.Renderer->ResetCameraClippingRange();
+    field.Scene.Frame();
+    field.Turn(2.0);
+    field.Scene.Frame();
+    ASSERT_TRUE(field.Maps().Pages.Active) << resolution;
+    const int* atlas = field.Maps().AtlasSize;
+    EXPECT_EQ(atlas[0], 3 * resolution);
+    EXPECT_EQ(atlas[1], resolution == 2048 ? 7168 : 8192);
+    const int basePages = 2 * resolution / csm::kPageTexels;
+    const int poolPages =
+      (atlas[0] / csm::kPageTexels) * (atlas[1] / csm::kPageTexels) - basePages * basePages;
+    EXPECT_EQ(poolPages, resolution == 2048 ? 416 : 512);
+    long needing = 0, missing = 0;
+    SamplesFindTheirPages(field, needing, missing);
+    EXPECT_GT(needing, 1000) << resolution;
+    EXPECT_EQ(missing, 0) << resolution;
+  }
+}
+
 // Pages serve a scene light seen through a perspective view; a light that follows the camera
 // (nothing of its maps can be kept) and a parallel view keep the cascades.
 TEST(Pages, CameraLightsAndParallelViewsKeepTheCascades)
