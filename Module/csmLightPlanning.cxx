@@ -23,6 +23,7 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <map>
 #include <string>
@@ -46,23 +47,38 @@ int pageBaseSide(int resolution)
   return 2 * resolution;
 }
 
-/// Pages the pool of a paged light is sized for: the pages a view reads depend on its pixels and
-/// depths, not on Resolution (the towers' orbit at 640x480 needs up to 311 at once, and 320 made
-/// it draw pages it had given up, Results.md, "Light-space pages").
+/// Pages the pool of a paged light holds for a view of kPoolPixels, and in proportion for a
+/// larger one: the pages a view reads depend on its pixels and depths, not on Resolution (the
+/// towers' orbit at 640x480 needs up to 311 at once, and a pool of 320 made it draw pages it had
+/// given up; at 1280x720 a pool of 416 held 375-416 of them and drew pages again, Results.md,
+/// "Light-space pages").
 constexpr int kPoolPages = 416;
+constexpr double kPoolPixels = 640.0 * 480.0;
 
-/// The atlas of such a light, in whole pages: its base in the lower left, the pool beside and
-/// above it; 3 x 3.5 Resolution, but no more rows above the base than kPoolPages need (416 pages
-/// at 2048; at 4096 the pages beside the base alone, 512, in 12288 x 8192 texels: 402 MB where
-/// 3 x 3.5 would be 704 MB).
-csm::MapSize pageAtlas(int resolution)
+/// The atlas of such a light for a view of viewPixels, in whole pages: its base in the lower
+/// left, the pool beside and above it. 3 x 3.5 Resolution where that holds the pool, with no
+/// more rows above the base than the pool needs (at 4096, 12288 x 8192 texels: 402 MB where
+/// 3 x 3.5 would be 704 MB); a square of base and pool where 3 x 3.5 is too small (a large view).
+csm::MapSize pageAtlas(int resolution, double viewPixels)
 {
   const auto pages = [](int texels) { return (texels + csm::kPageTexels - 1) / csm::kPageTexels; };
   const int base = pages(pageBaseSide(resolution));
-  const int columns = pages(3 * resolution);
-  const int rows = std::max(
-    base, std::min(pages(7 * resolution / 2), (base * base + kPoolPages + columns - 1) / columns));
+  const double scale = std::isfinite(viewPixels) ? std::max(1.0, viewPixels / kPoolPixels) : 1.0;
+  const int pool = static_cast<int>(std::ceil(std::min(scale, 64.0) * kPoolPages));
+  const int all = base * base + pool;
+  int columns = pages(3 * resolution);
+  if (columns * pages(7 * resolution / 2) < all)
+  {
+    columns = std::max(columns, static_cast<int>(std::ceil(std::sqrt(double(all)))));
+  }
+  const int rows = std::max(base, (all + columns - 1) / columns);
   return csm::MapSize(columns * csm::kPageTexels, rows * csm::kPageTexels);
+}
+
+/// The pixels of the frame's view.
+double viewPixels(const csmFramePlan& frame)
+{
+  return double(frame.ImageHeight) * double(frame.ImageHeight) * frame.Aspect;
 }
 
 /// Frames in a row with changed casters after which they count as changing every frame
@@ -426,6 +442,7 @@ void csmLightPlanning::ServeWithPages(vtkRenderer* renderer, csmRendererMaps& st
     [](const CascadeMap& map)
     { return map.Kind != MapKind::FollowsView && map.Kind != MapKind::SceneFitted; });
   const int textureLimit = this->Planner->GetMaximumTextureSize();
+  const csm::MapSize atlas = pageAtlas(side, viewPixels(frame));
   // (Casters that changed: only where the last frame's maps were this light's pages, which the
   // changes patch, and not every frame. A light paged in the last frame stays paged where its
   // scene-fitted map alone would serve: that map is the base, and the pages are kept.)
@@ -436,8 +453,8 @@ void csmLightPlanning::ServeWithPages(vtkRenderer* renderer, csmRendererMaps& st
     !otherKinds && maps.Kind == LightKind::Directional && maps.Light->LightTypeIsSceneLight() &&
     (!frame.CastersChanged || (lastPaged && !this->Statistics.CastersChanging)) &&
     !frame.ScreenSized && !props.TranslucentReceivers && !camera->GetParallelProjection() &&
-    this->Planner->GetDepthClamp() && csm::poolSlots(pageAtlas(side), pageBaseSide(side)) > 0 &&
-    (textureLimit <= 0 || std::max(pageAtlas(side).width, pageAtlas(side).height) <= textureLimit);
+    this->Planner->GetDepthClamp() && csm::poolSlots(atlas, pageBaseSide(side)) > 0 &&
+    (textureLimit <= 0 || std::max(atlas.width, atlas.height) <= textureLimit);
   if (serve && state.VisibleCamera && !state.VisibleSamples.isEmpty() &&
     sameView(state.VisibleCamera, camera, frame.Aspect))
   {
@@ -483,7 +500,7 @@ void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& 
   // while the scene and the light stay; the pages refine it where the view needs finer texels.
   // Where the pages this view needs do not fit, or need more levels than there are, the
   // cascades serve.
-  const csm::MapSize atlas = pageAtlas(this->Options.Resolution);
+  const csm::MapSize atlas = pageAtlas(this->Options.Resolution, viewPixels(frame));
   const int side = pageBaseSide(this->Options.Resolution);
   const double direction[3] = { maps.FocalPoint[0] - maps.Position[0],
     maps.FocalPoint[1] - maps.Position[1], maps.FocalPoint[2] - maps.Position[2] };

@@ -102,12 +102,12 @@ public:
   /// pages instead (csmPages.h): levels of half the texel of the level before, each meeting
   /// ErrorTarget an octave of view depth nearer, of which only the pages (256 texels a side)
   /// that this view's visible samples read are drawn into the rest of the atlas (3 x 3.5
-  /// Resolution, no more rows than the pool a view needs), and kept while the light stays: a
-  /// camera that moves draws only the pages that come into view (and keeps them when it moves away
-  /// again), a caster that changes only the pages its boxes reach. Where it cannot serve (several
-  /// processes, a parallel view, casters that change every frame or are sized on the screen,
-  /// translucent receivers, no visible depths of this view, more pages than the pool holds) the
-  /// cascades serve. On.
+  /// Resolution, no more rows than the pool the view's pixels need), and kept while the light
+  /// stays: a camera that moves draws only the pages that come into view (and keeps them when it
+  /// moves away again), a caster that changes only the pages its boxes reach. Where it cannot serve
+  /// (several processes, a parallel view, casters that change every frame or are sized on the
+  /// screen, translucent receivers, no visible depths of this view, more pages than the pool holds)
+  /// the cascades serve. On.
   vtkSetMacro(LightSpacePages, bool);
   vtkGetMacro(LightSpacePages, bool);
   vtkBooleanMacro(LightSpacePages, bool);
