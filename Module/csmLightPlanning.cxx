@@ -48,12 +48,14 @@ int pageBaseSide(int resolution)
 }
 
 /// Pages the pool of a paged light holds for a view of kPoolPixels, and in proportion for a
-/// larger one: the pages a view reads depend on its pixels and depths, not on Resolution (the
-/// towers' orbit at 640x480 needs up to 311 at once, and a pool of 320 made it draw pages it had
-/// given up; at 1280x720 a pool of 416 held 375-416 of them and drew pages again, Results.md,
-/// "Light-space pages").
+/// larger one, up to kMostPoolScale times as many: the pages a view reads depend on its pixels
+/// and depths, not on Resolution (the towers' orbit at 640x480 needs up to 311 at once, and a
+/// pool of 320 made it draw pages it had given up; at 1280x720 a pool of 416 held 375-416 of
+/// them and drew pages again, Results.md, "Light-space pages"). The most, 1,664 pages, is
+/// 436 MB of pool; a view whose pages do not fit takes the cascades.
 constexpr int kPoolPages = 416;
 constexpr double kPoolPixels = 640.0 * 480.0;
+constexpr double kMostPoolScale = 4.0;
 
 /// The atlas of such a light for a view of viewPixels, in whole pages: its base in the lower
 /// left, the pool beside and above it. 3 x 3.5 Resolution where that holds the pool, with no
@@ -63,8 +65,9 @@ csm::MapSize pageAtlas(int resolution, double viewPixels)
 {
   const auto pages = [](int texels) { return (texels + csm::kPageTexels - 1) / csm::kPageTexels; };
   const int base = pages(pageBaseSide(resolution));
-  const double scale = std::isfinite(viewPixels) ? std::max(1.0, viewPixels / kPoolPixels) : 1.0;
-  const int pool = static_cast<int>(std::ceil(std::min(scale, 64.0) * kPoolPages));
+  const double scale =
+    std::isfinite(viewPixels) ? std::clamp(viewPixels / kPoolPixels, 1.0, kMostPoolScale) : 1.0;
+  const int pool = static_cast<int>(std::ceil(scale * kPoolPages));
   const int all = base * base + pool;
   int columns = pages(3 * resolution);
   if (columns * pages(7 * resolution / 2) < all)

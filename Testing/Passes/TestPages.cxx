@@ -270,15 +270,17 @@ TEST(Pages, TwoViewportsSharingAPassKeepTheirOwnPages)
 // (at 4096 the atlas keeps the base, 8192 a side, and the 512 pages beside it: 12288 x 8192
 // texels, 402 MB, where 3 x 3.5 Resolution would be 704 MB; at the default 2048 it is 3 x 3.5
 // Resolution), in proportion for a larger view (1280x720: 3 x 416 pages, base and pool in a
-// square). Every visible sample finds the page of its level.
+// square) up to 4 x 416 (1920x1080 would take 6.75 x). Every visible sample finds the page of its
+// level.
 TEST(Pages, ThePoolIsSizedForTheViewNotForTheResolution)
 {
   struct Case
   {
     int Resolution, Width, Height, AtlasWidth, AtlasHeight, LeastPool;
   };
-  for (const Case& c : { Case{ 2048, 320, 240, 6144, 7168, 416 },
-         Case{ 4096, 320, 240, 12288, 8192, 416 }, Case{ 2048, 1280, 720, 9984, 9984, 1248 } })
+  for (const Case& c :
+    { Case{ 2048, 320, 240, 6144, 7168, 416 }, Case{ 4096, 320, 240, 12288, 8192, 416 },
+      Case{ 2048, 1280, 720, 9984, 9984, 1248 }, Case{ 2048, 1920, 1080, 11264, 11264, 1664 } })
   {
     Field field(0.0, c.Width, c.Height);
     field.Baker->SetResolution(c.Resolution);
