@@ -197,6 +197,13 @@ double csmCasterCollection::CellsOf(vtkProp* prop)
     mapper && mapper->GetNumberOfInputPorts() > 0 && mapper->GetNumberOfInputConnections(0) > 0
     ? mapper->GetInputDataObject(0, 0)
     : nullptr;
+  // A polydata's polygons and strips as the triangles they draw (a quad is two, a strip one a
+  // point past its second), its lines and vertices as cells.
+  if (vtkPolyData* poly = vtkPolyData::SafeDownCast(data))
+  {
+    return csmTriangleCount(poly) + static_cast<double>(poly->GetNumberOfLines()) +
+      static_cast<double>(poly->GetNumberOfVerts());
+  }
   return data ? static_cast<double>(data->GetNumberOfElements(vtkDataObject::CELL)) : 0.0;
 }
 

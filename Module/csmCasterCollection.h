@@ -55,7 +55,7 @@ struct csmFrameCasters
     bool ShadowsItself = true;
     /// Its prop's box in Receivers (-1: none).
     int Receiver = -1;
-    double Cells = 0.0; ///< of its data: triangles, strips, lines, vertices
+    double Cells = 0.0; ///< what its data draws (CellsOf): triangles, lines, vertices
   };
   std::vector<Caster> Casters;
   /// A prop drawn from compact blocks: the mapper that draws the chosen ones, each block's
@@ -85,7 +85,7 @@ struct csmFrameCasters
   struct CasterLoad
   {
     std::array<double, 6> Bounds;
-    double Cells = 0.0; ///< of its data: triangles, strips, lines, vertices
+    double Cells = 0.0; ///< what its data draws (CellsOf): triangles, lines, vertices
     int Receiver = -1;  ///< its prop's box in Receivers (-1: none)
     bool ShadowsItself = true;
     bool ScreenSized = false; ///< drawn wider than its data (tubes, spheres, wide lines)
@@ -144,7 +144,8 @@ public:
   /// The blocks and proxies drawn in this window (all of them for no window).
   void ReleaseGraphicsResources(vtkWindow* window);
 
-  /// Cells of an actor's input data (0 for other props or without data).
+  /// What an actor's input data draws: a polydata's triangles (of its polygons and strips) and
+  /// its line and vertex cells, other data's cells (0 for other props or without data).
   static double CellsOf(vtkProp* prop);
 
 private:

@@ -25,7 +25,9 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
+#include "vtkStripper.h"
 #include "vtkTextureObject.h"
+#include "vtkTriangleFilter.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtk_glew.h"
 
@@ -131,6 +133,36 @@ TEST(Passes, CastersThatShadowNothingAreLeftOutOfTheMaps)
   scene.Frame();
   EXPECT_GT(baker->GetLastFrameStatistics().CascadesRendered, 0);
   EXPECT_EQ(baker->GetLastFrameStatistics().CastersWithoutReceivers, 0);
+}
+
+// A caster drawn as it is counts what it draws: a box of six quads twelve triangles, and the
+// same box as triangle strips twelve (the cascade count weighs casters by their triangles).
+TEST(Passes, CastersDrawnAsTheyAreCountTheirTriangles)
+{
+  BoxOverPlane scene;
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  baker->CompactCastersOff();
+  baker->LightSpacePagesOff();
+  scene.Frame();
+  const auto& stats = baker->GetLastFrameStatistics();
+  ASSERT_GT(stats.CascadesRendered, 0);
+  EXPECT_EQ(stats.PropsDrawn, stats.CascadesRendered); // (the plane shadows nothing)
+  EXPECT_EQ(stats.CellsDrawn, 12.0 * stats.CascadesRendered);
+  vtkNew<vtkCubeSource> cube;
+  cube->SetBounds(-1, 1, 2, 4, -1, 1);
+  vtkNew<vtkTriangleFilter> triangles;
+  triangles->SetInputConnection(cube->GetOutputPort());
+  vtkNew<vtkStripper> strips;
+  strips->SetInputConnection(triangles->GetOutputPort());
+  strips->Update();
+  ASSERT_GT(strips->GetOutput()->GetNumberOfStrips(), 0);
+  ASSERT_LT(strips->GetOutput()->GetNumberOfStrips(), 12);
+  vtkPolyDataMapper::SafeDownCast(scene.Box->GetMapper())
+    ->SetInputConnection(strips->GetOutputPort());
+  scene.Frame();
+  ASSERT_GT(stats.CascadesRendered, 0);
+  EXPECT_EQ(stats.CellsDrawn, 12.0 * stats.CascadesRendered);
 }
 
 TEST(Passes, ClosedSurfacesDrawnFromBehindTakeAShareOfTheBias)
