@@ -357,10 +357,23 @@ bool vtkCascadedShadowMapPass::SingleMapShaders() const
     std::all_of(u.Count.begin(), u.Count.end(), [](int count) { return count <= 1; });
 }
 
+bool vtkCascadedShadowMapPass::GatherTexels()
+{
+  return (GLEW_VERSION_3_3 || GLEW_ARB_sampler_objects) && GLEW_ARB_texture_gather;
+}
+
+std::string vtkCascadedShadowMapPass::GatherDeclarations()
+{
+  return GatherTexels() ? "#extension GL_ARB_texture_gather : require\n#define CSM_GATHER 1\n"
+                        : "#define CSM_GATHER 0\n";
+}
+
 int vtkCascadedShadowMapPass::BindNearest(vtkOpenGLRenderWindow* window, vtkTextureObject* atlas)
 {
-  // The atlas on a second unit with a sampler object that reads one texel a compare (nearest):
-  // the per-texel compares at texel centres then cost a read each, not a bilinear compare's four.
+  // The atlas on a second unit with a sampler object for the per-texel compares at texel
+  // centres: one that does not compare, whose gather reads the four texels of a bilinear
+  // footprint at once (GatherTexels), or else one that reads one texel a compare (nearest), not
+  // a bilinear compare's four.
   vtkTextureUnitManager* units = window ? window->GetTextureUnitManager() : nullptr;
   const int unit = units && (GLEW_VERSION_3_3 || GLEW_ARB_sampler_objects) ? units->Allocate() : -1;
   if (unit < 0)
@@ -375,7 +388,8 @@ int vtkCascadedShadowMapPass::BindNearest(vtkOpenGLRenderWindow* window, vtkText
     glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glSamplerParameteri(sampler, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glSamplerParameteri(sampler, GL_TEXTURE_COMPARE_MODE,
+      vtkCascadedShadowMapPass::GatherTexels() ? GL_NONE : GL_COMPARE_REF_TO_TEXTURE);
     glSamplerParameteri(sampler, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     this->NearestSampler = sampler;
   }
@@ -462,7 +476,7 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   for (size_t j = 0; j < this->Uniforms.Lights(); ++j)
   {
     decl << "uniform sampler2DShadow csmMap" << j << ";\n";
-    decl << "uniform sampler2DShadow csmNearest" << j << ";\n";
+    decl << "uniform csmTexelSampler csmNearest" << j << ";\n";
     if (this->Uniforms.Paged(j))
     {
       decl << "uniform sampler2D csmPages" << j << ";\n";
@@ -492,9 +506,11 @@ void vtkCascadedShadowMapPass::InjectLookups(
   // light reaches the surface (df > 0: behind it, diffuse and specular are 0 anyway), or always
   // for the debug views.
   const std::string reaches = this->DebugMode == DEBUG_OFF ? "df > 0.0" : "true";
+  // (Right after the #version VTK puts there.)
+  vtkShaderProgram::Substitute(fragmentShader, kSystemDec,
+    std::string(kSystemDec) + "\n" + vtkCascadedShadowMapPass::GatherDeclarations(), false);
   if (screen != csmScreenCache::OFF)
   {
-    // (Right after the #version VTK puts there.)
     vtkShaderProgram::Substitute(fragmentShader, kSystemDec,
       std::string(kSystemDec) + "\n" +
         vtkCascadedShadowMapPass::ScreenExtensions(this->ScreenCache->GetSamples()),
@@ -576,6 +592,7 @@ bool vtkCascadedShadowMapPass::ScreenShadersCompile(vtkOpenGLRenderWindow* windo
     std::ostringstream fragment;
     fragment << kSystemDec << "\n"
              << vtkCascadedShadowMapPass::ScreenExtensions(samples)
+             << vtkCascadedShadowMapPass::GatherDeclarations()
              << vtkCascadedShadowMapPass::GetShaderDefinitions(1, KERNEL_GRID, DEBUG_OFF, 1)
              << "#define CSM_SCREEN " << mode << "\n#define CSM_SCREEN_SAMPLES " << samples << "\n"
              << csmShadowFS << "\n"

@@ -77,6 +77,10 @@ public:
   /// and option values it uses, for `lights` shadowed lights, a kernel (Kernels), a debug mode
   /// (DebugModes) and the PCF radius compiled in (-1: the uniform csmPCFRadius).
   static std::string GetShaderDefinitions(int lights, int kernel, int debugMode, int pcfRadius);
+  /// Does the current context read the per-texel compares' four texels with one gather
+  /// (CSM_GATHER in csmShadowFS.glsl), and the #extension and #define that say so to the GLSL.
+  static bool GatherTexels();
+  static std::string GatherDeclarations();
 
   enum Kernels
   {

@@ -4,7 +4,7 @@
 // before any prop's shader has them (vtkCascadedShadowMapPass::ScreenShadersCompile). The pass
 // puts the #version, the extensions, its #defines and csmShadowFS.glsl before it.
 uniform sampler2DShadow csmMap0;
-uniform sampler2DShadow csmNearest0;
+uniform csmTexelSampler csmNearest0;
 
 //VTK::Output::Dec
 

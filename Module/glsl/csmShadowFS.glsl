@@ -22,6 +22,18 @@
 #ifndef CSM_SINGLE_MAP
 #define CSM_SINGLE_MAP 0
 #endif
+// CSM_GATHER 1 where the pass reads the per-texel compares' texels with one gather of their raw
+// depths (GL_ARB_texture_gather, which it enables; the atlas on a second unit with a sampler that
+// does not compare): csmTexelSampler is then a sampler2D; else a sampler2DShadow whose nearest
+// compares read one texel each.
+#ifndef CSM_GATHER
+#define CSM_GATHER 0
+#endif
+#if CSM_GATHER
+#define csmTexelSampler sampler2D
+#else
+#define csmTexelSampler sampler2DShadow
+#endif
 
 // The factors at the fragment's pixel (csmScreenCache.h), CSM_SCREEN: CSM_SCREEN_OFF the lookup
 // alone; CSM_SCREEN_STORE the lookup, each light's factor written at the pixel (the fragment is
@@ -142,24 +154,45 @@ float csmTap(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float z)
 // misses the plane's change over the half texel to each centre: enough, on a face nearly along
 // the light, to light it where the face shadowing it meets it (a concave crease) or to shadow it
 // where its own solid's far side meets it (a convex edge).
-float csmPlaneTap(sampler2DShadow nearest, vec4 tile, vec2 texel, vec2 uv, float z, vec2 dz,
+float csmPlaneTap(csmTexelSampler nearest, vec4 tile, vec2 texel, vec2 uv, float z, vec2 dz,
   float maxStep)
 {
   vec2 t = uv / texel - 0.5;
   vec2 base = floor(t);
   vec2 f = t - base;
   float s[4];
+#if CSM_GATHER
+  // The four texels in one gather at the corner they share, kept a texel inside the tile; a
+  // texel outside the tile reads the edge texel, as the clamped compare does: along each axis
+  // the lower texel is the footprint's upper one past the last texel, the upper its lower one
+  // before the first. The gather returns (lower x, upper y), (upper, upper), (upper, lower),
+  // (lower, lower).
+  vec2 last = floor(1.0 / texel + 0.5) - 1.0; // (an index: 1 / texel is not exact)
+  vec4 d = textureGather(nearest, tile.xy + clamp(base + 1.0, vec2(1.0), last) * texel * tile.zw);
+  bvec2 pastLast = greaterThan(base, last - 1.0);
+  bvec2 beforeFirst = lessThan(base, vec2(0.0));
+  vec2 lowerRow = vec2(pastLast.x ? d.z : d.w, beforeFirst.x ? d.w : d.z);
+  vec2 upperRow = vec2(pastLast.x ? d.y : d.x, beforeFirst.x ? d.x : d.y);
+  vec4 texels = vec4(pastLast.y ? upperRow : lowerRow, beforeFirst.y ? lowerRow : upperRow);
+  for (int k = 0; k < 4; ++k)
+  {
+    vec2 centre = (base + vec2(float(k & 1), float(k >> 1)) + 0.5) * texel;
+    float reference = z + clamp(dot(dz, centre - uv), -maxStep, maxStep);
+    s[k] = reference <= texels[k] ? 1.0 : 0.0;
+  }
+#else
   for (int k = 0; k < 4; ++k)
   {
     vec2 centre = (base + vec2(float(k & 1), float(k >> 1)) + 0.5) * texel;
     s[k] = csmTap(nearest, tile, texel, centre, z + clamp(dot(dz, centre - uv), -maxStep, maxStep));
   }
+#endif
   return mix(mix(s[0], s[1], f.x), mix(s[2], s[3], f.x), f.y);
 }
 
 // One compare of a kernel's tap: the hardware's bilinear compare at the tap's own depth, or, for
 // a face whose own depth is not in the map (exact), the compare with each texel's own depth.
-float csmKernelTap(sampler2DShadow map, sampler2DShadow nearest, vec4 tile, vec2 texel, vec2 uv,
+float csmKernelTap(sampler2DShadow map, csmTexelSampler nearest, vec4 tile, vec2 texel, vec2 uv,
   float z, vec2 dz, float maxStep, bool exact)
 {
   return exact ? csmPlaneTap(nearest, tile, texel, uv, z, dz, maxStep)
@@ -173,7 +206,7 @@ float csmKernelTap(sampler2DShadow map, sampler2DShadow nearest, vec4 tile, vec2
 // past the first (the "optimized PCF" of The Witness / Castano 2013, exact for the box of
 // bilinear compares). Every tap keeps its own receiver-plane depth (Barroso & Celes 2007, §2.2).
 float csmGridPCF(
-  sampler2DShadow map, sampler2DShadow nearest, vec4 tile, vec2 texel, vec2 uv, float zRef,
+  sampler2DShadow map, csmTexelSampler nearest, vec4 tile, vec2 texel, vec2 uv, float zRef,
   vec2 dz, bool exact)
 {
   int r = CSM_PCF_RADIUS;
@@ -207,7 +240,7 @@ float csmGridPCF(
 // Jittered circular kernel of radius r + 0.5 texels: as many bilinear taps as the grid kernel,
 // on a spiral rotated per pixel, so that the taps stay unaligned (Barroso & Celes 2007, §2.2).
 float csmJitteredPCF(
-  sampler2DShadow map, sampler2DShadow nearest, vec4 tile, vec2 texel, vec2 uv, float zRef,
+  sampler2DShadow map, csmTexelSampler nearest, vec4 tile, vec2 texel, vec2 uv, float zRef,
   vec2 dz, bool exact)
 {
   int r = CSM_PCF_RADIUS;
@@ -243,7 +276,7 @@ vec4 csmDisplacement(mat4 toMap, vec3 d)
 // Visibility (1 lit, 0 shadowed) of a point given in a cascade's homogeneous map coordinates h,
 // with the screen derivatives hx, hy of those coordinates (exact for the projective map); the
 // aliasing error m there for the error view (Lloyd et al. 2006, Eq. 1).
-float csmVisibility(sampler2DShadow map, sampler2DShadow nearest, vec4 tile, vec2 texel, vec4 h,
+float csmVisibility(sampler2DShadow map, csmTexelSampler nearest, vec4 tile, vec2 texel, vec4 h,
   vec4 hx, vec4 hy, float biasScale, float handedness, out float m)
 {
   vec3 p = h.xyz / h.w;
@@ -362,7 +395,7 @@ int csmChoose(int c, int next, bool blend, vec4 hThis, vec4 hNext)
 // and their screen derivatives: x = light factor (1 lit .. 1 - attenuation), y = cascade index
 // (-1: none), z = aliasing error m (error view only), w = visibility.
 vec4 csmShadowIn(
-  sampler2DShadow map, sampler2DShadow nearest, int j, int chosen, vec4 h, vec4 hx, vec4 hy)
+  sampler2DShadow map, csmTexelSampler nearest, int j, int chosen, vec4 h, vec4 hx, vec4 hy)
 {
   if (chosen < 0)
   {
@@ -384,7 +417,7 @@ vec4 csmShadowIn(
 // coordinates of the two candidate cascades by matrix products in the fragment. With
 // CSM_SINGLE_MAP (#defined 1 by the pass while every shadowed light has at most one map) the
 // one map's, and no choice: the same answer for less work a fragment.
-vec4 csmShadow(sampler2DShadow map, sampler2DShadow nearest, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
+vec4 csmShadow(sampler2DShadow map, csmTexelSampler nearest, int j, vec4 vc, vec4 dvcdx, vec4 dvcdy)
 {
 #if CSM_SINGLE_MAP
   int only = j * CSM_MAX_CASCADES;
@@ -429,7 +462,7 @@ uniform vec2 csmPageTile[CSM_LIGHTS];    // a page's side in the atlas's [0, 1]
 // holding the kernel; the base where the page is not in the pool. One matrix: every level shares
 // the base's map coordinates (orthographic: w = 1). y: the level read (0 the base; -2 where the
 // level's page is not in the pool and the base served: grey in the cascades' debug view).
-vec4 csmPagedShadow(sampler2DShadow map, sampler2DShadow nearest, sampler2D pages, int j, vec4 vc,
+vec4 csmPagedShadow(sampler2DShadow map, csmTexelSampler nearest, sampler2D pages, int j, vec4 vc,
   vec4 dvcdx, vec4 dvcdy)
 {
   int base = j * CSM_MAX_CASCADES;
@@ -481,7 +514,7 @@ vec4 csmPagedShadow(sampler2DShadow map, sampler2DShadow nearest, sampler2D page
 // receiver plane (screen derivatives of the axis point say nothing across the tube). The maps
 // hold the casters' centre depth, which the lit side of this surface lies in front of.
 uniform vec2 csmImpostorPixels; // the diameters VTK draws, in pixels: line width, point size
-vec4 csmImpostorShadow(sampler2DShadow map, sampler2DShadow nearest, int j, vec4 vc, vec3 normalVC)
+vec4 csmImpostorShadow(sampler2DShadow map, csmTexelSampler nearest, int j, vec4 vc, vec3 normalVC)
 {
   float r = ZCalcR * (cameraParallel == 1 ? 1.0 : -vc.z);
   vec3 n = normalize(normalVC);

@@ -16,6 +16,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
+#include "vtkTextureUnitManager.h"
 #include "vtk_glew.h"
 
 #include <gtest/gtest.h>
@@ -174,4 +175,122 @@ TEST(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
     EXPECT_GT(penumbra, kSamples * kSamples / 2) << "r = " << r;
   }
   gl->GetState()->PopFramebufferBindings();
+}
+
+// The per-texel compares read the four texels of their footprint with one gather where the
+// context can (CSM_GATHER): the same answer as four clamped compares, inside a tile of the map and
+// where the footprint reaches past the tile's edges (each texel outside reads the edge's).
+TEST(Lookup, PlaneTapsReadTheirFourTexelsWithOneGather)
+{
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(kSamples, kSamples);
+  window->Render();
+  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
+  ASSERT_NE(gl, nullptr);
+  gl->MakeCurrent();
+  if (!vtkCascadedShadowMapPass::GatherTexels())
+  {
+    GTEST_SKIP() << "no GL_ARB_texture_gather here: the compares read a texel each";
+  }
+  std::mt19937 random(11);
+  std::vector<float> depth(kMapWidth * kMapHeight);
+  for (float& d : depth)
+    d = 0.47f + 0.06f * static_cast<float>(random() % 1000) / 999.0f;
+  vtkNew<vtkTextureObject> map;
+  map->SetContext(gl);
+  map->SetWrapS(vtkTextureObject::ClampToEdge);
+  map->SetWrapT(vtkTextureObject::ClampToEdge);
+  map->SetMinificationFilter(vtkTextureObject::Linear);
+  map->SetMagnificationFilter(vtkTextureObject::Linear);
+  map->SetDepthTextureCompare(true);
+  map->SetDepthTextureCompareFunction(vtkTextureObject::Lequal);
+  ASSERT_TRUE(map->CreateDepthFromRaw(
+    kMapWidth, kMapHeight, vtkTextureObject::Float32, VTK_FLOAT, depth.data()));
+  vtkNew<vtkTextureObject> results;
+  results->SetContext(gl);
+  ASSERT_TRUE(results->Allocate2D(kSamples, kSamples, 4, VTK_FLOAT));
+  vtkNew<vtkOpenGLFramebufferObject> target;
+  target->SetContext(gl);
+  gl->GetState()->PushFramebufferBindings();
+  target->Bind();
+  target->AddColorAttachment(0, results);
+  target->ActivateDrawBuffer(0);
+  target->ActivateReadBuffer(0);
+  ASSERT_TRUE(target->CheckFrameBufferStatus(GL_FRAMEBUFFER));
+
+  // A tile of 32 x 30 texels at texel (16, 5) of the map; samples from a tenth of it before its
+  // first texel to a tenth past its last, the receiver plane tilted.
+  const std::string shader = std::string("//VTK::System::Dec\n") +
+    vtkCascadedShadowMapPass::GatherDeclarations() +
+    "in vec2 texCoord;\n"
+    "//VTK::Output::Dec\n" +
+    vtkCascadedShadowMapPass::GetShaderDefinitions(
+      1, vtkCascadedShadowMapPass::KERNEL_GRID, vtkCascadedShadowMapPass::DEBUG_OFF, 1) +
+    csmShadowFS +
+    "\nuniform sampler2DShadow map;\n"
+    "uniform csmTexelSampler texels;\n"
+    "void main()\n"
+    "{\n"
+    "  vec2 size = vec2(" +
+    std::to_string(kMapWidth) + ".0, " + std::to_string(kMapHeight) +
+    ".0);\n"
+    "  vec4 tile = vec4(vec2(16.0, 5.0) / size, vec2(32.0, 30.0) / size);\n"
+    "  vec2 texel = vec2(1.0 / 32.0, 1.0 / 30.0);\n"
+    "  vec2 uv = mix(vec2(-0.1), vec2(1.1), texCoord);\n"
+    "  vec2 dz = vec2(0.25, -0.15);\n"
+    "  float z = 0.5;\n"
+    "  float gathered = csmPlaneTap(texels, tile, texel, uv, z, dz, 0.05);\n"
+    "  vec2 t = uv / texel - 0.5;\n"
+    "  vec2 f = t - floor(t);\n"
+    "  float compared = 0.0;\n"
+    "  for (int c = 0; c < 4; ++c)\n"
+    "  {\n"
+    "    vec2 corner = vec2(float(c & 1), float(c >> 1));\n"
+    "    vec2 centre = (floor(t) + corner + 0.5) * texel;\n"
+    "    vec2 w = mix(vec2(1.0) - f, f, corner);\n"
+    "    compared += w.x * w.y * csmTap(map, tile, texel, centre,\n"
+    "      z + clamp(dot(dz, centre - uv), -0.05, 0.05));\n"
+    "  }\n"
+    "  gl_FragData[0] = vec4(gathered, compared, 0.0, 1.0);\n"
+    "}\n";
+  vtkOpenGLQuadHelper quad(gl, nullptr, shader.c_str(), "");
+  ASSERT_NE(quad.Program, nullptr);
+  gl->GetShaderCache()->ReadyShaderProgram(quad.Program);
+  map->Activate();
+  quad.Program->SetUniformi("map", map->GetTextureUnit());
+  // The same texture on a unit of its own, through a sampler that does not compare (the pass's).
+  vtkTextureUnitManager* units = gl->GetTextureUnitManager();
+  const int unit = units->Allocate();
+  ASSERT_GE(unit, 0);
+  GLuint sampler = 0;
+  glGenSamplers(1, &sampler);
+  glSamplerParameteri(sampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+  glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  gl->GetState()->vtkglActiveTexture(GL_TEXTURE0 + unit);
+  glBindTexture(GL_TEXTURE_2D, map->GetHandle());
+  glBindSampler(static_cast<GLuint>(unit), sampler);
+  quad.Program->SetUniformi("texels", unit);
+  gl->GetState()->vtkglViewport(0, 0, kSamples, kSamples);
+  gl->GetState()->vtkglDisable(GL_DEPTH_TEST);
+  gl->GetState()->vtkglDisable(GL_BLEND);
+  quad.Render();
+  glBindSampler(static_cast<GLuint>(unit), 0);
+  glDeleteSamplers(1, &sampler);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  units->Free(unit);
+  map->Deactivate();
+  std::vector<float> pixels(4 * kSamples * kSamples);
+  glReadPixels(0, 0, kSamples, kSamples, GL_RGBA, GL_FLOAT, pixels.data());
+  gl->GetState()->PopFramebufferBindings();
+  long differing = 0, penumbra = 0;
+  for (int i = 0; i < kSamples * kSamples; ++i)
+  {
+    differing += std::abs(pixels[4 * i] - pixels[4 * i + 1]) > 1.0 / 255.0;
+    penumbra += pixels[4 * i + 1] > 0.05f && pixels[4 * i + 1] < 0.95f;
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_GT(penumbra, kSamples * kSamples / 4); // (the compares are not of constants)
 }
