@@ -241,7 +241,7 @@ void vtkCascadedShadowMapBakerPass::ReportOnce(bool error, const std::string& me
 }
 
 bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
-  vtkOpenGLRenderWindow* window, LightMaps& maps, bool& reallocated)
+  vtkOpenGLRenderWindow* window, csmRendererMaps& state, LightMaps& maps, bool& reallocated)
 {
   reallocated = false;
   // The texture the planner laid out (the same for every count of cascades: a new texture would
@@ -259,48 +259,51 @@ bool vtkCascadedShadowMapBakerPass::PrepareAtlas(
     return true;
   }
   // Kept maps in a texture of another size (a light's scene-fitted map becoming the base of its
-  // pages): the part both sizes share is carried over, through a texture of that size.
+  // pages): a texture of the new size takes the part both sizes share, then replaces the old one
+  // in the light's slot (one allocation and one copy: the allocation is most of the time a
+  // growing atlas costs a frame).
   const unsigned int sharedWidth = std::min(width, atlas->GetWidth());
   const unsigned int sharedHeight = std::min(height, atlas->GetHeight());
   const bool kept = std::any_of(maps.Cascades.begin(), maps.Cascades.end(),
     [](const CascadeMap& map) { return map.Action != MapAction::Draw; });
-  vtkNew<vtkTextureObject> held;
-  bool carried = kept && atlas->GetContext() == window && atlas->GetHandle() && sharedWidth > 0 &&
-    sharedHeight > 0 && (GLEW_VERSION_4_3 || GLEW_ARB_copy_image);
-  if (carried)
+  const bool carried = kept && atlas->GetContext() == window && atlas->GetHandle() &&
+    sharedWidth > 0 && sharedHeight > 0 && (GLEW_VERSION_4_3 || GLEW_ARB_copy_image);
+  vtkSmartPointer<vtkTextureObject> grown =
+    carried ? vtkSmartPointer<vtkTextureObject>::New() : vtkSmartPointer<vtkTextureObject>(atlas);
+  if (!carried)
   {
-    held->SetContext(window);
-    carried = held->AllocateDepth(sharedWidth, sharedHeight, vtkTextureObject::Float32);
-    if (carried)
-    {
-      csmMapDrawing::CopyTexels(
-        atlas, 0, 0, held, 0, 0, static_cast<int>(sharedWidth), static_cast<int>(sharedHeight));
-    }
+    atlas->ReleaseGraphicsResources(window);
   }
-  atlas->ReleaseGraphicsResources(window);
-  atlas->SetContext(window);
-  atlas->SetWrapS(vtkTextureObject::ClampToEdge);
-  atlas->SetWrapT(vtkTextureObject::ClampToEdge);
-  atlas->SetMinificationFilter(vtkTextureObject::Linear); // 2x2 hardware PCF per tap
-  atlas->SetMagnificationFilter(vtkTextureObject::Linear);
-  atlas->SetDepthTextureCompare(true);
-  atlas->SetDepthTextureCompareFunction(vtkTextureObject::Lequal);
-  if (!atlas->AllocateDepth(width, height, vtkTextureObject::Float32))
+  grown->SetContext(window);
+  grown->SetWrapS(vtkTextureObject::ClampToEdge);
+  grown->SetWrapT(vtkTextureObject::ClampToEdge);
+  grown->SetMinificationFilter(vtkTextureObject::Linear); // 2x2 hardware PCF per tap
+  grown->SetMagnificationFilter(vtkTextureObject::Linear);
+  grown->SetDepthTextureCompare(true);
+  grown->SetDepthTextureCompareFunction(vtkTextureObject::Lequal);
+  if (!grown->AllocateDepth(width, height, vtkTextureObject::Float32))
   {
     std::ostringstream message;
     message << "Cannot allocate a " << width << " x " << height << " shadow map atlas";
     this->ReportOnce(true, message.str());
+    if (carried)
+    {
+      atlas->ReleaseGraphicsResources(window);
+    }
     return false;
   }
   // A new GL texture: its compare mode and filters must be sent again, but the setters above
   // did not change the object when the values were the same as before.
-  atlas->Modified();
+  grown->Modified();
   reallocated = true;
   if (carried)
   {
     csmMapDrawing::CopyTexels(
-      held, 0, 0, atlas, 0, 0, static_cast<int>(sharedWidth), static_cast<int>(sharedHeight));
-    held->ReleaseGraphicsResources(window);
+      atlas, 0, 0, grown, 0, 0, static_cast<int>(sharedWidth), static_cast<int>(sharedHeight));
+    atlas->ReleaseGraphicsResources(window);
+    std::replace(state.AtlasPool.begin(), state.AtlasPool.end(),
+      vtkSmartPointer<vtkTextureObject>(atlas), grown);
+    maps.Atlas = grown;
     // (A map outside the shared part is drawn whole.)
     for (CascadeMap& map : maps.Cascades)
     {
@@ -550,7 +553,7 @@ bool vtkCascadedShadowMapBakerPass::BindAtlas(
   // cost its allocation and every map's render); each cascade's map fills the lower left of
   // its tile with the resolution PlanLights chose. False: nothing to draw.
   bool reallocated = false;
-  if (!this->PrepareAtlas(window, maps, reallocated))
+  if (!this->PrepareAtlas(window, state, maps, reallocated))
   {
     maps.Cascades.clear();
     return false;

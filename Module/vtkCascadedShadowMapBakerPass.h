@@ -253,7 +253,8 @@ protected:
     vtkRenderer* renderer, csmRendererMaps& state, std::vector<std::array<double, 6>>& dirty);
   bool Distributed() const;
   void CombineAcrossProcesses(vtkTextureObject* atlas);
-  bool PrepareAtlas(vtkOpenGLRenderWindow* window, LightMaps& maps, bool& reallocated);
+  bool PrepareAtlas(
+    vtkOpenGLRenderWindow* window, csmRendererMaps& state, LightMaps& maps, bool& reallocated);
   int ClosureOf(vtkProp* prop);
   void ReportOnce(bool error, const std::string& message);
   int MaximumShadowedLights(vtkOpenGLRenderWindow* window);
