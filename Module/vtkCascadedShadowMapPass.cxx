@@ -506,7 +506,8 @@ void vtkCascadedShadowMapPass::InjectLookups(
   // light reaches the surface (df > 0: behind it, diffuse and specular are 0 anyway), or always
   // for the debug views.
   const std::string reaches = this->DebugMode == DEBUG_OFF ? "df > 0.0" : "true";
-  // (Right after the #version VTK puts there.)
+  // (Right after the #version VTK's shader cache puts there: every shader it compiles has the
+  // tag, so the sampler of the per-texel compares' unit and the GLSL agree.)
   vtkShaderProgram::Substitute(fragmentShader, kSystemDec,
     std::string(kSystemDec) + "\n" + vtkCascadedShadowMapPass::GatherDeclarations(), false);
   if (screen != csmScreenCache::OFF)
