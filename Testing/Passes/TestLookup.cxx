@@ -88,47 +88,76 @@ std::string fragmentShader(int constantRadius)
 }
 }
 
-TEST(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
+// A GL context, a random depth map of kMapWidth x kMapHeight around the reference depth 0.5
+// (within the receiver plane's change over the kernel: each texel in front of or behind it, and
+// for a tilted receiver so per texel) and a float target of the quad's size for the results.
+class Lookup : public ::testing::Test
 {
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(kSamples, kSamples);
-  window->Render();
-  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
-  ASSERT_NE(gl, nullptr);
-  gl->MakeCurrent();
+protected:
+  void SetUp() override
+  {
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetMultiSamples(0);
+    this->Window->SetSize(kSamples, kSamples);
+    this->Window->Render();
+    this->GL = vtkOpenGLRenderWindow::SafeDownCast(this->Window);
+    ASSERT_NE(this->GL, nullptr);
+    this->GL->MakeCurrent();
+    std::mt19937 random(7);
+    std::vector<float> depth(kMapWidth * kMapHeight);
+    for (float& d : depth)
+      d = 0.47f + 0.06f * static_cast<float>(random() % 1000) / 999.0f;
+    vtkTextureObject* map = this->Map;
+    map->SetContext(this->GL);
+    map->SetWrapS(vtkTextureObject::ClampToEdge);
+    map->SetWrapT(vtkTextureObject::ClampToEdge);
+    map->SetMinificationFilter(vtkTextureObject::Linear);
+    map->SetMagnificationFilter(vtkTextureObject::Linear);
+    map->SetDepthTextureCompare(true);
+    map->SetDepthTextureCompareFunction(vtkTextureObject::Lequal);
+    ASSERT_TRUE(map->CreateDepthFromRaw(
+      kMapWidth, kMapHeight, vtkTextureObject::Float32, VTK_FLOAT, depth.data()));
+    this->Results->SetContext(this->GL);
+    ASSERT_TRUE(this->Results->Allocate2D(kSamples, kSamples, 4, VTK_FLOAT));
+    this->Target->SetContext(this->GL);
+    this->GL->GetState()->PushFramebufferBindings();
+    this->Pushed = true;
+    this->Target->Bind();
+    this->Target->AddColorAttachment(0, this->Results);
+    this->Target->ActivateDrawBuffer(0);
+    this->Target->ActivateReadBuffer(0);
+    ASSERT_TRUE(this->Target->CheckFrameBufferStatus(GL_FRAMEBUFFER));
+  }
+  void TearDown() override
+  {
+    if (this->Pushed)
+    {
+      this->GL->GetState()->PopFramebufferBindings();
+    }
+  }
+  /// The quad drawn over the target, and its pixels read back (RGBA floats).
+  std::vector<float> Draw(vtkOpenGLQuadHelper& quad)
+  {
+    this->GL->GetState()->vtkglViewport(0, 0, kSamples, kSamples);
+    this->GL->GetState()->vtkglDisable(GL_DEPTH_TEST);
+    this->GL->GetState()->vtkglDisable(GL_BLEND);
+    quad.Render();
+    std::vector<float> pixels(4 * kSamples * kSamples);
+    glReadPixels(0, 0, kSamples, kSamples, GL_RGBA, GL_FLOAT, pixels.data());
+    return pixels;
+  }
+  vtkNew<vtkRenderWindow> Window;
+  vtkOpenGLRenderWindow* GL = nullptr;
+  vtkNew<vtkTextureObject> Map;
+  vtkNew<vtkTextureObject> Results;
+  vtkNew<vtkOpenGLFramebufferObject> Target;
+  bool Pushed = false;
+};
 
-  // A random depth map around the reference depth 0.5, within the receiver plane's change over
-  // the kernel: each texel in front of or behind it, and for a tilted receiver so per texel.
-  std::mt19937 random(7);
-  std::vector<float> depth(kMapWidth * kMapHeight);
-  for (float& d : depth)
-    d = 0.47f + 0.06f * static_cast<float>(random() % 1000) / 999.0f;
-  vtkNew<vtkTextureObject> map;
-  map->SetContext(gl);
-  map->SetWrapS(vtkTextureObject::ClampToEdge);
-  map->SetWrapT(vtkTextureObject::ClampToEdge);
-  map->SetMinificationFilter(vtkTextureObject::Linear);
-  map->SetMagnificationFilter(vtkTextureObject::Linear);
-  map->SetDepthTextureCompare(true);
-  map->SetDepthTextureCompareFunction(vtkTextureObject::Lequal);
-  ASSERT_TRUE(map->CreateDepthFromRaw(
-    kMapWidth, kMapHeight, vtkTextureObject::Float32, VTK_FLOAT, depth.data()));
-
-  // Results as floats: a colour texture of the quad's size.
-  vtkNew<vtkTextureObject> results;
-  results->SetContext(gl);
-  ASSERT_TRUE(results->Allocate2D(kSamples, kSamples, 4, VTK_FLOAT));
-  vtkNew<vtkOpenGLFramebufferObject> target;
-  target->SetContext(gl);
-  gl->GetState()->PushFramebufferBindings();
-  target->Bind();
-  target->AddColorAttachment(0, results);
-  target->ActivateDrawBuffer(0);
-  target->ActivateReadBuffer(0);
-  ASSERT_TRUE(target->CheckFrameBufferStatus(GL_FRAMEBUFFER));
-
+TEST_F(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
+{
+  vtkOpenGLRenderWindow* gl = this->GL;
+  vtkTextureObject* map = this->Map;
   // Each radius with the kernel size as a uniform (many lights) and compiled in (few lights).
   for (int variant = 0; variant < 6; ++variant)
   {
@@ -144,13 +173,8 @@ TEST(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
     {
       quad.Program->SetUniformi("csmPCFRadius", r);
     }
-    gl->GetState()->vtkglViewport(0, 0, kSamples, kSamples);
-    gl->GetState()->vtkglDisable(GL_DEPTH_TEST);
-    gl->GetState()->vtkglDisable(GL_BLEND);
-    quad.Render();
+    const std::vector<float> pixels = this->Draw(quad);
     map->Deactivate();
-    std::vector<float> pixels(4 * kSamples * kSamples);
-    glReadPixels(0, 0, kSamples, kSamples, GL_RGBA, GL_FLOAT, pixels.data());
     long differing = 0, penumbra = 0, differingExact = 0, differingShared = 0;
     double worst = 0.0;
     for (int i = 0; i < kSamples * kSamples; ++i)
@@ -174,52 +198,19 @@ TEST(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
     // The map is random: most samples see both depths (the comparison is not of constants).
     EXPECT_GT(penumbra, kSamples * kSamples / 2) << "r = " << r;
   }
-  gl->GetState()->PopFramebufferBindings();
 }
 
 // The per-texel compares read the four texels of their footprint with one gather where the
 // context can (CSM_GATHER): the same answer as four clamped compares, inside a tile of the map and
 // where the footprint reaches past the tile's edges (each texel outside reads the edge's).
-TEST(Lookup, PlaneTapsReadTheirFourTexelsWithOneGather)
+TEST_F(Lookup, PlaneTapsReadTheirFourTexelsWithOneGather)
 {
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetMultiSamples(0);
-  window->SetSize(kSamples, kSamples);
-  window->Render();
-  auto* gl = vtkOpenGLRenderWindow::SafeDownCast(window);
-  ASSERT_NE(gl, nullptr);
-  gl->MakeCurrent();
+  vtkOpenGLRenderWindow* gl = this->GL;
+  vtkTextureObject* map = this->Map;
   if (!vtkCascadedShadowMapPass::GatherTexels())
   {
     GTEST_SKIP() << "no GL_ARB_texture_gather here: the compares read a texel each";
   }
-  std::mt19937 random(11);
-  std::vector<float> depth(kMapWidth * kMapHeight);
-  for (float& d : depth)
-    d = 0.47f + 0.06f * static_cast<float>(random() % 1000) / 999.0f;
-  vtkNew<vtkTextureObject> map;
-  map->SetContext(gl);
-  map->SetWrapS(vtkTextureObject::ClampToEdge);
-  map->SetWrapT(vtkTextureObject::ClampToEdge);
-  map->SetMinificationFilter(vtkTextureObject::Linear);
-  map->SetMagnificationFilter(vtkTextureObject::Linear);
-  map->SetDepthTextureCompare(true);
-  map->SetDepthTextureCompareFunction(vtkTextureObject::Lequal);
-  ASSERT_TRUE(map->CreateDepthFromRaw(
-    kMapWidth, kMapHeight, vtkTextureObject::Float32, VTK_FLOAT, depth.data()));
-  vtkNew<vtkTextureObject> results;
-  results->SetContext(gl);
-  ASSERT_TRUE(results->Allocate2D(kSamples, kSamples, 4, VTK_FLOAT));
-  vtkNew<vtkOpenGLFramebufferObject> target;
-  target->SetContext(gl);
-  gl->GetState()->PushFramebufferBindings();
-  target->Bind();
-  target->AddColorAttachment(0, results);
-  target->ActivateDrawBuffer(0);
-  target->ActivateReadBuffer(0);
-  ASSERT_TRUE(target->CheckFrameBufferStatus(GL_FRAMEBUFFER));
-
   // A tile of 32 x 30 texels at texel (16, 5) of the map; samples from a tenth of it before its
   // first texel to a tenth past its last, the receiver plane tilted.
   const std::string shader = std::string("//VTK::System::Dec\n") +
@@ -273,18 +264,12 @@ TEST(Lookup, PlaneTapsReadTheirFourTexelsWithOneGather)
   glBindTexture(GL_TEXTURE_2D, map->GetHandle());
   glBindSampler(static_cast<GLuint>(unit), sampler);
   quad.Program->SetUniformi("texels", unit);
-  gl->GetState()->vtkglViewport(0, 0, kSamples, kSamples);
-  gl->GetState()->vtkglDisable(GL_DEPTH_TEST);
-  gl->GetState()->vtkglDisable(GL_BLEND);
-  quad.Render();
+  const std::vector<float> pixels = this->Draw(quad);
   glBindSampler(static_cast<GLuint>(unit), 0);
   glDeleteSamplers(1, &sampler);
   glBindTexture(GL_TEXTURE_2D, 0);
   units->Free(unit);
   map->Deactivate();
-  std::vector<float> pixels(4 * kSamples * kSamples);
-  glReadPixels(0, 0, kSamples, kSamples, GL_RGBA, GL_FLOAT, pixels.data());
-  gl->GetState()->PopFramebufferBindings();
   long differing = 0, penumbra = 0;
   for (int i = 0; i < kSamples * kSamples; ++i)
   {
