@@ -270,6 +270,7 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   std::string signature;
   ShaderUniforms& u = this->Uniforms;
   u = ShaderUniforms();
+  this->GatherThisFrame = vtkCascadedShadowMapPass::GatherTexels();
   for (const auto& maps : baker->GetLightMaps(renderer))
   {
     // (The atlas's units first: a page table takes a unit only where one is left.)
@@ -283,8 +284,15 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
 #endif
     signature += std::to_string(maps.LightIndex) + ";";
   }
-  // The kernel, its size (for few lights) and the debug view are compiled into the lookup (see
-  // csmShadowFS.glsl).
+  if (this->NearestSampler)
+  {
+    // (Raw depths for the gather; else one texel's compare.)
+    glSamplerParameteri(this->NearestSampler, GL_TEXTURE_COMPARE_MODE,
+      this->GatherThisFrame ? GL_NONE : GL_COMPARE_REF_TO_TEXTURE);
+  }
+  // The kernel, its size (for few lights), the debug view and the gather are compiled into the
+  // lookup (see csmShadowFS.glsl).
+  signature += this->GatherThisFrame ? " gather" : "";
   signature += " pages";
   for (size_t j = 0; j < u.Lights(); ++j)
   {
@@ -362,10 +370,10 @@ bool vtkCascadedShadowMapPass::GatherTexels()
   return (GLEW_VERSION_3_3 || GLEW_ARB_sampler_objects) && GLEW_ARB_texture_gather;
 }
 
-std::string vtkCascadedShadowMapPass::GatherDeclarations()
+std::string vtkCascadedShadowMapPass::GatherDeclarations(bool gather)
 {
-  return GatherTexels() ? "#extension GL_ARB_texture_gather : require\n#define CSM_GATHER 1\n"
-                        : "#define CSM_GATHER 0\n";
+  return gather ? "#extension GL_ARB_texture_gather : require\n#define CSM_GATHER 1\n"
+                : "#define CSM_GATHER 0\n";
 }
 
 int vtkCascadedShadowMapPass::BindNearest(vtkOpenGLRenderWindow* window, vtkTextureObject* atlas)
@@ -378,6 +386,7 @@ int vtkCascadedShadowMapPass::BindNearest(vtkOpenGLRenderWindow* window, vtkText
   const int unit = units && (GLEW_VERSION_3_3 || GLEW_ARB_sampler_objects) ? units->Allocate() : -1;
   if (unit < 0)
   {
+    this->GatherThisFrame = false; // (the atlas's own unit compares)
     return atlas->GetTextureUnit();
   }
   if (!this->NearestSampler)
@@ -388,8 +397,6 @@ int vtkCascadedShadowMapPass::BindNearest(vtkOpenGLRenderWindow* window, vtkText
     glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glSamplerParameteri(sampler, GL_TEXTURE_COMPARE_MODE,
-      vtkCascadedShadowMapPass::GatherTexels() ? GL_NONE : GL_COMPARE_REF_TO_TEXTURE);
     glSamplerParameteri(sampler, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     this->NearestSampler = sampler;
   }
@@ -509,7 +516,9 @@ void vtkCascadedShadowMapPass::InjectLookups(
   // (Right after the #version VTK's shader cache puts there: every shader it compiles has the
   // tag, so the sampler of the per-texel compares' unit and the GLSL agree.)
   vtkShaderProgram::Substitute(fragmentShader, kSystemDec,
-    std::string(kSystemDec) + "\n" + vtkCascadedShadowMapPass::GatherDeclarations(), false);
+    std::string(kSystemDec) + "\n" +
+      vtkCascadedShadowMapPass::GatherDeclarations(this->GatherThisFrame),
+    false);
   if (screen != csmScreenCache::OFF)
   {
     vtkShaderProgram::Substitute(fragmentShader, kSystemDec,
@@ -593,7 +602,7 @@ bool vtkCascadedShadowMapPass::ScreenShadersCompile(vtkOpenGLRenderWindow* windo
     std::ostringstream fragment;
     fragment << kSystemDec << "\n"
              << vtkCascadedShadowMapPass::ScreenExtensions(samples)
-             << vtkCascadedShadowMapPass::GatherDeclarations()
+             << vtkCascadedShadowMapPass::GatherDeclarations(GatherTexels())
              << vtkCascadedShadowMapPass::GetShaderDefinitions(1, KERNEL_GRID, DEBUG_OFF, 1)
              << "#define CSM_SCREEN " << mode << "\n#define CSM_SCREEN_SAMPLES " << samples << "\n"
              << csmShadowFS << "\n"

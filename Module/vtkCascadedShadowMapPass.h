@@ -77,10 +77,11 @@ public:
   /// and option values it uses, for `lights` shadowed lights, a kernel (Kernels), a debug mode
   /// (DebugModes) and the PCF radius compiled in (-1: the uniform csmPCFRadius).
   static std::string GetShaderDefinitions(int lights, int kernel, int debugMode, int pcfRadius);
-  /// Does the current context read the per-texel compares' four texels with one gather
-  /// (CSM_GATHER in csmShadowFS.glsl), and the #extension and #define that say so to the GLSL.
+  /// Can the current context read the per-texel compares' four texels with one gather
+  /// (CSM_GATHER in csmShadowFS.glsl), and the #extension and #define that say whether a
+  /// shader does.
   static bool GatherTexels();
-  static std::string GatherDeclarations();
+  static std::string GatherDeclarations(bool gather);
 
   enum Kernels
   {
@@ -253,6 +254,9 @@ protected:
   /// The units Render() bound the atlases to for NearestUnit, and their sampler object.
   std::vector<int> NearestUnits;
   unsigned int NearestSampler = 0;
+  /// This frame's shaders gather the per-texel compares' texels: the context can, and every
+  /// light's atlas got a unit of its own for them (else they compare through the atlas's unit).
+  bool GatherThisFrame = false;
   int BindNearest(vtkOpenGLRenderWindow* window, vtkTextureObject* atlas);
   void UnbindNearest(vtkOpenGLRenderWindow* window);
   /// Render() with the baker's maps: the uniforms, then the renderer's geometry.

@@ -214,7 +214,7 @@ TEST_F(Lookup, PlaneTapsReadTheirFourTexelsWithOneGather)
   // A tile of 32 x 30 texels at texel (16, 5) of the map; samples from a tenth of it before its
   // first texel to a tenth past its last, the receiver plane tilted.
   const std::string shader = std::string("//VTK::System::Dec\n") +
-    vtkCascadedShadowMapPass::GatherDeclarations() +
+    vtkCascadedShadowMapPass::GatherDeclarations(true) +
     "in vec2 texCoord;\n"
     "//VTK::Output::Dec\n" +
     vtkCascadedShadowMapPass::GetShaderDefinitions(
