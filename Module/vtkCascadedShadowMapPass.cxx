@@ -73,6 +73,12 @@ size_t occurrences(const std::string& text, const char* word)
   return n;
 }
 
+/// Does the current context have sampler objects (for the per-texel compares' own unit)?
+bool samplerObjects()
+{
+  return GLEW_VERSION_3_3 || GLEW_ARB_sampler_objects;
+}
+
 /// Can a prop's fragments take their factors from the pixel (csmScreenCache)? Opaque, and shaded
 /// only where the depth test passed them: no depth of their own, no discard but VTK's of a fully
 /// transparent colour (which an opaque prop does not have); and VTK's tags where the extension
@@ -367,7 +373,7 @@ bool vtkCascadedShadowMapPass::SingleMapShaders() const
 
 bool vtkCascadedShadowMapPass::GatherTexels()
 {
-  return (GLEW_VERSION_3_3 || GLEW_ARB_sampler_objects) && GLEW_ARB_texture_gather;
+  return samplerObjects() && GLEW_ARB_texture_gather;
 }
 
 std::string vtkCascadedShadowMapPass::GatherDeclarations(bool gather)
@@ -383,7 +389,7 @@ int vtkCascadedShadowMapPass::BindNearest(vtkOpenGLRenderWindow* window, vtkText
   // footprint at once (GatherTexels), or else one that reads one texel a compare (nearest), not
   // a bilinear compare's four.
   vtkTextureUnitManager* units = window ? window->GetTextureUnitManager() : nullptr;
-  const int unit = units && (GLEW_VERSION_3_3 || GLEW_ARB_sampler_objects) ? units->Allocate() : -1;
+  const int unit = units && samplerObjects() ? units->Allocate() : -1;
   if (unit < 0)
   {
     this->GatherThisFrame = false; // (the atlas's own unit compares)
@@ -513,19 +519,16 @@ void vtkCascadedShadowMapPass::InjectLookups(
   // light reaches the surface (df > 0: behind it, diffuse and specular are 0 anyway), or always
   // for the debug views.
   const std::string reaches = this->DebugMode == DEBUG_OFF ? "df > 0.0" : "true";
-  // (Right after the #version VTK's shader cache puts there: every shader it compiles has the
-  // tag, so the sampler of the per-texel compares' unit and the GLSL agree.)
+  // The extensions and the gather's #define right after the #version VTK's shader cache puts
+  // there (every shader it compiles has the tag, so the sampler of the per-texel compares' unit
+  // and the GLSL agree).
   vtkShaderProgram::Substitute(fragmentShader, kSystemDec,
     std::string(kSystemDec) + "\n" +
+      (screen != csmScreenCache::OFF
+          ? vtkCascadedShadowMapPass::ScreenExtensions(this->ScreenCache->GetSamples())
+          : std::string()) +
       vtkCascadedShadowMapPass::GatherDeclarations(this->GatherThisFrame),
     false);
-  if (screen != csmScreenCache::OFF)
-  {
-    vtkShaderProgram::Substitute(fragmentShader, kSystemDec,
-      std::string(kSystemDec) + "\n" +
-        vtkCascadedShadowMapPass::ScreenExtensions(this->ScreenCache->GetSamples()),
-      false);
-  }
   std::ostringstream impl;
   impl << kVertexVC
        << (screen == csmScreenCache::READ
