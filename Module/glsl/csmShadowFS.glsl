@@ -149,6 +149,45 @@ float csmTap(sampler2DShadow map, vec4 tile, vec2 texel, vec2 uv, float z)
   return textureLod(map, vec3(tile.xy + inside * tile.zw, z), 0.0);
 }
 
+// The four texels of a tile from index n to n + 1 ((n.x, n.y), (n.x + 1, n.y), (n.x, n.y + 1),
+// (n.x + 1, n.y + 1)), each compared with its own reference depth: 1 where the reference is not
+// behind the texel's depth. A texel outside the tile reads the edge texel, as a clamped compare
+// does.
+vec4 csmCompareTexels(csmTexelSampler nearest, vec4 tile, vec2 texel, vec2 n, vec4 reference)
+{
+#if CSM_GATHER
+  // The four in one gather at the corner they share, kept a texel inside the tile; along each
+  // axis the lower texel is the footprint's upper one past the last texel, the upper its lower
+  // one before the first. The gather returns (lower x, upper y), (upper, upper), (upper, lower),
+  // (lower, lower).
+  vec2 last = floor(1.0 / texel + 0.5) - 1.0; // (an index: 1 / texel is not exact)
+  vec4 d = textureGather(nearest, tile.xy + clamp(n + 1.0, vec2(1.0), last) * texel * tile.zw);
+  bvec2 pastLast = greaterThan(n, last - 1.0);
+  bvec2 beforeFirst = lessThan(n, vec2(0.0));
+  vec2 lowerRow = vec2(pastLast.x ? d.z : d.w, beforeFirst.x ? d.w : d.z);
+  vec2 upperRow = vec2(pastLast.x ? d.y : d.x, beforeFirst.x ? d.x : d.y);
+  vec4 texels = vec4(pastLast.y ? upperRow : lowerRow, beforeFirst.y ? lowerRow : upperRow);
+  return vec4(lessThanEqual(reference, texels));
+#else
+  vec4 lit;
+  for (int k = 0; k < 4; ++k)
+  {
+    lit[k] = csmTap(nearest, tile, texel, (n + vec2(float(k & 1), float(k >> 1)) + 0.5) * texel,
+      reference[k]);
+  }
+  return lit;
+#endif
+}
+
+// The receiver plane's depth at the centres of the texels n to n + 1 (in csmCompareTexels'
+// order), given its depth toN at n's centre and its change per texel along s and t: within
+// maxStep of the depth at the kernel's centre, so that grazing receivers keep their taps close.
+vec4 csmPlaneDepths(float z, float toN, vec2 perTexel, float maxStep)
+{
+  return z + clamp(toN + vec4(0.0, perTexel.x, perTexel.y, perTexel.x + perTexel.y), -maxStep,
+               maxStep);
+}
+
 // A bilinear compare at uv whose four texels each compare the receiver plane's depth at their own
 // centre (z at uv, dz its change per unit of uv). One hardware compare takes z for all four and
 // misses the plane's change over the half texel to each centre: enough, on a face nearly along
@@ -160,34 +199,9 @@ float csmPlaneTap(csmTexelSampler nearest, vec4 tile, vec2 texel, vec2 uv, float
   vec2 t = uv / texel - 0.5;
   vec2 base = floor(t);
   vec2 f = t - base;
-  float s[4];
-#if CSM_GATHER
-  // The four texels in one gather at the corner they share, kept a texel inside the tile; a
-  // texel outside the tile reads the edge texel, as the clamped compare does: along each axis
-  // the lower texel is the footprint's upper one past the last texel, the upper its lower one
-  // before the first. The gather returns (lower x, upper y), (upper, upper), (upper, lower),
-  // (lower, lower).
-  vec2 last = floor(1.0 / texel + 0.5) - 1.0; // (an index: 1 / texel is not exact)
-  vec4 d = textureGather(nearest, tile.xy + clamp(base + 1.0, vec2(1.0), last) * texel * tile.zw);
-  bvec2 pastLast = greaterThan(base, last - 1.0);
-  bvec2 beforeFirst = lessThan(base, vec2(0.0));
-  vec2 lowerRow = vec2(pastLast.x ? d.z : d.w, beforeFirst.x ? d.w : d.z);
-  vec2 upperRow = vec2(pastLast.x ? d.y : d.x, beforeFirst.x ? d.x : d.y);
-  vec4 texels = vec4(pastLast.y ? upperRow : lowerRow, beforeFirst.y ? lowerRow : upperRow);
-  for (int k = 0; k < 4; ++k)
-  {
-    vec2 centre = (base + vec2(float(k & 1), float(k >> 1)) + 0.5) * texel;
-    float reference = z + clamp(dot(dz, centre - uv), -maxStep, maxStep);
-    s[k] = reference <= texels[k] ? 1.0 : 0.0;
-  }
-#else
-  for (int k = 0; k < 4; ++k)
-  {
-    vec2 centre = (base + vec2(float(k & 1), float(k >> 1)) + 0.5) * texel;
-    s[k] = csmTap(nearest, tile, texel, centre, z + clamp(dot(dz, centre - uv), -maxStep, maxStep));
-  }
-#endif
-  return mix(mix(s[0], s[1], f.x), mix(s[2], s[3], f.x), f.y);
+  vec4 lit = csmCompareTexels(nearest, tile, texel, base,
+    csmPlaneDepths(z, dot(dz, (base + 0.5) * texel - uv), dz * texel, maxStep));
+  return mix(mix(lit.x, lit.y, f.x), mix(lit.z, lit.w, f.x), f.y);
 }
 
 // One compare of a kernel's tap: the hardware's bilinear compare at the tap's own depth, or, for
@@ -199,16 +213,51 @@ float csmKernelTap(sampler2DShadow map, csmTexelSampler nearest, vec4 tile, vec2
                : csmTap(map, tile, texel, uv, z);
 }
 
+// The grid kernel below for a face whose own depth is not in the map: the (2r+2)^2 texels its
+// bilinear compares touch, each compared once with the receiver plane at its own centre and
+// weighed as the box of compares weighs it ([1-f, 1, ..., 1, f] along each axis), four at a time.
+float csmGridPCFTexels(csmTexelSampler nearest, vec4 tile, vec2 texel, vec2 uv, float zRef, vec2 dz)
+{
+  int r = CSM_PCF_RADIUS;
+  float maxStep = 0.05;
+  vec2 t = uv / texel - 0.5;
+  vec2 base = floor(t);
+  vec2 f = t - base;
+  vec2 first = base - float(r); // the footprint's first texel
+  vec2 perTexel = dz * texel;
+  float toFirst = dot(dz, (first + 0.5) * texel - uv);
+  float sum = 0.0;
+  for (int i = 0; i <= r; ++i)
+  {
+    vec2 wx = vec2(i == 0 ? 1.0 - f.x : 1.0, i == r ? f.x : 1.0);
+    for (int k = 0; k <= r; ++k)
+    {
+      vec2 wy = vec2(k == 0 ? 1.0 - f.y : 1.0, k == r ? f.y : 1.0);
+      vec2 block = vec2(float(2 * i), float(2 * k));
+      vec4 lit = csmCompareTexels(nearest, tile, texel, first + block,
+        csmPlaneDepths(zRef, toFirst + dot(block, perTexel), perTexel, maxStep));
+      sum += dot(lit, vec4(wx.x * wy.x, wx.y * wy.x, wx.x * wy.y, wx.y * wy.y));
+    }
+  }
+  float n = float(2 * r + 1);
+  return sum / (n * n);
+}
+
 // Texel-space PCF over (2r+1) x (2r+1) texels (r = CSM_PCF_RADIUS): the mean of (2r+1)^2 hardware
 // bilinear compares one texel apart around uv, taken with (r+1)^2 taps. Along each axis those
 // compares weigh the 2r+2 texels they touch [1-f, 1, ..., 1, f] (f: uv's fraction between texel
 // centres); each adjacent pair of texels is one bilinear tap of weight w0 + w1 placed w1/(w0+w1)
 // past the first (the "optimized PCF" of The Witness / Castano 2013, exact for the box of
-// bilinear compares). Every tap keeps its own receiver-plane depth (Barroso & Celes 2007, §2.2).
+// bilinear compares). Every tap keeps its own receiver-plane depth (Barroso & Celes 2007, §2.2);
+// where each texel compares its own (exact), csmGridPCFTexels.
 float csmGridPCF(
   sampler2DShadow map, csmTexelSampler nearest, vec4 tile, vec2 texel, vec2 uv, float zRef,
   vec2 dz, bool exact)
 {
+  if (exact)
+  {
+    return csmGridPCFTexels(nearest, tile, texel, uv, zRef, dz);
+  }
   int r = CSM_PCF_RADIUS;
   float maxStep = 0.05; // keep grazing receivers from throwing the taps far off their plane
   vec2 t = uv / texel - 0.5; // in texel-centre units
@@ -230,7 +279,7 @@ float csmGridPCF(
       vec2 tap = (vec2(px, py) + 0.5) * texel;
       vec2 o = tap - uv;
       float z = zRef + clamp(dot(dz, o), -maxStep, maxStep);
-      sum += wx * wy * csmKernelTap(map, nearest, tile, texel, tap, z, dz, maxStep, exact);
+      sum += wx * wy * csmTap(map, tile, texel, tap, z);
     }
   }
   float n = float(2 * r + 1);

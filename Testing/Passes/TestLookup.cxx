@@ -202,7 +202,8 @@ TEST_F(Lookup, GridKernelEqualsTheBoxOfBilinearCompares)
 
 // The per-texel compares read the four texels of their footprint with one gather where the
 // context can (CSM_GATHER): the same answer as four clamped compares, inside a tile of the map and
-// where the footprint reaches past the tile's edges (each texel outside reads the edge's).
+// where the footprint reaches past the tile's edges (each texel outside reads the edge's); the
+// grid kernel's sixteen texels, four to a gather, the same as its nine bilinear taps.
 TEST_F(Lookup, PlaneTapsReadTheirFourTexelsWithOneGather)
 {
   vtkOpenGLRenderWindow* gl = this->GL;
@@ -244,7 +245,25 @@ TEST_F(Lookup, PlaneTapsReadTheirFourTexelsWithOneGather)
     "    compared += w.x * w.y * csmTap(map, tile, texel, centre,\n"
     "      z + clamp(dot(dz, centre - uv), -0.05, 0.05));\n"
     "  }\n"
-    "  gl_FragData[0] = vec4(gathered, compared, 0.0, 1.0);\n"
+    "  // The 3x3 kernel's sixteen texels, four to a gather, against its nine taps' compares.\n"
+    "  float kernel = csmGridPCF(map, texels, tile, texel, uv, z, dz, true);\n"
+    "  float kernelCompared = 0.0;\n"
+    "  for (int i = -1; i <= 1; ++i)\n"
+    "    for (int k = -1; k <= 1; ++k)\n"
+    "    {\n"
+    "      vec2 tap = uv + vec2(i, k) * texel;\n"
+    "      vec2 s = tap / texel - 0.5;\n"
+    "      vec2 g = s - floor(s);\n"
+    "      for (int c = 0; c < 4; ++c)\n"
+    "      {\n"
+    "        vec2 corner = vec2(float(c & 1), float(c >> 1));\n"
+    "        vec2 centre = (floor(s) + corner + 0.5) * texel;\n"
+    "        vec2 w = mix(vec2(1.0) - g, g, corner);\n"
+    "        kernelCompared += w.x * w.y * csmTap(map, tile, texel, centre, z + dot(dz, centre - "
+    "uv));\n"
+    "      }\n"
+    "    }\n"
+    "  gl_FragData[0] = vec4(gathered, compared, kernel, kernelCompared / 9.0);\n"
     "}\n";
   vtkOpenGLQuadHelper quad(gl, nullptr, shader.c_str(), "");
   ASSERT_NE(quad.Program, nullptr);
@@ -270,12 +289,16 @@ TEST_F(Lookup, PlaneTapsReadTheirFourTexelsWithOneGather)
   glBindTexture(GL_TEXTURE_2D, 0);
   units->Free(unit);
   map->Deactivate();
-  long differing = 0, penumbra = 0;
+  long differing = 0, penumbra = 0, differingKernel = 0, kernelPenumbra = 0;
   for (int i = 0; i < kSamples * kSamples; ++i)
   {
     differing += std::abs(pixels[4 * i] - pixels[4 * i + 1]) > 1.0 / 255.0;
     penumbra += pixels[4 * i + 1] > 0.05f && pixels[4 * i + 1] < 0.95f;
+    differingKernel += std::abs(pixels[4 * i + 2] - pixels[4 * i + 3]) > 1.0 / 255.0;
+    kernelPenumbra += pixels[4 * i + 3] > 0.05f && pixels[4 * i + 3] < 0.95f;
   }
   EXPECT_EQ(differing, 0);
   EXPECT_GT(penumbra, kSamples * kSamples / 4); // (the compares are not of constants)
+  EXPECT_EQ(differingKernel, 0);
+  EXPECT_GT(kernelPenumbra, kSamples * kSamples / 2);
 }
