@@ -629,7 +629,8 @@ Options Parse(int argc, char** argv)
         "usage: csm-bench [--quick] [--breakdown] [--out FILE.csv] [--plot FILE.png]\n"
         "                 [--size WxH] [--frames N] [--budget TEXELS_SIDE] [--scenes a,b,...]\n"
         "scenes: platform, platform-beams (its bars as lines drawn as tubes), platform-2m,\n"
-        "towers, engine. --quick: platform (or --scenes),\n"
+        "towers, engine, or a model file (.vtp .vtk .stl .ply .obj .glb .gltf, on a\n"
+        "ground). --quick: platform (or --scenes),\n"
         "640x480, 6 frames a path, budget 2048, VTK's pass and ours with the defaults.\n"
         "Timed paths: coarse orbit + fly-through (interleaved), an interactive orbit of\n"
         "2 degrees a frame and a still camera. --breakdown: per frame, the planning and\n"
@@ -702,8 +703,8 @@ Options Parse(int argc, char** argv)
       while (std::getline(list, name, ','))
       {
         if (name != "platform" && name != "platform-beams" && name != "platform-2m" &&
-          name != "towers" && name != "engine")
-          fail("unknown scene '" + name + "'");
+          name != "towers" && name != "engine" && !csmScenes::NamesAFile(name))
+          fail("unknown scene '" + name + "' (or a model file: a path with its extension)");
         o.Scenes.push_back(name);
       }
       scenesGiven = true;
@@ -785,10 +786,13 @@ int main(int argc, char** argv)
       scene = csmScenes::Towers();
     else
     {
+      // The engine's path comes from CMake; any other name is a model file.
       std::string error;
-      if (!csmScenes::FromFile(CSM_ENGINE_MODEL, scene, error)) // the path comes from CMake
+      if (!csmScenes::FromFile(
+            sceneName == "engine" ? CSM_ENGINE_MODEL : sceneName.c_str(), scene, error))
       {
-        std::fprintf(stderr, "csm-bench: skipping scene engine: %s\n", error.c_str());
+        std::fprintf(
+          stderr, "csm-bench: skipping scene %s: %s\n", sceneName.c_str(), error.c_str());
         continue;
       }
     }

@@ -358,8 +358,10 @@ WalkOptions ParseWalk(int argc, char** argv)
       std::string name;
       while (std::getline(list, name, ','))
       {
-        if (name != "engine" && name != "towers" && name != "lattice" && name != "platform")
-          walkFail("unknown scene '" + name + "' (engine, towers, lattice, platform)");
+        if (name != "engine" && name != "towers" && name != "lattice" && name != "platform" &&
+          !csmScenes::NamesAFile(name))
+          walkFail("unknown scene '" + name +
+            "' (engine, towers, lattice, platform, or a model file: a path with its extension)");
         o.Scenes.push_back(name);
       }
     }
@@ -408,7 +410,7 @@ std::string csmWalk::Usage()
     "render): VTK's pass as it comes, ours and the\n"
     "unshadowed frame side by side, with the maps drawn and kept and the texels and caster cells\n"
     "drawn a frame.\n"
-    "  --scenes      engine, towers, lattice, platform [%s]\n"
+    "  --scenes      engine, towers, lattice, platform, or a model file [%s]\n"
     "  --frames N    frames a path, 3..1000 [%d]\n"
     "  --rounds N    rounds of every path, 1..20 [%d]\n"
     "  --size WxH    the window, 64..4096 each [%dx%d]\n"
@@ -460,9 +462,10 @@ int csmWalk::Run(int argc, char** argv, const std::string& engineModel)
     else
     {
       std::string error;
-      if (!csmScenes::FromFile(engineModel, scene, error))
+      if (!csmScenes::FromFile(name == "engine" ? engineModel : name, scene, error))
       {
-        std::fprintf(stderr, "csm-bench --walk: skipping scene engine: %s\n", error.c_str());
+        std::fprintf(
+          stderr, "csm-bench --walk: skipping scene %s: %s\n", name.c_str(), error.c_str());
         continue;
       }
     }

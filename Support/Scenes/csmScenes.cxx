@@ -722,6 +722,23 @@ vtkSmartPointer<vtkPolyData> ReadSurface(
 }
 } // namespace
 
+namespace
+{
+/// The extensions FromFile reads.
+const char* const kModelFormats[] = { ".vtp", ".vtk", ".stl", ".ply", ".obj", ".glb", ".gltf" };
+
+std::string extensionOf(const std::string& path)
+{
+  return vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));
+}
+}
+
+bool NamesAFile(const std::string& name)
+{
+  return std::find(std::begin(kModelFormats), std::end(kModelFormats), extensionOf(name)) !=
+    std::end(kModelFormats);
+}
+
 bool FromFile(const std::string& path, Scene& scene, std::string& error)
 {
   if (vtksys::SystemTools::FileIsDirectory(path))
@@ -748,10 +765,8 @@ bool FromFile(const std::string& path, Scene& scene, std::string& error)
       ", not a regular file";
     return false;
   }
-  const std::string ext =
-    vtksys::SystemTools::LowerCase(vtksys::SystemTools::GetFilenameLastExtension(path));
-  const char* const formats[] = { ".vtp", ".vtk", ".stl", ".ply", ".obj", ".glb", ".gltf" };
-  if (std::find(std::begin(formats), std::end(formats), ext) == std::end(formats))
+  const std::string ext = extensionOf(path);
+  if (!NamesAFile(path))
   {
     error = "cannot read '" + path + "': unknown format (use .vtp .vtk .stl .ply .obj .glb .gltf)";
     return false;

@@ -60,6 +60,10 @@ Scene Bracket();
 /// false with a message when the file cannot be read or holds no surface.
 bool FromFile(const std::string& path, Scene& scene, std::string& error);
 
+/// Does a scene name given on a command line name a model file (a path with an extension
+/// FromFile reads) rather than a built-in scene?
+bool NamesAFile(const std::string& name);
+
 /// Adds the scene's actors to the renderer and sets the default camera (and clipping range).
 void Install(const Scene& scene, vtkRenderer* renderer, double aspect);
 
