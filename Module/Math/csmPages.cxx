@@ -88,8 +88,9 @@ namespace
 class PageMarks
 {
 public:
-  PageMarks(const PageLevels& levels, double vsNear, double vsFar)
+  PageMarks(const PageLevels& levels, double vsNear, double vsFar, std::size_t mostPages)
     : Count(std::min(levels.count, kMaxPageLevels))
+    , Most(mostPages)
   {
     auto windowAt = [&](double fineness) {
       return windowDepthFromViewDepth(
@@ -152,7 +153,8 @@ public:
   }
 
   /// Every page of levels k0 .. k1 that base rectangle [b0, b1] touches (a box that stood in
-  /// for a caster's samples).
+  /// for a caster's samples); none, and Overflowed, where one level's part is more than the
+  /// most pages wanted (a fine level's rectangle can hold billions).
   void rect(int k0, int k1, const glm::dvec2& b0, const glm::dvec2& b1)
   {
     for (int k = std::max(k0, 1); k <= std::min(k1, this->Count); ++k)
@@ -163,6 +165,11 @@ public:
         glm::floor((b1 * this->Texels[k] + kPageTexelMargin) / double(kPageInterior));
       const glm::ivec2 p0(glm::clamp(first, glm::dvec2(0.0), this->Last[k]));
       const glm::ivec2 p1(glm::clamp(end, glm::dvec2(0.0), this->Last[k]));
+      if (double(p1.x - p0.x + 1) * double(p1.y - p0.y + 1) > double(this->Most))
+      {
+        this->Overflowed = true;
+        return;
+      }
       for (int y = p0.y; y <= p1.y; ++y)
       {
         for (int x = p0.x; x <= p1.x; ++x)
@@ -193,6 +200,7 @@ public:
   }
 
   std::vector<std::uint64_t> Keys;
+  bool Overflowed = false;
 
 private:
   /// The pages of one axis within kPageTexelMargin of texel coordinate u: first and last.
@@ -236,6 +244,7 @@ private:
   }
 
   int Count;
+  std::size_t Most; ///< the most pages wanted
   std::array<double, kMaxPageLevels + 1> Edge{}, Finer{}, Coarser{};
   std::array<glm::dvec2, kMaxPageLevels + 1> Texels{}, Last{};
   std::array<std::uint64_t, 8> Recent{};
@@ -267,7 +276,7 @@ bool markPages(const PageLevels& levels, const glm::dmat4& windowToBase, double 
   {
     return true; // (no level finer than the base: no page)
   }
-  PageMarks marks(levels, vsNear, vsFar);
+  PageMarks marks(levels, vsNear, vsFar, mostPages);
   const glm::dvec4 alongX = windowToBase[0];
   const glm::dvec4 alongZ = windowToBase[2];
   for (int y = 0; y < height; ++y)
@@ -292,6 +301,10 @@ bool markPages(const PageLevels& levels, const glm::dmat4& windowToBase, double 
   }
   for (const BoxStandIn& standIn : standIns)
   {
+    if (marks.Overflowed)
+    {
+      return false;
+    }
     const ScreenRect& r = standIn.rect;
     if (r.isEmpty() || standIn.depths.isEmpty())
     {
@@ -331,6 +344,10 @@ bool markPages(const PageLevels& levels, const glm::dmat4& windowToBase, double 
         marks.rect(k, k, glm::clamp(b0, 0.0, 1.0), glm::clamp(b1, 0.0, 1.0));
       }
     }
+  }
+  if (marks.Overflowed)
+  {
+    return false;
   }
   std::sort(marks.Keys.begin(), marks.Keys.end());
   marks.Keys.erase(std::unique(marks.Keys.begin(), marks.Keys.end()), marks.Keys.end());

@@ -266,6 +266,27 @@ TEST(Pages, AStandInMarksAtEachLevelThePagesOfItsPartAtThatLevelsDepths)
   EXPECT_NEAR(windowAt(2.0 - csm::kPageBlendBand - csm::kPageLevelMargin), 0.9626, 1e-4);
 }
 
+// A box that stands in over the whole image at the finest of kMaxPageLevels levels of a 4096²
+// base (2^24 texels a side: billions of pages) asks for more pages than the pool holds: refused
+// at once, without listing them.
+TEST(Pages, AStandInAtTheFinestLevelsIsRefusedWithoutListingItsPages)
+{
+  csm::PageLevels levels;
+  levels.baseTexels = glm::dvec2(4096.0);
+  levels.baseDepth = 1e6;
+  levels.count = csm::kMaxPageLevels;
+  const double vsNear = 1.0, vsFar = 2e6;
+  csm::BoxStandIn standIn;
+  standIn.rect = csm::ScreenRect{ -1.0, -1.0, 1.0, 1.0 };
+  standIn.depths.min = 0.0;
+  standIn.depths.max = csm::windowDepthFromViewDepth(vsFar, vsNear, vsFar, false);
+  const std::vector<float> none(64 * 48, 1.0f);
+  std::vector<csm::PageKey> pages(1);
+  EXPECT_FALSE(csm::markPages(
+    levels, straightAcross(), vsNear, vsFar, none.data(), 64, 48, { standIn }, 416, pages));
+  EXPECT_TRUE(pages.empty());
+}
+
 TEST(Pages, TheCacheKeepsResidentPagesAndGivesTheLeastRecentlyNeededSlots)
 {
   csm::PageCache cache;
