@@ -75,25 +75,32 @@ ConvexBody litVisibleBody(const Camera& camera, const CameraFrame& frame, const 
 
 /// The map's near and far distances along the axis: the far one beyond the body's farthest
 /// point; the near one at the body (depthClamp) or at the nearest corner of the scene box
-/// (the casters), and at least 1e-3 of the far one.
+/// (the casters), and at least 1e-3 of the far one. The margins are a share of that range, not
+/// of the distance, so that a light far from a small scene spreads the scene over the map's
+/// depths and a constant bias (a share of those depths) stays a small share of the scene's
+/// depth; but at least 1e-4 of the distance: a perspective map's depth, computed in single
+/// precision, is good to about 2e-7 of the distance over the range, and 1e-4 keeps that under
+/// a default ConstantBias.
 void spotDepthRange(const Camera& camera, const glm::dvec3& wsLightPosition, const SpotFrame& spot,
   const Bounds* sceneBounds, bool depthClamp, double zMin, double zMax, double& zNear, double& zFar)
 {
-  zFar = std::max(zMax, 1e-9 * (camera.vsFar + glm::length(spot.cwsApex))) * 1.01;
-  zNear = 1e-3 * zFar;
+  zFar = std::max(zMax, 1e-9 * (camera.vsFar + glm::length(spot.cwsApex)));
+  double nearest = 0.0; // (none: 1e-3 of the far one)
   if (depthClamp)
   {
-    zNear = std::max(zNear, 0.99 * zMin);
+    nearest = zMin;
   }
   else if (sceneBounds)
   {
-    double boxMin = kInf; // nearest corner of the scene box along the axis
+    nearest = kInf; // the nearest corner of the scene box along the axis
     for (int i = 0; i < 8; ++i)
     {
-      boxMin = std::min(boxMin, glm::dot(boxCorner(*sceneBounds, i) - wsLightPosition, spot.w));
+      nearest = std::min(nearest, glm::dot(boxCorner(*sceneBounds, i) - wsLightPosition, spot.w));
     }
-    zNear = std::max(zNear, 0.99 * boxMin);
   }
+  const double margin = std::max(0.01 * (zFar - std::max(nearest, 0.0)), 1e-4 * zFar);
+  zFar += margin;
+  zNear = std::max(1e-3 * zFar, nearest - margin);
 }
 
 /// The window of the vertices at unit distance along the axis (x / z, y / z), within the cone

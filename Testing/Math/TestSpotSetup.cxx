@@ -52,3 +52,33 @@ TEST(Spot, FitsTheLitVisibleScene)
   EXPECT_EQ(csm::computeSpotSetup(cam, lightPos, { 0, 1, 0 }, 30.0, &scene, true).status,
     csm::Status::NothingToShadow);
 }
+
+// A spot light far above a small scene: the map's depth range is fitted to the scene, not to the
+// light's distance, so the scene spans much of the map's depths (a constant bias, a share of
+// them, stays a small share of the scene's depth: margins of 1 % of the distance put the 4 units
+// of this scene in 0.4 % of the depths at 5e4, under the default bias of 0.2 %) and the caster
+// stays in front of its receiver.
+TEST(Spot, AFarSpotSpreadsTheSceneOverTheMapsDepths)
+{
+  csm::Bounds scene{ { -10, 0, -10 }, { 10, 4, 10 } };
+  csm::Camera cam = camera(0.5, 100.0, 45.0, 4.0 / 3.0);
+  cam.wsPosition = { 0, 5, 30 }; // (looking down -z: the ground and the top at x = z = 0 in view)
+  for (const double distance : { 50.0, 5e4, 2e5 })
+  {
+    for (bool clamp : { true, false })
+    {
+      const auto setup =
+        csm::computeSpotSetup(cam, { 0.3, distance, 0.2 }, { 0, -1, 0 }, 30.0, &scene, clamp);
+      ASSERT_EQ(setup.status, csm::Status::Ok) << setup.message;
+      const glm::dmat4& toClip = setup.cascades[0].wsToClip;
+      const glm::dvec3 ground = toNdc(toClip, { 0, 0, 0 });
+      const glm::dvec3 top = toNdc(toClip, { 0, 4, 0 });
+      EXPECT_LT(top.z, ground.z) << distance;
+      EXPECT_GE(top.z, -1.0) << distance;
+      EXPECT_LE(ground.z, 1.0) << distance;
+      // The scene's 4 units of height over at least 5 % of the depths (window depth [0, 1]), 25
+      // times the default constant bias.
+      EXPECT_GT(0.5 * (ground.z - top.z), 0.05) << distance << (clamp ? " clamped" : "");
+    }
+  }
+}

@@ -170,6 +170,29 @@ TEST(Passes, NaNLightDirectionGivesNoShadowsAndNoGarbage)
   EXPECT_GT(drawn, 10000);
 }
 
+// A spot light far above the box casts the shadow a directional light from the same direction
+// casts: its map's depths are fitted to the scene, not to its distance, so the constant bias
+// stays a small share of the scene's depth (with margins of 1 % of the distance it ate the whole
+// shadow from 5e4 on).
+TEST(Passes, AFarSpotLightCastsItsShadow)
+{
+  BoxOverPlane scene;
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  scene.Light->SetPosition(0.3, 10, 0.2);
+  const long directional = DarkenedPixels(scene.Render(), plain);
+  EXPECT_GT(directional, 800);
+  scene.Light->SetPositional(true);
+  scene.Light->SetConeAngle(30);
+  for (const double height : { 1e4, 5e4, 1e6 })
+  {
+    scene.Light->SetPosition(0.3, height, 0.2);
+    const long spot = DarkenedPixels(scene.Render(), plain);
+    EXPECT_GT(spot, directional * 9 / 10) << height;
+    EXPECT_LT(spot, directional * 11 / 10) << height;
+  }
+}
+
 // One degenerate light beside a good one is reported once, not on every frame.
 TEST(Passes, DegenerateLightIsReportedOnce)
 {
