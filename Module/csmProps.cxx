@@ -100,7 +100,8 @@ std::vector<double> csmCastingState(vtkProp* prop)
 bool csmLightCastsShadows(vtkLight* light)
 {
   return light && light->GetSwitch() && !light->LightTypeIsHeadlight() &&
-    (!light->GetPositional() || light->GetConeAngle() < 90.0) &&
+    // (A point light, cone 90 or more, casts none; a NaN cone is a spot light's error.)
+    (!light->GetPositional() || !(light->GetConeAngle() >= 90.0)) &&
     light->GetShadowAttenuation() > 0.0f; // a shadow of attenuation 0 is invisible: no maps
 }
 

@@ -335,6 +335,12 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   {
     return;
   }
+  if (camera->GetUseOffAxisProjection() || camera->GetUseExplicitProjectionTransformMatrix())
+  {
+    this->ReportOnce(false,
+      "An off-axis or explicit camera projection: the shadow maps are fitted to the camera's "
+      "position, direction and view angle, not to its projection (shadows may be missing)");
+  }
   // Camera lights and headlights follow this frame's camera before they are planned for (the
   // renderer would move them only when the lights pass after this one runs).
   this->UpdateLightGeometry(renderer);

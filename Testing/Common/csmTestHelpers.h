@@ -48,12 +48,12 @@ struct ErrorCounter
 {
   int Count = 0;
   vtkNew<vtkCallbackCommand> Command;
-  explicit ErrorCounter(vtkObject* object)
+  explicit ErrorCounter(vtkObject* object, unsigned long event = vtkCommand::ErrorEvent)
   {
     this->Command->SetClientData(this);
     this->Command->SetCallback([](vtkObject*, unsigned long, void* self, void*)
       { ++static_cast<ErrorCounter*>(self)->Count; });
-    object->AddObserver(vtkCommand::ErrorEvent, this->Command);
+    object->AddObserver(event, this->Command);
   }
 };
 

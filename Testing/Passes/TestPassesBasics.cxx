@@ -7,6 +7,7 @@
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
+#include "vtkCommand.h"
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -401,6 +402,28 @@ TEST(Passes, NonFiniteOptionsAreRefused)
 }
 
 // The dithered blend band at a cascade border leaves the shadow across the border dark.
+// A camera whose projection the maps do not follow (off-axis, or an explicit matrix) is said
+// once, as a warning, and the frames go on; back on axis, the shadow is there again.
+TEST(Passes, AnOffAxisCameraIsReportedOnce)
+{
+  BoxOverPlane scene;
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  ErrorCounter warnings(pass->GetShadowMapBakerPass(), vtkCommand::WarningEvent);
+  ErrorCounter errors(pass->GetShadowMapBakerPass());
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  camera->SetUseOffAxisProjection(1);
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    scene.Frame();
+  }
+  EXPECT_EQ(warnings.Count, 1);
+  EXPECT_EQ(errors.Count, 0);
+  camera->SetUseOffAxisProjection(0);
+  EXPECT_GT(DarkenedPixels(scene.Render(), plain), 800);
+  EXPECT_EQ(warnings.Count, 1);
+}
+
 TEST(Passes, BlendBandDoesNotLightAStripeThroughTheShadow)
 {
   BoxOverPlane scene;
