@@ -530,6 +530,26 @@ void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& 
     state.AtlasPool[slot]->GetContext() == state.Window;
   const bool keep = sameMap && last->Pages.Active && last->AtlasSize[0] == atlas.width &&
     last->AtlasSize[1] == atlas.height;
+  CascadeMap base;
+  base.Kind = MapKind::SceneFitted;
+  base.Action = sameMap ? MapAction::Keep : MapAction::Draw;
+  std::copy(worldToBase, worldToBase + 16, base.WorldToMap);
+  base.Tile[2] = base.Tile[3] = base.Resolution[0] = base.Resolution[1] = side;
+  base.SplitFar = maps.Cascades.back().SplitFar;
+  if (sameMap && frame.CastersChanged)
+  {
+    // The base's texels the changed casters' boxes cover drawn again (or all of it).
+    PatchChangedCasters(props, base);
+  }
+  maps.Cascades.assign(1, base);
+  if (needed.empty() && !(last && last->Pages.Active))
+  {
+    // No page needed yet: the base serves alone, in an atlas of its own size, as the
+    // scene-fitted map alone does (the atlas grows around it when a page is needed: that
+    // allocation costs a frame).
+    maps.AtlasSize[0] = maps.AtlasSize[1] = side;
+    return;
+  }
   if (state.PageCaches.size() <= slot)
   {
     state.PageCaches.resize(slot + 1);
@@ -539,17 +559,10 @@ void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& 
   {
     cache.reset(slots);
   }
-  CascadeMap base;
-  base.Kind = MapKind::SceneFitted;
-  base.Action = sameMap ? MapAction::Keep : MapAction::Draw;
-  std::copy(worldToBase, worldToBase + 16, base.WorldToMap);
-  base.Tile[2] = base.Tile[3] = base.Resolution[0] = base.Resolution[1] = side;
-  base.SplitFar = maps.Cascades.back().SplitFar;
   if (sameMap && frame.CastersChanged)
   {
-    // The base's texels the changed casters' boxes cover drawn again (or all of it), the pages
-    // their boxes reach across the light given up (drawn again where this view needs them).
-    PatchChangedCasters(props, base);
+    // The pages the changed casters' boxes reach across the light given up (drawn again where
+    // this view needs them).
     const glm::dmat4 wsToBase = csmFromRowMajor(worldToBase);
     cache.forget(
       [&](const csm::PageKey& page)
@@ -564,7 +577,6 @@ void csmLightPlanning::PlanPages(csmRendererMaps& state, const csmFrameCasters& 
   }
   std::vector<std::pair<csm::PageKey, int>> fresh;
   cache.place(needed, fresh);
-  maps.Cascades.assign(1, base);
   maps.AtlasSize[0] = atlas.width;
   maps.AtlasSize[1] = atlas.height;
   LightPages& pages = maps.Pages;

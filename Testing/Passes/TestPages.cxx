@@ -8,6 +8,7 @@
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
+#include "vtkCascadedShadowMapPlanner.h"
 #include "vtkCubeSource.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
@@ -428,4 +429,48 @@ TEST(Pages, TheSceneFittedMapOfAFarViewIsTheBaseOfTheNearViewsPages)
   const long shadowed = csmTest::DifferingPixels(far, plainFar, 24);
   EXPECT_GT(shadowed, 1000);
   EXPECT_LT(csmTest::DifferingPixels(far, farAgain, 24) * 20, shadowed);
+}
+
+// Where the cascades would follow the view but the view's samples need no page (the near ground
+// lies where no post's shadow can fall, outside the base), the base serves alone in an atlas of
+// its own size: the atlas grows around it (an allocation that costs a frame) only when a page is
+// needed. The frames are those of a fresh chain.
+TEST(Pages, NoPageNeededLeavesTheAtlasAtTheBasesSize)
+{
+  auto nearViewOfFarPosts = [](double azimuth)
+  {
+    auto field = std::make_unique<Field>(0.0);
+    for (auto& post : field->Posts)
+    {
+      if (post->GetPosition()[2] > -12.0)
+      {
+        field->Scene.Renderer->RemoveActor(post);
+      }
+    }
+    vtkCamera* camera = field->Scene.Renderer->GetActiveCamera();
+    camera->SetPosition(0.0, 1.25, 14.5);
+    camera->SetFocalPoint(0.0, 0.0, 10.0);
+    field->Turn(azimuth);
+    return field;
+  };
+  auto moving = nearViewOfFarPosts(0.0);
+  const int base = 2 * moving->Baker->GetResolution();
+  int followingWanted = 0;
+  for (int frame = 1; frame <= 6; ++frame)
+  {
+    moving->Turn(2.0);
+    auto image = moving->Scene.Frame();
+    const auto& maps = moving->Maps();
+    EXPECT_EQ(moving->Baker->GetLastFrameStatistics().PagesNeeded, 0) << frame;
+    EXPECT_FALSE(maps.Pages.Active) << frame;
+    ASSERT_EQ(maps.GetNumberOfCascades(), 1) << frame;
+    EXPECT_TRUE(maps.Cascades[0].IsSceneFitted()) << frame;
+    EXPECT_EQ(maps.AtlasSize[0], base) << frame;
+    EXPECT_EQ(maps.AtlasSize[1], base) << frame;
+    vtkCascadedShadowMapPlanner* planner = moving->Baker->GetPlanner();
+    followingWanted += planner->GetNumberOfPlannedCascades() > 1 ? 1 : 0;
+    auto fresh = nearViewOfFarPosts(2.0 * frame);
+    EXPECT_EQ(csmTest::DifferingPixels(image, fresh->Scene.Frame(), 24), 0) << frame;
+  }
+  EXPECT_GT(followingWanted, 0); // (the cascades would have followed the view)
 }
