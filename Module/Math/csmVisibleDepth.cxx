@@ -35,12 +35,11 @@ WindowDepthRange windowDepthRange(const float* windowDepths, std::size_t count)
   float hi = 0.0f;
   for (std::size_t i = 0; i < count; ++i)
   {
+    // (Without a branch, so that the loop vectorizes: the background, 1, and NaN leave both.)
     const float d = windowDepths[i];
-    if (d < 1.0f && d >= 0.0f) // also false for NaN
-    {
-      lo = std::min(lo, d);
-      hi = std::max(hi, d);
-    }
+    const bool sample = d < 1.0f && d >= 0.0f; // also false for NaN
+    lo = std::min(lo, sample ? d : 1.0f);
+    hi = std::max(hi, sample ? d : 0.0f);
   }
   if (lo <= hi)
   {
@@ -201,6 +200,25 @@ struct FootprintBins
     }
     return t >= this->count - 1 ? this->count - 1 : static_cast<int>(t);
   }
+  /// The smallest float window depth in bin b or a later one (b in 1 .. count - 1), so that a
+  /// float w is in bin b exactly where lowest(b) <= w < lowest(b + 1).
+  float lowest(int b) const
+  {
+    if (!(this->scale > 0.0))
+    {
+      return 2.0f; // (one depth: every sample in bin 0)
+    }
+    float w = static_cast<float>(this->min + b / this->scale);
+    while (this->of(w) >= b && w > 0.0f)
+    {
+      w = std::nextafter(w, 0.0f);
+    }
+    while (this->of(w) < b)
+    {
+      w = std::nextafter(w, 2.0f);
+    }
+    return w;
+  }
 };
 }
 
@@ -297,22 +315,44 @@ WindowFootprint windowFootprint(
   }
   footprint.bins.assign(kFootprintBins, ScreenRect());
   const FootprintBins binning(footprint);
-  // Per bin, the pixel columns and rows its samples cover; then their pixels' full extent.
+  // Per bin, the pixel columns and rows its samples cover; then their pixels' full extent. A
+  // row is taken in runs of samples of one bin (a surface's neighbouring pixels mostly share
+  // theirs): a run's bin is checked against that bin's float bounds, its cover updated once.
   std::vector<std::array<int, 4>> cover(kFootprintBins, { width, height, -1, -1 });
+  std::array<float, kFootprintBins + 1> lowest;
+  lowest[0] = -1.0f;
+  for (int b = 1; b < kFootprintBins; ++b)
+  {
+    lowest[b] = binning.lowest(b);
+  }
+  lowest[kFootprintBins] = 2.0f;
   for (int row = 0; row < height; ++row)
   {
     const float* line = windowDepths + static_cast<size_t>(row) * static_cast<size_t>(width);
-    for (int column = 0; column < width; ++column)
+    int column = 0;
+    while (column < width)
     {
       const float w = line[column];
       if (!(w < 1.0f) || !(w >= 0.0f)) // the background, and NaN
       {
+        ++column;
         continue;
       }
-      std::array<int, 4>& c = cover[static_cast<size_t>(binning.of(w))];
-      c[0] = std::min(c[0], column);
+      const int b = binning.of(w);
+      const float below = lowest[b], above = lowest[b + 1];
+      const int first = column;
+      for (++column; column < width; ++column)
+      {
+        const float next = line[column];
+        if (!(next >= below && next < above && next < 1.0f))
+        {
+          break;
+        }
+      }
+      std::array<int, 4>& c = cover[static_cast<size_t>(b)];
+      c[0] = std::min(c[0], first);
       c[1] = std::min(c[1], row);
-      c[2] = std::max(c[2], column);
+      c[2] = std::max(c[2], column - 1);
       c[3] = row;
     }
   }

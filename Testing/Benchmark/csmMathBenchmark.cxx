@@ -3,6 +3,7 @@
 // cascade. Run: build/Testing/csmMathBenchmark (see README).
 #include "csmPages.h"
 #include "csmSetup.h"
+#include "csmVisibleDepth.h"
 
 #include <benchmark/benchmark.h>
 
@@ -53,37 +54,48 @@ void UniformSingleWithScene(benchmark::State& state)
   frame(state, csm::WarpMode::None, csm::SplitScheme::Single, true);
 }
 
-// The pages a 640x480 view of a ground marks (csm::markPages, every visible-depth pass of a paged
-// light): the camera 2 above the ground looking 10 ahead and down, the light from above.
-void MarkPages(benchmark::State& state)
+// A 640x480 view of a ground: the camera 2 above it looking 10 ahead and down; its window depths
+// (1: the sky).
+struct GroundView
 {
-  const int width = 640, height = 480;
-  const double vsNear = 0.1, vsFar = 1000.0;
-  const glm::dvec3 eye(0.0, 2.0, 0.0);
-  const glm::dmat4 worldToView = glm::lookAt(eye, glm::dvec3(0.0, 0.0, -10.0), glm::dvec3(0, 1, 0));
-  const glm::dmat4 viewToClip =
-    glm::perspective(glm::radians(60.0), double(width) / height, vsNear, vsFar);
-  const glm::dmat4 wsToBase = glm::ortho(-100.0, 100.0, -100.0, 100.0, -100.0, 100.0) *
-    glm::lookAt(glm::dvec3(0.0), glm::dvec3(0.1, -1.0, 0.2), glm::dvec3(0, 0, -1));
-  const glm::dmat4 clipToWorld = glm::inverse(viewToClip * worldToView);
-  const glm::dmat4 windowToBase = csm::windowToBase(wsToBase, viewToClip * worldToView);
-  std::vector<float> depths(static_cast<std::size_t>(width) * height, 1.0f);
-  for (int y = 0; y < height; ++y)
+  static constexpr int width = 640, height = 480;
+  static constexpr double vsNear = 0.1, vsFar = 1000.0;
+  glm::dmat4 worldToView, viewToClip;
+  std::vector<float> depths;
+  GroundView()
   {
-    for (int x = 0; x < width; ++x)
+    const glm::dvec3 eye(0.0, 2.0, 0.0);
+    this->worldToView = glm::lookAt(eye, glm::dvec3(0.0, 0.0, -10.0), glm::dvec3(0, 1, 0));
+    this->viewToClip = glm::perspective(glm::radians(60.0), double(width) / height, vsNear, vsFar);
+    const glm::dmat4 clipToWorld = glm::inverse(this->viewToClip * this->worldToView);
+    this->depths.assign(static_cast<std::size_t>(width) * height, 1.0f);
+    for (int y = 0; y < height; ++y)
     {
-      const glm::dvec4 far = clipToWorld *
-        glm::dvec4(2.0 * (x + 0.5) / width - 1.0, 2.0 * (y + 0.5) / height - 1.0, 1.0, 1.0);
-      const glm::dvec3 ray = glm::dvec3(far) / far.w - eye;
-      if (ray.y < 0.0)
+      for (int x = 0; x < width; ++x)
       {
-        const glm::dvec3 hit = eye + ray * (-eye.y / ray.y);
-        const double depth = -(worldToView * glm::dvec4(hit, 1.0)).z;
-        depths[static_cast<std::size_t>(y) * width + x] =
-          static_cast<float>(csm::windowDepthFromViewDepth(depth, vsNear, vsFar, false));
+        const glm::dvec4 far = clipToWorld *
+          glm::dvec4(2.0 * (x + 0.5) / width - 1.0, 2.0 * (y + 0.5) / height - 1.0, 1.0, 1.0);
+        const glm::dvec3 ray = glm::dvec3(far) / far.w - eye;
+        if (ray.y < 0.0)
+        {
+          const glm::dvec3 hit = eye + ray * (-eye.y / ray.y);
+          const double depth = -(this->worldToView * glm::dvec4(hit, 1.0)).z;
+          this->depths[static_cast<std::size_t>(y) * width + x] =
+            static_cast<float>(csm::windowDepthFromViewDepth(depth, vsNear, vsFar, false));
+        }
       }
     }
   }
+};
+
+// The pages that view marks (csm::markPages, every visible-depth pass of a paged light), the
+// light from above.
+void MarkPages(benchmark::State& state)
+{
+  const GroundView view;
+  const glm::dmat4 wsToBase = glm::ortho(-100.0, 100.0, -100.0, 100.0, -100.0, 100.0) *
+    glm::lookAt(glm::dvec3(0.0), glm::dvec3(0.1, -1.0, 0.2), glm::dvec3(0, 0, -1));
+  const glm::dmat4 windowToBase = csm::windowToBase(wsToBase, view.viewToClip * view.worldToView);
   csm::PageLevels levels;
   levels.baseTexels = glm::dvec2(1024.0);
   levels.baseDepth = 100.0;
@@ -91,15 +103,31 @@ void MarkPages(benchmark::State& state)
   std::vector<csm::PageKey> pages;
   for (auto _ : state)
   {
-    csm::markPages(
-      levels, windowToBase, vsNear, vsFar, depths.data(), width, height, {}, 100000, pages);
+    csm::markPages(levels, windowToBase, view.vsNear, view.vsFar, view.depths.data(), view.width,
+      view.height, {}, 100000, pages);
     benchmark::DoNotOptimize(pages);
   }
   state.counters["pages"] = static_cast<double>(pages.size());
 }
+
+// That view's footprint (csm::windowFootprint, every visible-depth pass).
+void WindowFootprint(benchmark::State& state)
+{
+  const GroundView view;
+  for (auto _ : state)
+  {
+    csm::WindowFootprint footprint =
+      csm::windowFootprint(view.depths.data(), view.width, view.height);
+    benchmark::DoNotOptimize(footprint);
+  }
+}
 }
 
 BENCHMARK(MarkPages)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
+BENCHMARK(WindowFootprint)
+  ->Unit(benchmark::kMillisecond)
+  ->Repetitions(5)
+  ->ReportAggregatesOnly(true);
 BENCHMARK(GeneralizedAdaptiveWithScene)
   ->Arg(1)
   ->Arg(2)

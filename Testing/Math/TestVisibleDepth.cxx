@@ -206,6 +206,80 @@ TEST(VisibleDepth, AFootprintHoldsEachDepthsSamplesInTheirPixelsRectangle)
   EXPECT_TRUE(csm::windowFootprint(buffer.data(), 0, height).isEmpty());
 }
 
+// The footprint, taken a run of one bin's samples at a time, holds in each bin exactly the
+// pixels whose samples fall in it: a buffer of smooth ramps (long runs that cross bins), noise,
+// background and NaN, against each sample binned alone; and a buffer of one depth (every
+// sample in the first bin).
+TEST(VisibleDepth, AFootprintBinsEverySampleAsItsOwnDepthSays)
+{
+  const int width = 97, height = 61;
+  std::vector<float> buffer(width * height);
+  std::mt19937 random(11);
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      float& w = buffer[y * width + x];
+      const int kind = static_cast<int>(random() % 10);
+      w = kind == 0 ? 1.0f
+        : kind == 1 ? std::numeric_limits<float>::quiet_NaN()
+        : kind == 2 ? 0.3f + 0.6f * static_cast<float>(random() % 1000) / 999.0f
+                    : 0.35f + 0.5f * static_cast<float>(x + 3 * y) / (width + 3 * height);
+    }
+  }
+  const csm::WindowFootprint footprint = csm::windowFootprint(buffer.data(), width, height);
+  ASSERT_FALSE(footprint.isEmpty());
+  const double lo = footprint.range.min, hi = footprint.range.max;
+  const double scale = csm::kFootprintBins / (hi - lo);
+  std::vector<csm::ScreenRect> expected(csm::kFootprintBins);
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = 0; x < width; ++x)
+    {
+      const float w = buffer[y * width + x];
+      if (!(w < 1.0f) || !(w >= 0.0f))
+      {
+        continue;
+      }
+      const double t = (w - lo) * scale;
+      const int b = !(t > 0.0)         ? 0
+        : t >= csm::kFootprintBins - 1 ? csm::kFootprintBins - 1
+                                       : static_cast<int>(t);
+      csm::ScreenRect pixel;
+      pixel.x0 = 2.0 * x / width - 1.0;
+      pixel.y0 = 2.0 * y / height - 1.0;
+      pixel.x1 = 2.0 * (x + 1) / width - 1.0;
+      pixel.y1 = 2.0 * (y + 1) / height - 1.0;
+      expected[b].add(pixel);
+    }
+  }
+  int filled = 0;
+  for (int b = 0; b < csm::kFootprintBins; ++b)
+  {
+    const csm::ScreenRect& got = footprint.bins[b];
+    ASSERT_EQ(got.isEmpty(), expected[b].isEmpty()) << b;
+    if (!got.isEmpty())
+    {
+      ++filled;
+      EXPECT_DOUBLE_EQ(got.x0, expected[b].x0) << b;
+      EXPECT_DOUBLE_EQ(got.y0, expected[b].y0) << b;
+      EXPECT_DOUBLE_EQ(got.x1, expected[b].x1) << b;
+      EXPECT_DOUBLE_EQ(got.y1, expected[b].y1) << b;
+    }
+  }
+  EXPECT_GT(filled, csm::kFootprintBins / 2);
+  std::vector<float> flat(width * height, 0.5f);
+  flat[7] = 1.0f;
+  const csm::WindowFootprint one = csm::windowFootprint(flat.data(), width, height);
+  ASSERT_FALSE(one.isEmpty());
+  EXPECT_DOUBLE_EQ(one.bins[0].x0, -1.0);
+  EXPECT_DOUBLE_EQ(one.bins[0].y1, 1.0);
+  for (int b = 1; b < csm::kFootprintBins; ++b)
+  {
+    EXPECT_TRUE(one.bins[b].isEmpty()) << b;
+  }
+}
+
 TEST(VisibleDepth, ABoxStandsInForACasterOnlyWhereItIsSmallOnTheImageForItsTriangles)
 {
   // A 640 x 480 view from the origin down -z, 1 .. 1000, 40 degrees high.
