@@ -6,6 +6,8 @@
 #include "csmProps.h"    // csmScreenSizes
 #include "csmSceneFit.h" // csm::sceneFittedBiasShare
 #include "csmScreenCache.h"
+#include "csmSpotSetup.h" // csm::perspectiveBiasFactor
+#include "csmVTKMath.h"   // csmFromRowMajor
 
 #include "vtkAbstractMapper.h"
 #include "vtkActor.h"
@@ -231,10 +233,15 @@ void vtkCascadedShadowMapPass::PackMaps(
       }
     }
     u.Handedness.push_back(vtkMatrix4x4::Determinant(mapFromView) < 0.0 ? -1.0f : 1.0f);
-    u.BiasShare.push_back(c < count && map.IsSceneFitted()
-        ? static_cast<float>(
-            csm::sceneFittedBiasShare(std::max(map.Resolution[0], map.Resolution[1])))
-        : 1.0f);
+    // (A spot light's perspective map: minus its f n, the bias scaled in the lookup by f n / w^2.)
+    const double perspective =
+      c < count && maps.Kind == vtkCascadedShadowMapBakerPass::LightKind::Spot
+      ? csm::perspectiveBiasFactor(csmFromRowMajor(map.WorldToMap))
+      : 0.0;
+    u.BiasShare.push_back(perspective > 0.0 ? static_cast<float>(-perspective)
+        : c < count && map.IsSceneFitted()  ? static_cast<float>(csm::sceneFittedBiasShare(
+                                                std::max(map.Resolution[0], map.Resolution[1])))
+                                            : 1.0f);
     // The map's rectangle in the atlas (the lower left of its tile), in [0, 1].
     u.Tile.push_back(static_cast<float>(map.Tile[0] / atlasWidth));
     u.Tile.push_back(static_cast<float>(map.Tile[1] / atlasHeight));

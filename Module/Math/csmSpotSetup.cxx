@@ -199,4 +199,22 @@ ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosi
   return setup;
 }
 
+double perspectiveBiasFactor(const glm::dmat4& wsToClip)
+{
+  // Rows z and w (glm is column-major): clip z = a w + b on a perspective map, its z row a times
+  // its w row plus b in the last column.
+  const glm::dvec4 zRow(wsToClip[0][2], wsToClip[1][2], wsToClip[2][2], wsToClip[3][2]);
+  const glm::dvec4 wRow(wsToClip[0][3], wsToClip[1][3], wsToClip[2][3], wsToClip[3][3]);
+  const glm::dvec3 axis(wRow);
+  const double length2 = glm::dot(axis, axis);
+  if (!(length2 > 0.0) || !std::isfinite(length2))
+  {
+    return 0.0; // orthographic (w = 1)
+  }
+  const double a = glm::dot(glm::dvec3(zRow), axis) / length2;
+  const double b = zRow.w - a * wRow.w;
+  const double k = b * b / (a * a - 1.0); // f n, from a = (f + n) / (f - n), b = -2 f n / (f - n)
+  return std::isfinite(k) && k > 0.0 ? k : 0.0;
+}
+
 } // namespace csm

@@ -8,6 +8,7 @@
 
 #include "csmTypes.h"
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 namespace csm
@@ -22,5 +23,15 @@ namespace csm
 /// outside (0, 90) degrees.
 ShadowSetup computeSpotSetup(const Camera& camera, const glm::dvec3& wsLightPosition,
   const glm::dvec3& wsLightAxis, double coneAngleDeg, const Bounds* sceneBounds, bool depthClamp);
+
+/// The constant bias's scale on a map of world -> clip matrix wsToClip at a point whose clip w
+/// is w: K / w^2 (the lookup divides K by its w). A perspective map (a spot light's, near n and
+/// far f along its axis) stores window depths f / (f - n) (1 - n / z), whose change per unit of
+/// z is f n / ((f - n) z^2): a constant bias meant as a share of the map's depth range, as on an
+/// orthographic map, is that share of f - n in z, so K = f n (w = z). Without it a light close
+/// to a caster (n small against f) squeezes its far receivers' depths under the bias, which then
+/// lights them. 0 where the matrix is not a perspective one along an axis (an orthographic
+/// map: w = 1, its bias a share as it is).
+double perspectiveBiasFactor(const glm::dmat4& wsToClip);
 
 } // namespace csm

@@ -383,7 +383,9 @@ float csmDither()
 // and t (in the cascade's [0,1]), far split depths.
 uniform mat4 csmToMap[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmHandedness[CSM_LIGHTS * CSM_MAX_CASCADES];
-uniform float csmBiasShare[CSM_LIGHTS * CSM_MAX_CASCADES]; // of the constant bias
+// Of the constant bias; negative on a spot light's perspective map: minus its f n, the bias
+// there scaled by f n / w^2, the map depth's change per unit of w (csm::perspectiveBiasFactor).
+uniform float csmBiasShare[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform vec4 csmTile[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform vec2 csmTexel[CSM_LIGHTS * CSM_MAX_CASCADES];
 uniform float csmSplitFar[CSM_LIGHTS * CSM_MAX_CASCADES];
@@ -452,7 +454,8 @@ vec4 csmShadowIn(
   }
   int cascade = j * CSM_MAX_CASCADES + chosen;
   float m;
-  float biasScale = csmBiasShare[cascade];
+  float share = csmBiasShare[cascade];
+  float biasScale = share >= 0.0 ? share : -share / max(h.w * h.w, 1e-30);
 #ifdef CSM_CAMERA_SPACE
   biasScale = csmDepthBiasScale(cascade, h); // camera space maps (csmComparisonFS.glsl)
 #endif

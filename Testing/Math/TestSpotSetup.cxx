@@ -82,3 +82,26 @@ TEST(Spot, AFarSpotSpreadsTheSceneOverTheMapsDepths)
     }
   }
 }
+
+// The bias factor of a spot map is its near times its far distance along the axis: its window
+// depth is A - C / z at distance z (A = f / (f - n), C = f n / (f - n)), whose change per unit of
+// z, C / z^2, the lookup's bias follows; f n = C^2 / (A (A - 1)), read here from the matrix's
+// depths down the axis. An orthographic matrix has none.
+TEST(Spot, ThePerspectiveBiasFactorIsNearTimesFar)
+{
+  csm::Bounds scene{ { -10, 0, -10 }, { 10, 4, 10 } };
+  csm::Camera cam = camera(0.5, 100.0, 45.0, 4.0 / 3.0);
+  cam.wsPosition = { 0, 5, 30 };
+  const glm::dvec3 light(0.3, 40.0, 0.2);
+  const auto setup = csm::computeSpotSetup(cam, light, { 0, -1, 0 }, 30.0, &scene, true);
+  ASSERT_EQ(setup.status, csm::Status::Ok);
+  const glm::dmat4& toClip = setup.cascades[0].wsToClip;
+  auto window = [&](double z) { return 0.5 * toNdc(toClip, light - glm::dvec3(0, z, 0)).z + 0.5; };
+  const double z1 = 37.0, z2 = 39.0;
+  const double c = (window(z2) - window(z1)) / (1.0 / z1 - 1.0 / z2);
+  const double a = window(z1) + c / z1;
+  EXPECT_NEAR(
+    csm::perspectiveBiasFactor(toClip), c * c / (a * (a - 1.0)), 1e-6 * c * c / (a * (a - 1.0)));
+  EXPECT_GT(csm::perspectiveBiasFactor(toClip), 0.0);
+  EXPECT_EQ(csm::perspectiveBiasFactor(glm::dmat4(1.0)), 0.0);
+}

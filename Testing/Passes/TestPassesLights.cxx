@@ -19,6 +19,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include <cmath>
 
 namespace
@@ -191,6 +193,54 @@ TEST(Passes, AFarSpotLightCastsItsShadow)
     EXPECT_GT(spot, directional * 9 / 10) << height;
     EXPECT_LT(spot, directional * 11 / 10) << height;
   }
+}
+
+// A spot light just above the box (its near plane a thousandth of its far one) shadows the
+// ground under the box: the constant bias follows the map depth's change with distance, so it
+// stays a share of the map's depth range there too (a bias of the window depth ate the box's
+// shadow on the far ground).
+TEST(Passes, ASpotLightCloseAboveACasterShadowsTheGroundUnderIt)
+{
+  BoxOverPlane scene;
+  scene.Light->SetPositional(true);
+  scene.Light->SetConeAngle(60);
+  scene.Light->SetFocalPoint(0, 0, 0);
+  scene.Light->SetPosition(0, 4.001, 0); // the box's top is at 4
+  // The ground the light reaches, where the box does not hide it from the camera: the pixels
+  // the spot lights without the box (brighter than with the light off) that are not the box's.
+  auto plain = scene.Render();
+  scene.Box->VisibilityOff();
+  auto ground = scene.Render();
+  scene.Light->SetIntensity(0.0);
+  auto unlit = scene.Render();
+  scene.Light->SetIntensity(1.0);
+  scene.Box->VisibilityOn();
+  auto* withBox = vtkUnsignedCharArray::SafeDownCast(plain->GetPointData()->GetScalars());
+  auto* lit = vtkUnsignedCharArray::SafeDownCast(ground->GetPointData()->GetScalars());
+  auto* dark = vtkUnsignedCharArray::SafeDownCast(unlit->GetPointData()->GetScalars());
+  ASSERT_NE(withBox, nullptr);
+  ASSERT_NE(lit, nullptr);
+  ASSERT_NE(dark, nullptr);
+  const int nc = lit->GetNumberOfComponents();
+  std::vector<char> reached(static_cast<size_t>(lit->GetNumberOfTuples()), 0);
+  for (vtkIdType i = 0; i < lit->GetNumberOfTuples(); ++i)
+  {
+    bool box = false;
+    int gain = 0;
+    for (int c = 0; c < 3; ++c)
+    {
+      box = box || withBox->GetValue(nc * i + c) != lit->GetValue(nc * i + c);
+      gain += lit->GetValue(nc * i + c) - dark->GetValue(nc * i + c);
+    }
+    reached[static_cast<size_t>(i)] = !box && gain > 30 ? 1 : 0;
+  }
+  vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  auto shadowed = scene.Render();
+  // The light sees nothing past the box's top face: all of that ground is in its shadow.
+  long reachedPixels = 0;
+  const long darkened = csmTest::DarkenedPixels(shadowed, plain, &reached, &reachedPixels);
+  EXPECT_GT(reachedPixels, 5000);
+  EXPECT_GE(darkened, reachedPixels * 99 / 100) << reachedPixels;
 }
 
 // One degenerate light beside a good one is reported once, not on every frame.
