@@ -2,6 +2,7 @@
 // The scene-fitted map of a directional light (see csmSceneFit.h).
 #include "csmSceneFit.h"
 
+#include "csmConvexBody.h"
 #include "csmCulling.h"
 #include "csmGeometry.h"
 #include "csmSetup.h"
@@ -9,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 
 namespace csm
 {
@@ -90,6 +92,56 @@ bool footprintAcross(const WorldLightSpace& space, const std::vector<CasterLoad>
   }
   return true;
 }
+
+/// Along the light (ls y): the extent of the boxes' parts inside the prism lo..hi across it, each
+/// box clipped to the prism (a wide ground under a structure adds only its patch under the
+/// structure); lo > hi where no box reaches inside.
+void extentAlongInside(const WorldLightSpace& space, const std::vector<Bounds>& boxes,
+  const glm::dvec2& lo, const glm::dvec2& hi, double& yLo, double& yHi)
+{
+  yLo = kInf;
+  yHi = -kInf;
+  const std::array<Plane, 4> lsPrism{ { { glm::dvec3(1.0, 0.0, 0.0), -lo.x },
+    { glm::dvec3(-1.0, 0.0, 0.0), hi.x }, { glm::dvec3(0.0, 0.0, 1.0), -lo.y },
+    { glm::dvec3(0.0, 0.0, -1.0), hi.y } } };
+  for (const Bounds& box : boxes)
+  {
+    if (!box.isFinite() || box.isEmpty())
+    {
+      continue;
+    }
+    glm::dvec3 bLo, bHi;
+    space.extent(box, bLo, bHi);
+    if (bLo.x > hi.x || bHi.x < lo.x || bLo.z > hi.y || bHi.z < lo.y)
+    {
+      continue; // wholly outside across the light
+    }
+    if (bLo.x >= lo.x && bHi.x <= hi.x && bLo.z >= lo.y && bHi.z <= hi.y)
+    {
+      yLo = std::min(yLo, bLo.y); // wholly inside
+      yHi = std::max(yHi, bHi.y);
+      continue;
+    }
+    // The box in light space (its corners in hexahedron order), clipped to the prism.
+    static const int kOrder[8] = { 0, 1, 3, 2, 4, 5, 7, 6 };
+    std::array<glm::dvec3, 8> corners;
+    for (int i = 0; i < 8; ++i)
+    {
+      corners[i] = space.ls.coordinates(boxCorner(box, kOrder[i]) - space.wsOrigin);
+    }
+    ConvexBody body = ConvexBody::hexahedron(corners);
+    const double epsilon = 1e-9 * std::max(glm::length(bHi - bLo), glm::length(hi - lo));
+    for (const Plane& plane : lsPrism)
+    {
+      body.clip(plane, epsilon);
+    }
+    for (const glm::dvec3& p : body.vertices(epsilon))
+    {
+      yLo = std::min(yLo, p.y);
+      yHi = std::max(yHi, p.y);
+    }
+  }
+}
 } // namespace
 
 bool sceneFit(const glm::dvec3& wsLightDirection, const Bounds& sceneBounds,
@@ -115,10 +167,21 @@ bool sceneFit(const glm::dvec3& wsLightDirection, const Bounds& sceneBounds,
   {
     return false; // nothing can be in shadow
   }
-  // Along the light: the scene's extent; a flat extent gets a minimum size, as a cascade's.
+  // Along the light: what lies inside that extent across it (the receivers' and the casters'
+  // boxes clipped to it), not the whole scene's depth, of which the constant bias is a share
+  // (a prop far off, or a ground far wider than the structure on it, would spread the map's
+  // depths over distances no shadow spans). A flat extent gets a minimum size, as a cascade's.
+  std::vector<Bounds> inside = partsGiven ? *receiverParts : sceneOnly;
+  for (const CasterLoad& caster : casters)
+  {
+    inside.push_back(caster.wsBox);
+  }
+  double yLo = 0.0, yHi = 0.0;
+  extentAlongInside(space, inside, lo, hi, yLo, yHi);
   glm::dvec3 sceneLo, sceneHi;
   space.extent(sceneBounds, sceneLo, sceneHi);
-  glm::dvec3 lsLo(lo.x, sceneLo.y, lo.y), lsHi(hi.x, sceneHi.y, hi.y);
+  glm::dvec3 lsLo(lo.x, yLo <= yHi ? yLo : sceneLo.y, lo.y),
+    lsHi(hi.x, yLo <= yHi ? yHi : sceneHi.y, hi.y);
   const double minSize = inflation(glm::length(sceneBounds.wsMax - sceneBounds.wsMin), 0.0);
   for (int axis = 0; axis < 3; ++axis)
   {

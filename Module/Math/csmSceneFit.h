@@ -21,8 +21,10 @@ namespace csm
 /// footprints of caster boxes over the boxes of receivers they can reach (sweptBoxReachesBox;
 /// a prop that cannot shadow itself not over its own box) need texels; a wide ground under a
 /// structure adds only the structure's footprint. Axes: the light's direction of travel as
-/// depth (the scene box's extent along it), s and t perpendicular to it from the direction alone
-/// (not from the view). Without receiver parts the scene box is the one receiver. Its matrix
+/// depth (the extent along it of the receiver parts and casters clipped to the map's extent
+/// across the light; without parts, of the scene box so clipped), s and t perpendicular to it
+/// from the direction alone (not from the view). Without receiver parts the scene box is the
+/// one receiver. Its matrix
 /// depends only on the light and the boxes, so a map drawn for one view serves every view they
 /// stay for. False (fit unchanged) where no caster can shadow anything, a caster is screen-sized
 /// (its shadow's extent changes with the view) or the input is not finite.

@@ -4,6 +4,7 @@
 #include "csmAliasing.h"
 #include "csmAtlas.h"
 #include "csmCascadeCount.h"
+#include "csmGeometry.h"
 #include "csmMathTestHelpers.h"
 #include "csmSceneFit.h"
 
@@ -106,6 +107,55 @@ TEST(Steps, SceneFitSpansWhatCanBeInShadow)
     csm::sceneFit(glm::dvec3(std::nan(""), -1.0, 0.0), scene, casters, &receivers, none));
   EXPECT_FALSE(csm::sceneFit(glm::dvec3(0.0), scene, casters, &receivers, none));
   EXPECT_EQ(none.wsToClip, before);
+}
+
+// Along the light the map spans what lies inside its extent across the light (each receiver
+// part clipped to it), not the scene's depth: over a ground 20,000 wide, or with a speck of a
+// prop 1e6 away, the box and the ground under it keep a large share of the map's depths, of which
+// the constant bias is a share.
+TEST(Steps, SceneFitDepthSpansWhatLiesUnderItsShadows)
+{
+  const csm::Bounds box{ { -1.0, 1.0, -1.0 }, { 1.0, 3.0, 1.0 } };
+  const glm::dvec3 light(-0.5, -1.0, 0.2);
+  const glm::dvec3 under = glm::dvec3(0.0, 3.0, 0.0) + 3.0 * light; // the ground under its top
+  for (const bool speck : { false, true })
+  {
+    const double half = speck ? 10.0 : 1e4;
+    const csm::Bounds ground{ { -half, -0.1, -half }, { half, 0.0, half } };
+    const csm::Bounds far{ { 1e6, 0.0, 1e6 }, { 1e6 + 1.0, 1.0, 1e6 + 1.0 } };
+    std::vector<csm::Bounds> receivers{ ground, box };
+    std::vector<csm::CasterLoad> casters{ { ground, 12.0, 0, false }, { box, 12.0, 1, false } };
+    csm::Bounds scene{ ground.wsMin, glm::dvec3(half, 3.0, half) };
+    if (speck)
+    {
+      receivers.push_back(far);
+      casters.push_back({ far, 12.0, 2, false });
+      scene.wsMax = far.wsMax;
+    }
+    {
+      csm::SceneFit fit;
+      ASSERT_TRUE(csm::sceneFit(light, scene, casters, &receivers, fit));
+      const double top = clipOf(fit.wsToClip, glm::dvec3(0.0, 3.0, 0.0)).z;
+      const double ground = clipOf(fit.wsToClip, under).z;
+      EXPECT_GT(ground - top, 0.2) << speck; // of the clip depths' 2
+      // Everything inside the map across the light is inside its depths.
+      for (int i = 0; i < 8; ++i)
+      {
+        const glm::dvec3 c = clipOf(fit.wsToClip, csm::boxCorner(box, i));
+        EXPECT_GE(c.z, -1.0 - 1e-9);
+        EXPECT_LE(c.z, 1.0 + 1e-9);
+      }
+      for (const double x : { -1.0, 0.0, 1.0 })
+      {
+        const glm::dvec3 g = under + glm::dvec3(x, 0.0, 0.5 * x);
+        if (insidePrism(fit, g, 0.0))
+        {
+          EXPECT_LE(clipOf(fit.wsToClip, g).z, 1.0 + 1e-9);
+          EXPECT_GE(clipOf(fit.wsToClip, g - glm::dvec3(0.0, 0.1, 0.0)).z, -1.0 - 1e-9);
+        }
+      }
+    }
+  }
 }
 
 // Where the scene-fitted map meets the error target, the farthest cascade takes it: its matrix

@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The lights: several shadowed lights, PBR, every lighting model VTK's mapper writes, more
 // lights than texture units, and lights with no direction.
+#include "vtkActor.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
+#include "vtkCubeSource.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -270,4 +273,45 @@ TEST(Passes, DegenerateLightIsReportedOnce)
   EXPECT_EQ(errors.Count, 1);
   ASSERT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps().size(), 2u);
   EXPECT_GT(pass->GetShadowMapBakerPass()->GetLightMaps()[0].GetNumberOfCascades(), 0);
+}
+
+// A box over a ground far wider than itself, or with a speck of a prop far off, casts the shadow
+// it casts over a ground of its own size: the scene-fitted map's depths span what lies under the
+// shadows it holds, not the whole scene along the light, of which the constant bias is a share
+// (spanning the scene, the bias ate the shadow of a box over a ground 5,000 times its size).
+TEST(Passes, ABoxOverAFarWiderGroundCastsItsShadow)
+{
+  const auto darkened = [](double groundHalfWidth, bool speck)
+  {
+    csmTest::BoxOverPlaneSettings settings;
+    settings.GroundHalfWidth = groundHalfWidth;
+    settings.LightPosition[0] = 3.0; // oblique: a wide ground spans a deep range along the light
+    settings.LightPosition[2] = 2.0;
+    BoxOverPlane scene(settings);
+    vtkNew<vtkActor> far;
+    if (speck)
+    {
+      vtkNew<vtkCubeSource> cube;
+      cube->SetBounds(1e6, 1e6 + 1, 0, 1, 1e6, 1e6 + 1);
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputConnection(cube->GetOutputPort());
+      far->SetMapper(mapper);
+      scene.Renderer->AddActor(far);
+    }
+    scene.Renderer->ResetCameraClippingRange();
+    auto plain = scene.Render();
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+    return DarkenedPixels(scene.Render(), plain);
+  };
+  const long own = darkened(10.0, false);
+  EXPECT_GT(own, 800);
+  for (const double width : { 2e3, 1e4 })
+  {
+    const long wide = darkened(width, false);
+    EXPECT_GT(wide, own * 9 / 10) << width;
+    EXPECT_LT(wide, own * 11 / 10) << width;
+  }
+  const long withSpeck = darkened(10.0, true);
+  EXPECT_GT(withSpeck, own * 9 / 10);
+  EXPECT_LT(withSpeck, own * 11 / 10);
 }
