@@ -225,7 +225,8 @@ int vtkCascadedShadowMapBakerPass::MaximumShadowedLights(vtkOpenGLRenderWindow* 
     }
     units = std::min<GLint>(units, free);
   }
-  const int byUnits = static_cast<int>(units) - kMapperTextureUnits;
+  const int byUnits =
+    (static_cast<int>(units) - kMapperTextureUnits) / vtkCascadedShadows::TextureUnitsPerLight;
   int perLight = kUniformComponentsPerLight;
 #if CSM_COMPARISON_TECHNIQUES
   perLight += (this->Planner->GetFacePartitions() > 0 ? kFacePlaneComponentsPerLight : 0) +

@@ -22,6 +22,11 @@ namespace vtkCascadedShadows
 /// The most cascades a light gets (the shaders hold them in uniform arrays).
 constexpr int MaximumCascades = 8;
 
+/// Texture units the lookup takes a shadowed light: its atlas, read by bilinear compares and
+/// through a second unit texel by texel (vtkCascadedShadowMapPass); a paged light's page table
+/// takes one more where one is left.
+constexpr int TextureUnitsPerLight = 2;
+
 /// Map sizes from the error target are multiples of it (texels).
 constexpr int ResolutionStep = 64;
 
