@@ -139,12 +139,20 @@ const int* csmScreenCache::GetOrigin() const
 
 void csmScreenCache::ReleaseGraphicsResources(vtkWindow* window)
 {
+  // The images of this window's renderers (every one for no window): an image of another
+  // window's context stays, holding its renderer's factors.
   for (Entry& entry : this->Entries)
   {
+    if (window && entry.Window != window)
+    {
+      continue;
+    }
     if (entry.Image)
     {
-      entry.Image->ReleaseGraphicsResources(window);
+      entry.Image->ReleaseGraphicsResources(window ? window : entry.Window.Get());
     }
+    entry.Image = nullptr;
+    entry.Window = nullptr;
     entry.Holds = false;
   }
 }

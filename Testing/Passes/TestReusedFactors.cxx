@@ -226,6 +226,37 @@ TEST(ReusedFactors, TwoRenderersSharingAPass)
   }
 }
 
+// Renderers in two windows sharing one pass chain: the graphics resources of one window released
+// (its window closed) leave the other window's factors alone; its frames stay the lookup's
+// image (before: the other window's stored factors were released too and it drew black).
+TEST(ReusedFactors, ReleasingOneWindowKeepsTheOthersFactors)
+{
+  BoxOverPlane first;
+  BoxOverPlane second;
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(first.Renderer);
+  second.Renderer->SetPass(first.Renderer->GetPass());
+  first.Frame();
+  second.Frame();
+  auto before = second.Frame();
+  EXPECT_TRUE(pass->GetLastFrameReusedShadowFactors());
+  for (const bool wholeWindow : { false, true })
+  {
+    if (wholeWindow)
+    {
+      first.Window->ReleaseGraphicsResources(first.Window);
+    }
+    else
+    {
+      pass->ReleaseGraphicsResources(first.Window);
+    }
+    second.Frame();
+    auto after = second.Frame();
+    EXPECT_TRUE(pass->GetLastFrameReusedShadowFactors()) << wholeWindow;
+    EXPECT_EQ(DifferingValues(before, after, 0), 0) << wholeWindow;
+    EXPECT_EQ(DifferingValues(LookedUp(second, pass), after, 0), 0) << wholeWindow;
+  }
+}
+
 // A multisampled framebuffer shades a pixel once for the samples of several surfaces: each
 // sample keeps the factors of the surface it shows, and the frame that reads them is the
 // lookup's image to the level, edges of the boxes over their shadows included.
