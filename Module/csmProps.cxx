@@ -2,6 +2,9 @@
 #include "csmProps.h"
 
 #include "vtkActor.h"
+#include "vtkAssembly.h"
+#include "vtkAssemblyNode.h"
+#include "vtkAssemblyPath.h"
 #include "vtkCellArray.h"
 #include "vtkCompositePolyDataMapper2.h"
 #include "vtkLight.h"
@@ -11,6 +14,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkPolyDataMapper.h"
+#include "vtkPropAssembly.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 
@@ -37,23 +41,21 @@ void csmScreenSizes(vtkProp* prop, float sizes[2])
   }
 }
 
-std::vector<double> csmCastingState(vtkProp* prop)
+namespace
+{
+/// What an actor casts (csmCastingState), placed by matrix; for another prop, its redraw time.
+std::vector<double> castingStateAt(vtkProp* prop, vtkMatrix4x4* matrix)
 {
   vtkActor* actor = vtkActor::SafeDownCast(prop);
   vtkPolyDataMapper* mapper = actor ? vtkPolyDataMapper::SafeDownCast(actor->GetMapper()) : nullptr;
   vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
-  if (!prop)
-  {
-    return {};
-  }
-  if (!data || vtkCompositePolyDataMapper2::SafeDownCast(mapper))
+  if (!data || !matrix || vtkCompositePolyDataMapper2::SafeDownCast(mapper))
   {
     return { static_cast<double>(prop->GetRedrawMTime()) };
   }
   auto time = [](vtkObject* object)
   { return object ? static_cast<double>(object->GetMTime()) : -1.0; };
   // (Its matrix: position, orientation, scale, origin, user matrix and transform.)
-  vtkMatrix4x4* matrix = actor->GetMatrix();
   std::vector<double> state(matrix->GetData(), matrix->GetData() + 16);
   state.insert(state.end(),
     { static_cast<double>(actor->GetVisibility()),
@@ -89,6 +91,41 @@ std::vector<double> csmCastingState(vtkProp* prop)
         property->GetBackfaceCulling() ? 1.0 : 0.0, property->GetFrontfaceCulling() ? 1.0 : 0.0,
         property->GetRenderLinesAsTubes() ? 1.0 : 0.0,
         property->GetRenderPointsAsSpheres() ? 1.0 : 0.0 });
+  }
+  return state;
+}
+} // namespace
+
+std::vector<double> csmCastingState(vtkProp* prop)
+{
+  if (!prop)
+  {
+    return {};
+  }
+  std::vector<double> state;
+  if (vtkAssembly::SafeDownCast(prop) || vtkPropAssembly::SafeDownCast(prop))
+  {
+    // Each part as its path places it: drawing an assembly pokes each part's matrix in and out,
+    // which modifies the part (and so the assembly) at every frame.
+    state.push_back(static_cast<double>(prop->GetVisibility()));
+    prop->InitPathTraversal();
+    while (vtkAssemblyPath* path = prop->GetNextPath())
+    {
+      vtkAssemblyNode* leaf = path->GetLastNode();
+      vtkProp* part = leaf ? leaf->GetViewProp() : nullptr;
+      if (!part)
+      {
+        continue;
+      }
+      const std::vector<double> placed = castingStateAt(part, leaf->GetMatrix());
+      state.push_back(static_cast<double>(placed.size()));
+      state.insert(state.end(), placed.begin(), placed.end());
+    }
+  }
+  else
+  {
+    vtkActor* actor = vtkActor::SafeDownCast(prop);
+    state = castingStateAt(prop, actor ? actor->GetMatrix() : nullptr);
   }
   for (double& value : state)
   {

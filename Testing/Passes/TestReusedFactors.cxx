@@ -3,6 +3,7 @@
 // (vtkCascadedShadowMapPass::ReuseShadowFactors): no lookup, no view depth, and the image the
 // lookup draws; whatever moves a shadow or a surface makes the lookup again.
 #include "vtkActor.h"
+#include "vtkAssembly.h"
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
@@ -100,6 +101,39 @@ TEST(ReusedFactors, AStillFrameReadsTheLastFramesFactors)
     EXPECT_EQ(DifferingValues(again, first, 0), 0) << still;
   }
   EXPECT_EQ(DifferingValues(LookedUp(scene, pass), first, 0), 0);
+}
+
+// A caster inside an assembly (drawn with its parts' matrices poked in, which modifies the parts
+// at every frame) keeps its maps and its factors on still frames, as a plain actor does; the
+// assembly moved, or its part, draws the map again.
+TEST(ReusedFactors, AnAssemblysStillFramesKeepTheMapsAndTheFactors)
+{
+  BoxOverPlane scene;
+  scene.Renderer->RemoveActor(scene.Box);
+  vtkNew<vtkAssembly> assembly;
+  assembly->AddPart(scene.Box);
+  scene.Renderer->AddActor(assembly);
+  auto plain = scene.Frame();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  auto first = scene.Frame();
+  EXPECT_GT(csmTest::DarkenedPixels(first, plain), 800);
+  scene.Frame();
+  for (int still = 0; still < 3; ++still)
+  {
+    auto again = scene.Frame();
+    EXPECT_TRUE(pass->GetLastFrameReusedShadowFactors()) << still;
+    EXPECT_EQ(baker->GetLastFrameStatistics().TexelsRendered, 0.0) << still;
+    EXPECT_EQ(DifferingValues(again, first, 0), 0) << still;
+  }
+  for (vtkProp3D* moved : { static_cast<vtkProp3D*>(assembly), static_cast<vtkProp3D*>(scene.Box) })
+  {
+    moved->AddPosition(0.5, 0.0, 0.0);
+    auto changed = scene.Frame();
+    EXPECT_FALSE(pass->GetLastFrameReusedShadowFactors());
+    EXPECT_GT(baker->GetLastFrameStatistics().TexelsRendered, 0.0);
+    EXPECT_EQ(DifferingValues(LookedUp(scene, pass), changed, 0), 0);
+  }
 }
 
 // Colours and materials keep the factors; a moved camera, light or box, edited points, another
