@@ -332,9 +332,11 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   }
   vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
   vtkCamera* camera = renderer->GetActiveCamera();
-  if (!window || !camera)
+  int size[2] = { 0, 0 }, origin[2] = { 0, 0 };
+  renderer->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
+  if (!window || !camera || size[0] < 1 || size[1] < 1)
   {
-    return;
+    return; // (a viewport of no pixels shows nothing to shadow)
   }
   if (camera->GetUseOffAxisProjection() || camera->GetUseExplicitProjectionTransformMatrix())
   {

@@ -347,6 +347,34 @@ TEST(Passes, OnePassChainServesTwoViewports)
   EXPECT_EQ(shared->GetShadowMapBakerPass()->GetLightMaps(pair.Renderer).size(), 1u);
 }
 
+// A renderer whose viewport has no pixels beside one that has: nothing to shadow there, no
+// message (the planner said the view angle was wrong), and the other renderer's shadow stays.
+TEST(Passes, AViewportOfNoPixelsIsLeftAlone)
+{
+  BoxOverPlane pair(640, 240);
+  pair.Renderer->SetViewport(0, 0, 0.5, 1);
+  vtkNew<vtkRenderer> empty;
+  empty->SetViewport(0.5, 0.5, 0.5, 0.5);
+  empty->AutomaticLightCreationOff();
+  empty->AddLight(pair.Light);
+  empty->AddActor(pair.Box);
+  empty->AddActor(pair.Ground);
+  pair.Window->AddRenderer(empty);
+  auto plain = pair.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(pair.Renderer);
+  empty->SetPass(pair.Renderer->GetPass());
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  ErrorCounter passErrors(pass), bakerErrors(baker), plannerErrors(baker->GetPlanner());
+  ErrorCounter passWarnings(pass, vtkCommand::WarningEvent),
+    bakerWarnings(baker, vtkCommand::WarningEvent);
+  pair.Frame();
+  auto shadowed = pair.Render();
+  EXPECT_EQ(passErrors.Count + bakerErrors.Count + plannerErrors.Count, 0);
+  EXPECT_EQ(passWarnings.Count + bakerWarnings.Count, 0);
+  EXPECT_GT(DarkenedPixels(shadowed, plain), 800);
+  EXPECT_TRUE(baker->GetLightMaps(empty).empty());
+}
+
 TEST(Passes, EmptyRendererAndNoShadowingLight)
 {
   BoxOverPlane scene;
