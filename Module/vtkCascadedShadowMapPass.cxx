@@ -133,6 +133,10 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
   this->UpdateLightGeometry(renderer);
   this->UpdateLights(renderer);
   vtkCascadedShadowMapBakerPass* baker = this->ShadowMapBakerPass;
+  if (!baker)
+  {
+    this->ReportOnce("no shadow map baker pass set (SetShadowMapBakerPass): no shadows");
+  }
   if (renderer->GetSelector() || !baker || baker->GetLightMaps(renderer).empty())
   {
     // Picking, or nothing shadowed: exactly the renderer's own geometry pass.

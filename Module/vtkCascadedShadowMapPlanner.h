@@ -374,7 +374,8 @@ public:
    * count of cascades; each planned cascade's tile in it (texels: x, y from the lower left,
    * width, height) and the largest map it may have there (a scene-fitted cascade its whole
    * tile, one that follows the view at most maximumResolution a side). GetAtlasShrunk(): the
-   * texture limit made the tiles smaller than AtlasResolution.
+   * texture limit made the tiles smaller than AtlasResolution. For a planner used alone: the
+   * baker sets both before every frame it plans (from its Resolution and the context's limit).
    */
   vtkSetClampMacro(AtlasResolution, int, 0, 65536);
   vtkGetMacro(AtlasResolution, int);

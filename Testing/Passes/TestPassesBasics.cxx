@@ -375,6 +375,21 @@ TEST(Passes, AViewportOfNoPixelsIsLeftAlone)
   EXPECT_TRUE(baker->GetLightMaps(empty).empty());
 }
 
+// A shadow pass without a baker draws the scene without shadows and says so, once.
+TEST(Passes, NoBakerSaysSoOnce)
+{
+  BoxOverPlane scene;
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  pass->SetShadowMapBakerPass(nullptr);
+  ErrorCounter warnings(pass, vtkCommand::WarningEvent), errors(pass);
+  scene.Frame();
+  auto image = scene.Frame();
+  EXPECT_EQ(warnings.Count, 1);
+  EXPECT_EQ(errors.Count, 0);
+  EXPECT_EQ(DifferingValues(image, plain, 2), 0);
+}
+
 TEST(Passes, EmptyRendererAndNoShadowingLight)
 {
   BoxOverPlane scene;
