@@ -137,9 +137,28 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
   {
     this->ReportOnce("no shadow map baker pass set (SetShadowMapBakerPass): no shadows");
   }
-  if (renderer->GetSelector() || !baker || baker->GetLightMaps(renderer).empty())
+  // The view's depth the baker drew this frame stays in the depth buffer, a polygon offset
+  // farther than the surfaces (its visible-depth pass): the same surfaces pass it at equal depth.
+  // (VTK draws with GL_LESS, and a face square to the view, whose offset is the constant one
+  // alone, failed it and vanished.) A shadowed frame draws so whether the view's depth was drawn
+  // or not, so that a frame drawn as the last one (which reads its factors, no depth drawn) is
+  // that frame to the pixel where two faces meet at one depth.
+  vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+  if (!window)
   {
-    // Picking, or nothing shadowed: exactly the renderer's own geometry pass.
+    return;
+  }
+  vtkOpenGLState::ScopedglDepthFunc depthFunc(window->GetState());
+  const bool shadowed = !renderer->GetSelector() && baker && !baker->GetLightMaps(renderer).empty();
+  if (shadowed ||
+    (!renderer->GetSelector() && baker && baker->GetLastFrameStatistics().ViewDepthDrawn))
+  {
+    window->GetState()->vtkglDepthFunc(GL_LEQUAL);
+  }
+  if (!shadowed)
+  {
+    // Picking, or nothing shadowed: the renderer's own geometry pass (over the view's depth
+    // where the baker drew it).
     this->UpdateGeometry(renderer, s->GetFrameBuffer());
     return;
   }

@@ -351,3 +351,47 @@ TEST(Passes, ACasterSmallOnTheImageForItsTrianglesStandsInByItsBoxForTheSameShad
   std::printf("darkened pixels without the ball: %ld\n", shadowWithout);
   EXPECT_LT(shadowWithout, shadowFitted - 20);
 }
+
+// A view square to the ground (straight down, as ParaView's -Y button, with and without
+// multisampling): the view's depth drawn before the frame (a polygon offset farther, which on a
+// face square to the view is its constant term alone) must not hide the ground from the frame's
+// own pass. Before, VTK's GL_LESS failed every ground fragment: the background showed, or black.
+TEST(Passes, AViewSquareToTheGroundStillDrawsIt)
+{
+  for (const int samples : { 0, 4 })
+  {
+    BoxOverPlaneSettings settings;
+    settings.CameraPosition[0] = 0.0;
+    settings.CameraPosition[1] = 30.0;
+    settings.CameraPosition[2] = 0.0;
+    settings.LightPosition[0] = 3.0;
+    settings.LightPosition[2] = 2.0;
+    BoxOverPlane scene(settings);
+    scene.Window->SetMultiSamples(samples);
+    scene.Renderer->GetActiveCamera()->SetViewUp(0.0, 0.0, -1.0);
+    scene.Renderer->ResetCameraClippingRange();
+    auto plain = scene.Frame();
+    vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+    vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+    pass->ReuseShadowFactorsOff();
+    auto shadowed = scene.Frame();
+    ASSERT_TRUE(baker->GetLastFrameStatistics().ViewDepthDrawn) << samples;
+    EXPECT_GT(DarkenedPixels(shadowed, plain), 500) << samples; // the box's shadow
+    // The background shows where it shows without shadows, and the frame is the boxes' fit's.
+    const auto background = [](vtkImageData* image)
+    {
+      long count = 0;
+      for (int y = 0; y < 240; ++y)
+        for (int x = 0; x < 320; ++x)
+          count += image->GetScalarComponentAsDouble(x, y, 0, 0) == 51.0 &&
+              image->GetScalarComponentAsDouble(x, y, 0, 2) == 102.0
+            ? 1
+            : 0;
+      return count;
+    };
+    EXPECT_EQ(background(shadowed), background(plain)) << samples;
+    baker->VisibleDepthFitOff();
+    auto boxesFit = scene.Frame();
+    EXPECT_LE(DifferingValues(shadowed, boxesFit), 200) << samples;
+  }
+}
