@@ -41,6 +41,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 vtkStandardNewMacro(vtkCascadedShadowMapBakerPass);
@@ -142,6 +143,56 @@ vtkCascadedShadowMapBakerPass::GetLightMaps(vtkRenderer* renderer) const
   return none;
 }
 
+namespace
+{
+/// The boxes, before and after, of the props whose casting changed, and of the props that came
+/// or went, each prop matched by itself (not by its place in the list).
+void DirtyBoxes(const std::vector<vtkProp*>& lastProps,
+  const std::vector<std::vector<double>>& lastCasting,
+  const std::vector<std::array<double, 6>>& lastBounds, const std::vector<vtkProp*>& props,
+  const std::vector<std::vector<double>>& casting, const std::vector<std::array<double, 6>>& boxes,
+  std::vector<std::array<double, 6>>& dirty)
+{
+  const auto add = [&dirty](const std::array<double, 6>& box)
+  {
+    if (box[0] <= box[1])
+    {
+      dirty.push_back(box);
+    }
+  };
+  std::unordered_map<vtkProp*, size_t> last;
+  for (size_t j = 0; j < lastProps.size(); ++j)
+  {
+    last.emplace(lastProps[j], j);
+  }
+  std::vector<char> kept(lastProps.size(), 0);
+  for (size_t i = 0; i < props.size(); ++i)
+  {
+    const auto found = last.find(props[i]);
+    if (found == last.end())
+    {
+      add(boxes[i]); // came
+      continue;
+    }
+    const size_t j = found->second;
+    kept[j] = 1;
+    // (A box that moved with nothing else seen to change: the data was edited in place.)
+    if (casting[i] != lastCasting[j] || boxes[i] != lastBounds[j])
+    {
+      add(lastBounds[j]);
+      add(boxes[i]);
+    }
+  }
+  for (size_t j = 0; j < lastProps.size(); ++j)
+  {
+    if (!kept[j])
+    {
+      add(lastBounds[j]); // went
+    }
+  }
+}
+} // namespace
+
 bool vtkCascadedShadowMapBakerPass::InputsChanged(
   vtkRenderer* renderer, csmRendererMaps& state, std::vector<std::array<double, 6>>& dirty)
 {
@@ -149,12 +200,11 @@ bool vtkCascadedShadowMapBakerPass::InputsChanged(
   // cascade, a light's direction or position with its maps (Render()). Headlights and camera
   // lights follow the camera, so their MTime changes with every camera move. Of the props, only
   // what they cast (csmCastingState): a new colour, scalars or material changes no map, and
-  // where only some props' casting changed, their boxes before and after are the dirty part.
-  // (The options: the baker's and its planner's.)
-  vtkMTimeType input =
+  // where only some props' casting changed, or props came or went, their boxes before and
+  // after are the dirty part. (The options: the baker's and its planner's.)
+  const vtkMTimeType input =
     std::max({ this->GetMTime(), this->Planner->GetMTime(), renderer->GetLights()->GetMTime() });
   vtkPropCollection* props = renderer->GetViewProps();
-  input = std::max(input, props->GetMTime());
   std::vector<std::vector<double>> casting;
   std::vector<vtkProp*> list;
   std::vector<std::array<double, 6>> boxes;
@@ -180,23 +230,12 @@ bool vtkCascadedShadowMapBakerPass::InputsChanged(
     boxes.push_back(box);
   }
   int* size = renderer->GetSize();
-  bool changed = input > state.LastInputTime || list != state.LastProps ||
-    size[0] != state.LastSize[0] || size[1] != state.LastSize[1];
+  const bool changed =
+    input > state.LastInputTime || size[0] != state.LastSize[0] || size[1] != state.LastSize[1];
   dirty.clear();
-  for (size_t i = 0; !changed && i < casting.size(); ++i)
+  if (!changed)
   {
-    // (A box that moved with nothing else seen to change: the data was edited in place.)
-    if (casting[i] == state.LastCasting[i] && boxes[i] == state.LastBounds[i])
-    {
-      continue;
-    }
-    for (const std::array<double, 6>& box : { state.LastBounds[i], boxes[i] })
-    {
-      if (box[0] <= box[1])
-      {
-        dirty.push_back(box);
-      }
-    }
+    DirtyBoxes(state.LastProps, state.LastCasting, state.LastBounds, list, casting, boxes, dirty);
   }
   state.LastInputTime = input;
   state.LastCasting = std::move(casting);

@@ -385,6 +385,45 @@ TEST(Changes, OnePartOfSixteenMovedDrawsOnlyItsTexels)
   }
 }
 
+// Props added and removed (one of sixteen parts taken out and another put in, within the
+// others' extent): as a moved part, the kept map draws again only the texels of their boxes, and
+// the frame is the one a fresh chain draws (before, any change of the prop list drew every map
+// whole).
+TEST(Changes, APartAddedAndOneRemovedDrawOnlyTheirTexels)
+{
+  BoxOverPlane scene;
+  scene.Renderer->RemoveActor(scene.Box);
+  std::vector<vtkSmartPointer<vtkActor>> parts;
+  for (int i = 0; i < 16; ++i)
+  {
+    const double x = -6.0 + 4.0 * (i % 4), z = -6.0 + 4.0 * (i / 4);
+    parts.push_back(
+      csmTest::BoxActor(x - 0.5, x + 0.5, 1.0, 2.5 + 0.25 * (i % 3), z - 0.5, z + 0.5));
+    scene.Renderer->AddActor(parts.back());
+  }
+  vtkCascadedShadowMapBakerPass* baker = CascadesOn(scene.Renderer);
+  scene.Frame();
+  const double firstTexels = baker->GetLastFrameStatistics().TexelsRendered;
+  ASSERT_GT(firstTexels, 0.0);
+  scene.Frame();
+  for (int step = 0; step < 3; ++step)
+  {
+    // An inner part out, a new one in beside where it stood (not higher than the others).
+    scene.Renderer->RemoveActor(parts[5 + step]);
+    auto added = csmTest::BoxActor(-1.8 + 0.2 * step, -1.0 + 0.2 * step, 1.0, 2.5, 0.0, 0.6);
+    scene.Renderer->AddActor(added);
+    parts.push_back(added);
+    auto changed = scene.Frame();
+    const auto& statistics = baker->GetLastFrameStatistics();
+    EXPECT_EQ(statistics.CascadesRendered, 0) << step;
+    EXPECT_GT(statistics.CascadesPatched, 0) << step;
+    EXPECT_GT(statistics.TexelsRendered, 0.0) << step;
+    EXPECT_LE(statistics.TexelsRendered, 0.25 * firstTexels) << step;
+    EXPECT_EQ(DifferingValues(FreshFrame(scene, baker, baker), changed), 0) << step;
+    scene.Frame();
+  }
+}
+
 // Casters that change every frame (a deforming structure): no scene-fitted map (it would draw its
 // whole tile every frame) but maps fitted to the view, sized to what the error target needs, from
 // the first changed frame on where its changes would draw the kept scene-fitted map whole (a
