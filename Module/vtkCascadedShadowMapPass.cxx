@@ -139,10 +139,10 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
   }
   // The view's depth the baker drew this frame stays in the depth buffer, a polygon offset
   // farther than the surfaces (its visible-depth pass): the same surfaces pass it at equal depth.
-  // (VTK draws with GL_LESS, and a face square to the view, whose offset is the constant one
-  // alone, failed it and vanished.) A shadowed frame draws so whether the view's depth was drawn
-  // or not, so that a frame drawn as the last one (which reads its factors, no depth drawn) is
-  // that frame to the pixel where two faces meet at one depth.
+  // (Under VTK's GL_LESS a face square to the view, whose offset is the constant one alone,
+  // would fail it and vanish.) A shadowed frame draws so whether the view's depth was drawn or
+  // not, so that a frame drawn as the last one (which reads its factors, no depth drawn) is that
+  // frame to the pixel where two faces meet at one depth.
   vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
   if (!window)
   {

@@ -289,7 +289,8 @@ TEST(Passes, DegenerateLightIsReportedOnce)
 // A box over a ground far wider than itself, or with a speck of a prop far off, casts the shadow
 // it casts over a ground of its own size: the scene-fitted map's depths span what lies under the
 // shadows it holds, not the whole scene along the light, of which the constant bias is a share
-// (spanning the scene, the bias ate the shadow of a box over a ground 5,000 times its size).
+// (over the scene's whole depth, the bias ate the shadow of a box over a ground 5,000 times its
+// size).
 TEST(Passes, ABoxOverAFarWiderGroundCastsItsShadow)
 {
   const auto darkened = [](double groundHalfWidth, bool speck)

@@ -355,7 +355,7 @@ TEST(Passes, ACasterSmallOnTheImageForItsTrianglesStandsInByItsBoxForTheSameShad
 // A view square to the ground (straight down, as ParaView's -Y button, with and without
 // multisampling): the view's depth drawn before the frame (a polygon offset farther, which on a
 // face square to the view is its constant term alone) must not hide the ground from the frame's
-// own pass. Before, VTK's GL_LESS failed every ground fragment: the background showed, or black.
+// own pass (under VTK's GL_LESS every ground fragment failed: the background showed, or black).
 TEST(Passes, AViewSquareToTheGroundStillDrawsIt)
 {
   for (const int samples : { 0, 4 })

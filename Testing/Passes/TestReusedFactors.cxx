@@ -262,7 +262,7 @@ TEST(ReusedFactors, TwoRenderersSharingAPass)
 
 // Renderers in two windows sharing one pass chain: the graphics resources of one window released
 // (its window closed) leave the other window's factors alone; its frames stay the lookup's
-// image (before: the other window's stored factors were released too and it drew black).
+// image (released with the first window's, they left it black).
 TEST(ReusedFactors, ReleasingOneWindowKeepsTheOthersFactors)
 {
   BoxOverPlane first;
