@@ -360,6 +360,23 @@ TEST(Changes, AFrameAsTheLastDrawsNothing)
   EXPECT_EQ(DifferingValues(FreshFrame(scene, baker, fresh), lit), 0);
 }
 
+/// A frame after a change of some parts: the kept map patched with at most a quarter of the first
+/// frame's texels, none drawn whole, and the image a fresh chain's (baker: that chain's after).
+void ExpectOnlyTheirTexels(
+  BoxOverPlane& scene, vtkCascadedShadowMapBakerPass*& baker, double firstTexels, int step)
+{
+  auto changed = scene.Frame();
+  const auto& statistics = baker->GetLastFrameStatistics();
+  std::printf("step %d: maps drawn %d, patched %d, kept %d, texels %.0f of %.0f\n", step,
+    statistics.CascadesRendered, statistics.CascadesPatched, statistics.CascadesKept,
+    statistics.TexelsRendered, firstTexels);
+  EXPECT_GT(statistics.CascadesPatched, 0) << step;
+  EXPECT_EQ(statistics.CascadesRendered, 0) << step;
+  EXPECT_GT(statistics.TexelsRendered, 0.0) << step;
+  EXPECT_LE(statistics.TexelsRendered, 0.25 * firstTexels) << step;
+  EXPECT_EQ(DifferingValues(FreshFrame(scene, baker, baker), changed), 0) << step;
+}
+
 // An assembly of 16 parts, one of them moved (within the others' extent): the kept map draws
 // again only the texels of that part's boxes before and after (at most a quarter of the first
 // frame's texels), and the frame is the one a fresh chain draws.
@@ -379,16 +396,7 @@ TEST(Changes, OnePartOfSixteenMovedDrawsOnlyItsTexels)
   for (int step = 0; step < 3; ++step)
   {
     parts[5]->SetPosition(0.3 * (step + 1), 0.0, -0.3 * step); // an inner part, not higher
-    auto moved = scene.Frame();
-    const auto& statistics = baker->GetLastFrameStatistics();
-    std::printf("step %d: maps drawn %d, patched %d, kept %d, texels %.0f of %.0f\n", step,
-      statistics.CascadesRendered, statistics.CascadesPatched, statistics.CascadesKept,
-      statistics.TexelsRendered, firstTexels);
-    EXPECT_GT(statistics.CascadesPatched, 0) << step;
-    EXPECT_EQ(statistics.CascadesRendered, 0) << step;
-    EXPECT_GT(statistics.TexelsRendered, 0.0) << step;
-    EXPECT_LE(statistics.TexelsRendered, 0.25 * firstTexels) << step;
-    EXPECT_EQ(DifferingValues(FreshFrame(scene, baker, baker), moved), 0) << step;
+    ExpectOnlyTheirTexels(scene, baker, firstTexels, step);
   }
 }
 
@@ -412,13 +420,7 @@ TEST(Changes, APartAddedAndOneRemovedDrawOnlyTheirTexels)
     auto added = csmTest::BoxActor(-1.8 + 0.2 * step, -1.0 + 0.2 * step, 1.0, 2.5, 0.0, 0.6);
     scene.Renderer->AddActor(added);
     parts.push_back(added);
-    auto changed = scene.Frame();
-    const auto& statistics = baker->GetLastFrameStatistics();
-    EXPECT_EQ(statistics.CascadesRendered, 0) << step;
-    EXPECT_GT(statistics.CascadesPatched, 0) << step;
-    EXPECT_GT(statistics.TexelsRendered, 0.0) << step;
-    EXPECT_LE(statistics.TexelsRendered, 0.25 * firstTexels) << step;
-    EXPECT_EQ(DifferingValues(FreshFrame(scene, baker, baker), changed), 0) << step;
+    ExpectOnlyTheirTexels(scene, baker, firstTexels, step);
     scene.Frame();
   }
 }
