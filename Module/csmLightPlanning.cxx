@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <string>
 #include <utility>
@@ -178,6 +179,85 @@ int forEachShadowedLight(vtkRenderer* renderer, int maximumLights, F&& shadowed)
   return shadowingLights;
 }
 
+/// The entries of v in the order of `order` (an index past v: a default entry).
+template <typename T>
+void permuted(std::vector<T>& v, const std::vector<size_t>& order)
+{
+  std::vector<T> result(order.size());
+  for (size_t s = 0; s < order.size(); ++s)
+  {
+    if (order[s] < v.size())
+    {
+      result[s] = std::move(v[order[s]]);
+    }
+  }
+  v = std::move(result);
+}
+
+/// Each light shadowed this frame takes the slot it had the frame before (its maps, atlas, page
+/// table and page cache), wherever it now is in the list of shadowed lights, so that a light
+/// switched off or on does not make the others draw their maps again in another's atlas; a
+/// light new to the list takes the slot (and the textures) of one that left it.
+void alignSlots(vtkRenderer* renderer, int maximumLights, csmRendererMaps& state)
+{
+  std::vector<vtkLight*> lights;
+  forEachShadowedLight(
+    renderer, maximumLights, [&lights](vtkLight* light, int) { lights.push_back(light); });
+  constexpr size_t none = std::numeric_limits<size_t>::max();
+  const size_t last = state.Maps.size();
+  std::vector<char> taken(last, 0);
+  std::vector<size_t> order;
+  for (vtkLight* light : lights)
+  {
+    size_t found = none;
+    for (size_t j = 0; j < last && found == none; ++j)
+    {
+      found = !taken[j] && state.Maps[j].Light == light ? j : none;
+    }
+    if (found != none)
+    {
+      taken[found] = 1;
+    }
+    order.push_back(found);
+  }
+  size_t free = 0;
+  for (size_t& o : order)
+  {
+    for (; o == none && free < last; ++free)
+    {
+      if (!taken[free])
+      {
+        taken[free] = 1;
+        o = free;
+      }
+    }
+  }
+  for (size_t j = 0; j < last; ++j)
+  {
+    if (!taken[j])
+    {
+      order.push_back(j); // (released after the plan)
+    }
+  }
+  bool identity = order.size() == last;
+  for (size_t s = 0; identity && s < order.size(); ++s)
+  {
+    identity = order[s] == s;
+  }
+  if (identity)
+  {
+    return;
+  }
+  permuted(state.Maps, order);
+  permuted(state.AtlasPool, order);
+  permuted(state.PageTablePool, order);
+  permuted(state.PageCaches, order);
+  for (vtkSmartPointer<vtkTextureObject>& atlas : state.AtlasPool)
+  {
+    atlas = atlas ? atlas : vtkSmartPointer<vtkTextureObject>::New();
+  }
+}
+
 /// A light's maps before they are planned: the light as they are rendered for.
 LightMaps lightMapsOf(vtkLight* light, int index)
 {
@@ -295,6 +375,7 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
   frame.CastersChanged = !props.Dirty.empty();
   csmMapDrawing::MainView(renderer, renderer->GetActiveCamera(), frame.ViewKey);
   this->FeedVisibleDepths(renderer, window, state, props);
+  alignSlots(renderer, maximumLights, state);
   const int shadowingLights = forEachShadowedLight(renderer, maximumLights,
     [&](vtkLight* light, int index)
     { this->PlanLight(renderer, state, props, frame, light, index, planned); });
@@ -319,7 +400,10 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
   state.AtlasPool.resize(planned.size());
   for (size_t i = planned.size(); i < state.PageTablePool.size(); ++i)
   {
-    state.PageTablePool[i]->ReleaseGraphicsResources(window);
+    if (state.PageTablePool[i]) // (a slot that had no pages)
+    {
+      state.PageTablePool[i]->ReleaseGraphicsResources(window);
+    }
   }
   state.PageTablePool.resize(std::min(state.PageTablePool.size(), planned.size()));
   state.PageCaches.resize(std::min(state.PageCaches.size(), planned.size()));

@@ -777,7 +777,10 @@ void vtkCascadedShadowMapBakerPass::ReleaseGraphicsResources(vtkWindow* w)
     }
     for (auto& table : state.PageTablePool)
     {
-      table->ReleaseGraphicsResources(w ? w : state.Window);
+      if (table)
+      {
+        table->ReleaseGraphicsResources(w ? w : state.Window);
+      }
     }
     if (state.PageScratch)
     {

@@ -327,3 +327,35 @@ TEST(Passes, ABoxOverAFarWiderGroundCastsItsShadow)
   EXPECT_GT(withSpeck, own * 9 / 10);
   EXPECT_LT(withSpeck, own * 11 / 10);
 }
+
+// Two shadowed lights, the first switched off and on again: the second keeps its maps in its own
+// atlas both times (only the first's are drawn when it comes back), and the frame is the one
+// before the switching.
+TEST(Passes, ALightSwitchedOffAndOnLeavesTheOthersMaps)
+{
+  BoxOverPlane scene;
+  scene.Light->SetPosition(3.0, 10.0, 2.0);
+  vtkNew<vtkLight> second;
+  second->SetLightTypeToSceneLight();
+  second->SetPositional(false);
+  second->SetPosition(-3.0, 10.0, 1.0);
+  second->SetFocalPoint(0.0, 0.0, 0.0);
+  scene.Renderer->AddLight(second);
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkCascadedShadowMapBakerPass* baker = pass->GetShadowMapBakerPass();
+  pass->ReuseShadowFactorsOff();
+  scene.Frame();
+  auto before = scene.Frame();
+  ASSERT_EQ(baker->GetLightMaps().size(), 2u);
+  const int secondMaps = baker->GetLightMaps()[1].GetNumberOfCascades();
+  scene.Light->SwitchOff();
+  scene.Frame();
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered, 0);
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesKept, secondMaps);
+  scene.Light->SwitchOn();
+  auto after = scene.Frame();
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesKept, secondMaps);
+  EXPECT_EQ(baker->GetLastFrameStatistics().CascadesRendered,
+    baker->GetLightMaps()[0].GetNumberOfCascades());
+  EXPECT_EQ(csmTest::DifferingValues(after, before, 0), 0);
+}
