@@ -369,7 +369,8 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
     ? std::min(this->Options.InteractiveResolution, this->Options.Resolution)
     : this->Options.Resolution;
   frame.MostCascades = frame.Interacting ? csm::kAtlasFullMaps : 0;
-  frame.ImageHeight = renderer->GetSize()[1];
+  frame.ImageHeight = static_cast<int>(
+    std::lround(renderer->GetSize()[1] * csmWindowCentreScale(renderer->GetActiveCamera())));
   frame.Aspect = renderer->GetTiledAspectRatio();
   frame.Changed = props.Changed;
   frame.CastersChanged = !props.Dirty.empty();
@@ -517,8 +518,9 @@ void csmLightPlanning::ServeWithPages(vtkRenderer* renderer, csmRendererMaps& st
   // Pages where the cascades would follow the view of a scene light (its one scene-fitted map
   // already serves the whole view with all of the atlas; the pages refine that map, so not
   // where scene-fitted maps are off), the casters stay and are not sized on the screen, every
-  // receiver is in the view's depth buffer, the view is a perspective one and the atlas holds a
-  // base and its pool; marked from this view's samples (the depth pass keeps them where
+  // receiver is in the view's depth buffer, the view is a perspective one about its axis (the
+  // samples are read back through it) and the atlas holds a base and its pool; marked from this
+  // view's samples (the depth pass keeps them where
   // LightSpacePages is on).
   vtkCamera* camera = renderer->GetActiveCamera();
   const int side = this->Options.Resolution;
@@ -540,6 +542,8 @@ void csmLightPlanning::ServeWithPages(vtkRenderer* renderer, csmRendererMaps& st
     !otherKinds && maps.Kind == LightKind::Directional && maps.Light->LightTypeIsSceneLight() &&
     (!frame.CastersChanged || (lastPaged && !this->Statistics.CastersChanging)) &&
     !frame.ScreenSized && !props.TranslucentReceivers && !camera->GetParallelProjection() &&
+    camera->GetWindowCenter()[0] == 0.0 && camera->GetWindowCenter()[1] == 0.0 &&
+    !camera->GetUseOffAxisProjection() && !camera->GetUseExplicitProjectionTransformMatrix() &&
     this->Planner->GetDepthClamp() && csm::poolSlots(atlas, pageBaseSide(side)) > 0 &&
     (textureLimit <= 0 || std::max(atlas.width, atlas.height) <= textureLimit);
   if (serve && state.VisibleCamera && !state.VisibleSamples.isEmpty() &&

@@ -59,7 +59,25 @@ bool csmToCamera(vtkCamera* camera, double aspect, csm::Camera& cam)
     const double halfX = vtkMath::RadiansFromDegrees(0.5 * camera->GetViewAngle());
     cam.fovyDeg = vtkMath::DegreesFromRadians(2.0 * std::atan(std::tan(halfX) / aspect));
   }
+  // A window centre shifted off the axis (a magnified screenshot's tiles): the frustum about the
+  // axis that holds the shifted one, its pixels as large as the shifted one's
+  // (csmWindowCentreScale for the image height).
+  const double* centre = camera->GetWindowCenter();
+  const double sx = 1.0 + std::abs(centre[0]), sy = csmWindowCentreScale(camera);
+  if (std::isfinite(sx) && std::isfinite(sy) && (sx > 1.0 || sy > 1.0))
+  {
+    cam.aspect = aspect * sx / sy;
+    cam.parallelScale *= sy;
+    const double halfY = vtkMath::RadiansFromDegrees(0.5 * cam.fovyDeg);
+    cam.fovyDeg = vtkMath::DegreesFromRadians(2.0 * std::atan(sy * std::tan(halfY)));
+  }
   return true;
+}
+
+double csmWindowCentreScale(vtkCamera* camera)
+{
+  const double y = camera ? std::abs(camera->GetWindowCenter()[1]) : 0.0;
+  return std::isfinite(y) ? 1.0 + y : 1.0;
 }
 
 bool csmIsSmallCameraStep(vtkCamera* before, vtkCamera* now, double aspect, double depth)

@@ -19,6 +19,8 @@ void csmToRowMajor(const glm::dmat4& m, double out[16]);
 
 /// A vtkCamera of a viewport of the given aspect as the math's camera (false: no camera).
 bool csmToCamera(vtkCamera* camera, double aspect, csm::Camera& cam);
+/// How many times the image height the frustum of csmToCamera spans (1 + |window centre y|).
+double csmWindowCentreScale(vtkCamera* camera);
 
 /// Does any part of a world box (xmin, xmax, ymin, ymax, zmin, zmax) reach the light volume of
 /// a cascade (row-major world -> light clip)? With depthClamp, what is nearer than the near

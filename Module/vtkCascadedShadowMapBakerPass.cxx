@@ -145,6 +145,33 @@ vtkCascadedShadowMapBakerPass::GetLightMaps(vtkRenderer* renderer) const
 
 namespace
 {
+/// Is a camera's explicit projection the one it would compute itself (as a compositor that
+/// hands every process the whole view sets it), to within rounding?
+bool ExplicitProjectionIsTheCamerasOwn(vtkCamera* camera, double aspect)
+{
+  vtkMatrix4x4* given = camera->GetExplicitProjectionTransformMatrix();
+  if (!given)
+  {
+    return false;
+  }
+  vtkNew<vtkCamera> own;
+  own->DeepCopy(camera);
+  own->SetUseExplicitProjectionTransformMatrix(false);
+  vtkMatrix4x4* computed = own->GetProjectionTransformMatrix(aspect, -1.0, 1.0);
+  for (int i = 0; i < 16; ++i)
+  {
+    const double a = given->GetData()[i], b = computed->GetData()[i];
+    if (!(std::abs(a - b) <= 1e-6 * std::max({ 1.0, std::abs(a), std::abs(b) })))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
+namespace
+{
 /// The boxes, before and after, of the props whose casting changed, and of the props that came
 /// or went, each prop matched by itself (not by its place in the list).
 void DirtyBoxes(const std::vector<vtkProp*>& lastProps,
@@ -377,7 +404,9 @@ void vtkCascadedShadowMapBakerPass::Render(const vtkRenderState* s)
   {
     return; // (a viewport of no pixels shows nothing to shadow)
   }
-  if (camera->GetUseOffAxisProjection() || camera->GetUseExplicitProjectionTransformMatrix())
+  if (camera->GetUseOffAxisProjection() ||
+    (camera->GetUseExplicitProjectionTransformMatrix() &&
+      !ExplicitProjectionIsTheCamerasOwn(camera, renderer->GetTiledAspectRatio())))
   {
     this->ReportOnce(false,
       "An off-axis or explicit camera projection: the shadow maps are fitted to the camera's "

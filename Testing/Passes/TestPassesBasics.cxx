@@ -11,6 +11,7 @@
 #include "vtkHardwareSelector.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
+#include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPolyDataMapper.h"
@@ -464,6 +465,26 @@ TEST(Passes, AnOffAxisCameraIsReportedOnce)
   EXPECT_EQ(errors.Count, 0);
   camera->SetUseOffAxisProjection(0);
   EXPECT_GT(DarkenedPixels(scene.Render(), plain), 800);
+  EXPECT_EQ(warnings.Count, 1);
+}
+
+// An explicit projection that is the camera's own (as a compositor hands every process the
+// whole view) is no reason for a warning; the shadows are the camera's.
+TEST(Passes, AnExplicitProjectionThatIsTheCamerasOwnSaysNothing)
+{
+  BoxOverPlane scene;
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  ErrorCounter warnings(pass->GetShadowMapBakerPass(), vtkCommand::WarningEvent);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  vtkNew<vtkMatrix4x4> own;
+  own->DeepCopy(camera->GetProjectionTransformMatrix(scene.Renderer->GetTiledAspectRatio(), -1, 1));
+  camera->SetExplicitProjectionTransformMatrix(own);
+  camera->SetUseExplicitProjectionTransformMatrix(true);
+  EXPECT_GT(DarkenedPixels(scene.Render(), plain), 800);
+  EXPECT_EQ(warnings.Count, 0);
+  own->SetElement(0, 2, 0.3); // shifted: now it is not the camera's
+  scene.Render();
   EXPECT_EQ(warnings.Count, 1);
 }
 

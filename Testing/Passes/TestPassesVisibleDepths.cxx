@@ -15,6 +15,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSphereSource.h"
+#include "vtkWindowToImageFilter.h"
 
 #include "csmTestHelpers.h"
 
@@ -394,4 +395,41 @@ TEST(Passes, AViewSquareToTheGroundStillDrawsIt)
     auto boxesFit = scene.Frame();
     EXPECT_LE(DifferingValues(shadowed, boxesFit), 200) << samples;
   }
+}
+
+// A magnified screenshot (vtkWindowToImageFilter's scale: tiles, each drawn with the camera's
+// window centre shifted and its view angle narrowed) has the shadows of the same view rendered
+// at that size: the maps hold the tile's shifted frustum (planned about the axis, the frustum
+// that holds it, its pixels as large as the tile's), not a narrow one about the axis.
+TEST(Passes, AMagnifiedScreenshotKeepsItsShadows)
+{
+  const auto darkened = [](int scale)
+  {
+    BoxOverPlaneSettings settings;
+    settings.Size[0] = 960 / scale;
+    settings.Size[1] = 720 / scale;
+    settings.LightPosition[0] = 3.0;
+    settings.LightPosition[2] = 2.0;
+    const double box[6] = { -8.0, -6.0, 1.0, 3.0, 4.0, 6.0 }; // off the image's centre
+    std::copy(box, box + 6, settings.Box);
+    BoxOverPlane scene(settings);
+    const auto grab = [&scene, scale]()
+    {
+      vtkNew<vtkWindowToImageFilter> filter;
+      filter->SetInput(scene.Window);
+      filter->SetScale(scale);
+      filter->ReadFrontBufferOff();
+      filter->Update();
+      return vtkSmartPointer<vtkImageData>(filter->GetOutput());
+    };
+    auto plain = grab();
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+    scene.Frame();
+    return DarkenedPixels(grab(), plain);
+  };
+  const long direct = darkened(1);
+  EXPECT_GT(direct, 300);
+  const long magnified = darkened(3);
+  EXPECT_GT(magnified, direct * 9 / 10);
+  EXPECT_LT(magnified, direct * 11 / 10);
 }
