@@ -542,9 +542,8 @@ void csmLightPlanning::ServeWithPages(vtkRenderer* renderer, csmRendererMaps& st
     !otherKinds && maps.Kind == LightKind::Directional && maps.Light->LightTypeIsSceneLight() &&
     (!frame.CastersChanged || (lastPaged && !this->Statistics.CastersChanging)) &&
     !frame.ScreenSized && !props.TranslucentReceivers && !camera->GetParallelProjection() &&
-    camera->GetWindowCenter()[0] == 0.0 && camera->GetWindowCenter()[1] == 0.0 &&
-    !camera->GetUseOffAxisProjection() && !camera->GetUseExplicitProjectionTransformMatrix() &&
-    this->Planner->GetDepthClamp() && csm::poolSlots(atlas, pageBaseSide(side)) > 0 &&
+    csmCameraOnAxis(camera) && this->Planner->GetDepthClamp() &&
+    csm::poolSlots(atlas, pageBaseSide(side)) > 0 &&
     (textureLimit <= 0 || std::max(atlas.width, atlas.height) <= textureLimit);
   if (serve && state.VisibleCamera && !state.VisibleSamples.isEmpty() &&
     sameView(state.VisibleCamera, camera, frame.Aspect))
@@ -816,11 +815,9 @@ void csmLightPlanning::FeedVisibleDepths(vtkRenderer* renderer, vtkOpenGLRenderW
     // tiles, not an off-axis or shifted projection).
     vtkCamera* camera = renderer->GetActiveCamera();
     const double* tile = window->GetTileViewport();
-    const double* centre = camera->GetWindowCenter();
     const bool wholeImage = window->GetTileScale()[0] == 1 && window->GetTileScale()[1] == 1 &&
-      tile[0] == 0.0 && tile[1] == 0.0 && tile[2] == 1.0 && tile[3] == 1.0 && centre[0] == 0.0 &&
-      centre[1] == 0.0 && !camera->GetUseOffAxisProjection() &&
-      !camera->GetUseExplicitProjectionTransformMatrix();
+      tile[0] == 0.0 && tile[1] == 0.0 && tile[2] == 1.0 && tile[3] == 1.0 &&
+      csmCameraOnAxis(camera);
     this->Planner->SetVisibleFootprint(
       this->Options.VisibleFootprintFit && !props.TranslucentReceivers && wholeImage
         ? &state.VisibleFootprint

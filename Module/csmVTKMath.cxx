@@ -74,6 +74,12 @@ bool csmToCamera(vtkCamera* camera, double aspect, csm::Camera& cam)
   return true;
 }
 
+bool csmCameraOnAxis(vtkCamera* camera)
+{
+  return camera && camera->GetWindowCenter()[0] == 0.0 && camera->GetWindowCenter()[1] == 0.0 &&
+    !camera->GetUseOffAxisProjection() && !camera->GetUseExplicitProjectionTransformMatrix();
+}
+
 double csmWindowCentreScale(vtkCamera* camera)
 {
   const double y = camera ? std::abs(camera->GetWindowCenter()[1]) : 0.0;

@@ -21,6 +21,10 @@ void csmToRowMajor(const glm::dmat4& m, double out[16]);
 bool csmToCamera(vtkCamera* camera, double aspect, csm::Camera& cam);
 /// How many times the image height the frustum of csmToCamera spans (1 + |window centre y|).
 double csmWindowCentreScale(vtkCamera* camera);
+/// Is the camera's projection the one about its axis that csmToCamera describes exactly (no
+/// window centre shift, no off-axis or explicit projection), so that its window samples read
+/// back through it?
+bool csmCameraOnAxis(vtkCamera* camera);
 
 /// Does any part of a world box (xmin, xmax, ymin, ymax, zmin, zmax) reach the light volume of
 /// a cascade (row-major world -> light clip)? With depthClamp, what is nearer than the near

@@ -168,10 +168,7 @@ bool ExplicitProjectionIsTheCamerasOwn(vtkCamera* camera, double aspect)
   }
   return true;
 }
-} // namespace
 
-namespace
-{
 /// The boxes, before and after, of the props whose casting changed, and of the props that came
 /// or went, each prop matched by itself (not by its place in the list).
 void DirtyBoxes(const std::vector<vtkProp*>& lastProps,

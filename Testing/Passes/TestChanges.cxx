@@ -79,20 +79,30 @@ vtkSmartPointer<vtkImageData> FreshFrame(BoxOverPlane& scene,
   return image;
 }
 
-/// The scene's box replaced by 16 boxes in a 4 x 4 grid, of three heights.
-std::vector<vtkSmartPointer<vtkActor>> SixteenParts(BoxOverPlane& scene)
+/// The scene's box replaced by 16 boxes in a 4 x 4 grid, of three heights, under cascades
+/// (CascadesOn), and the texels its first frame drew.
+struct SixteenParts
 {
-  scene.Renderer->RemoveActor(scene.Box);
-  std::vector<vtkSmartPointer<vtkActor>> parts;
-  for (int i = 0; i < 16; ++i)
+  BoxOverPlane Scene;
+  std::vector<vtkSmartPointer<vtkActor>> Parts;
+  vtkCascadedShadowMapBakerPass* Baker = nullptr;
+  double FirstTexels = 0.0;
+
+  SixteenParts()
   {
-    const double x = -6.0 + 4.0 * (i % 4), z = -6.0 + 4.0 * (i / 4);
-    parts.push_back(
-      csmTest::BoxActor(x - 0.5, x + 0.5, 1.0, 2.5 + 0.25 * (i % 3), z - 0.5, z + 0.5));
-    scene.Renderer->AddActor(parts.back());
+    this->Scene.Renderer->RemoveActor(this->Scene.Box);
+    for (int i = 0; i < 16; ++i)
+    {
+      const double x = -6.0 + 4.0 * (i % 4), z = -6.0 + 4.0 * (i / 4);
+      this->Parts.push_back(
+        csmTest::BoxActor(x - 0.5, x + 0.5, 1.0, 2.5 + 0.25 * (i % 3), z - 0.5, z + 0.5));
+      this->Scene.Renderer->AddActor(this->Parts.back());
+    }
+    this->Baker = CascadesOn(this->Scene.Renderer);
+    this->Scene.Frame();
+    this->FirstTexels = this->Baker->GetLastFrameStatistics().TexelsRendered;
   }
-  return parts;
-}
+};
 
 /// Every point of the data moved to (x + dx, y * yScale, z), the points marked modified.
 void MoveEveryPoint(vtkPolyData* data, double dx, double yScale)
@@ -382,11 +392,10 @@ void ExpectOnlyTheirTexels(
 // frame's texels), and the frame is the one a fresh chain draws.
 TEST(Changes, OnePartOfSixteenMovedDrawsOnlyItsTexels)
 {
-  BoxOverPlane scene;
-  std::vector<vtkSmartPointer<vtkActor>> parts = SixteenParts(scene);
-  vtkCascadedShadowMapBakerPass* baker = CascadesOn(scene.Renderer);
-  scene.Frame();
-  const double firstTexels = baker->GetLastFrameStatistics().TexelsRendered;
+  SixteenParts assembly;
+  BoxOverPlane& scene = assembly.Scene;
+  vtkCascadedShadowMapBakerPass*& baker = assembly.Baker;
+  const double firstTexels = assembly.FirstTexels;
   ASSERT_GT(firstTexels, 0.0);
   for (int still = 0; still < 3; ++still) // (the second frame too: nothing changed)
   {
@@ -395,7 +404,7 @@ TEST(Changes, OnePartOfSixteenMovedDrawsOnlyItsTexels)
   }
   for (int step = 0; step < 3; ++step)
   {
-    parts[5]->SetPosition(0.3 * (step + 1), 0.0, -0.3 * step); // an inner part, not higher
+    assembly.Parts[5]->SetPosition(0.3 * (step + 1), 0.0, -0.3 * step); // an inner part, not higher
     ExpectOnlyTheirTexels(scene, baker, firstTexels, step);
   }
 }
@@ -406,20 +415,19 @@ TEST(Changes, OnePartOfSixteenMovedDrawsOnlyItsTexels)
 // frame is the one a fresh chain draws.
 TEST(Changes, APartAddedAndOneRemovedDrawOnlyTheirTexels)
 {
-  BoxOverPlane scene;
-  std::vector<vtkSmartPointer<vtkActor>> parts = SixteenParts(scene);
-  vtkCascadedShadowMapBakerPass* baker = CascadesOn(scene.Renderer);
-  scene.Frame();
-  const double firstTexels = baker->GetLastFrameStatistics().TexelsRendered;
+  SixteenParts assembly;
+  BoxOverPlane& scene = assembly.Scene;
+  vtkCascadedShadowMapBakerPass*& baker = assembly.Baker;
+  const double firstTexels = assembly.FirstTexels;
   ASSERT_GT(firstTexels, 0.0);
   scene.Frame();
   for (int step = 0; step < 3; ++step)
   {
     // An inner part out, a new one in beside where it stood (not higher than the others).
-    scene.Renderer->RemoveActor(parts[5 + step]);
+    scene.Renderer->RemoveActor(assembly.Parts[5 + step]);
     auto added = csmTest::BoxActor(-1.8 + 0.2 * step, -1.0 + 0.2 * step, 1.0, 2.5, 0.0, 0.6);
     scene.Renderer->AddActor(added);
-    parts.push_back(added);
+    assembly.Parts.push_back(added);
     ExpectOnlyTheirTexels(scene, baker, firstTexels, step);
     scene.Frame();
   }
