@@ -94,27 +94,28 @@ constexpr int kChangingFrames = 2;
 /// triangle's edge to the texel centres it covers, never beyond the next texel).
 constexpr int kPatchMarginTexels = 1;
 
-/// Do the changed casters' boxes (each box's rectangle, with kPatchMarginTexels) cover as many
-/// texels as a kept map has, so that it is drawn whole? The rectangles are appended to patches
-/// where given.
+/// Do the changed casters' boxes (each box's rectangle, with kPatchMarginTexels; rectangles that
+/// gain merged, csm::mergeTexelRects) cover as many texels as a kept map has, so that it is drawn
+/// whole? The rectangles are appended to patches where given.
 bool ChangesDrawWhole(
   const csmFrameCasters& props, const CascadeMap& map, std::vector<csm::TexelRect>* patches)
 {
   const csm::MapSize size(map.Resolution[0], map.Resolution[1]);
   const glm::dmat4 wsToClip = csmFromRowMajor(map.WorldToMap);
-  double texels = 0.0;
+  std::vector<csm::TexelRect> rects;
   for (const std::array<double, 6>& box : props.Dirty)
   {
-    const csm::TexelRect rect =
-      csm::boxTexels(wsToClip, csm::Bounds::fromMinMaxPairs(box.data()), size, kPatchMarginTexels);
-    if (rect[2] > 0 && rect[3] > 0)
+    rects.push_back(
+      csm::boxTexels(wsToClip, csm::Bounds::fromMinMaxPairs(box.data()), size, kPatchMarginTexels));
+  }
+  double texels = 0.0;
+  for (const csm::TexelRect& rect : csm::mergeTexelRects(std::move(rects)))
+  {
+    if (patches)
     {
-      if (patches)
-      {
-        patches->push_back(rect);
-      }
-      texels += double(rect[2]) * double(rect[3]);
+      patches->push_back(rect);
     }
+    texels += double(rect[2]) * double(rect[3]);
   }
   return texels >= double(size.width) * double(size.height);
 }

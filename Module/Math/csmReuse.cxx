@@ -281,6 +281,51 @@ TexelRect boxTexels(
   return rect;
 }
 
+namespace
+{
+double rectArea(const TexelRect& r)
+{
+  return double(r[2]) * double(r[3]);
+}
+
+TexelRect rectAround(const TexelRect& a, const TexelRect& b)
+{
+  const int x = std::min(a[0], b[0]), y = std::min(a[1], b[1]);
+  return { x, y, std::max(a[0] + a[2], b[0] + b[2]) - x, std::max(a[1] + a[3], b[1] + b[3]) - y };
+}
+} // namespace
+
+std::vector<TexelRect> mergeTexelRects(std::vector<TexelRect> rects)
+{
+  rects.erase(std::remove_if(rects.begin(), rects.end(),
+                [](const TexelRect& r) { return r[2] <= 0 || r[3] <= 0; }),
+    rects.end());
+  if (rects.size() > kMostMergedRects)
+  {
+    return rects;
+  }
+  // Merge any pair that gains, until none does (each merge removes a rectangle).
+  bool merged = true;
+  while (merged)
+  {
+    merged = false;
+    for (std::size_t i = 0; i < rects.size() && !merged; ++i)
+    {
+      for (std::size_t j = i + 1; j < rects.size() && !merged; ++j)
+      {
+        const TexelRect around = rectAround(rects[i], rects[j]);
+        if (rectArea(around) <= rectArea(rects[i]) + rectArea(rects[j]))
+        {
+          rects[i] = around;
+          rects.erase(rects.begin() + static_cast<std::ptrdiff_t>(j));
+          merged = true;
+        }
+      }
+    }
+  }
+  return rects;
+}
+
 bool rectInside(const TexelRect& inner, const TexelRect& outer)
 {
   return inner[0] >= outer[0] && inner[1] >= outer[1] &&

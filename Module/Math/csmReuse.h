@@ -6,6 +6,7 @@
 #include "csmTypes.h"
 
 #include <array>
+#include <cstddef>
 #include <functional>
 #include <vector>
 
@@ -114,6 +115,14 @@ glm::dmat4 cropToTexels(const glm::dmat4& wsToClip, const TexelRect& rect, const
 /// map where part of the box lies at or behind the light's eye (w <= 0: no bounded image).
 TexelRect boxTexels(
   const glm::dmat4& wsToClip, const Bounds& wsBox, const MapSize& size, int marginTexels);
+
+/// The rectangles of texels a kept map draws again, merged where the rectangle around two covers
+/// no more texels than the two do apart (their overlap drawn twice): the casters that reach them
+/// are then drawn once, not once a rectangle (a caster's boxes before and after a small move or
+/// a deformation overlap). Empty rectangles are dropped; past kMostMergedRects, the rectangles are
+/// returned as they are (the pairwise search grows with their square).
+std::vector<TexelRect> mergeTexelRects(std::vector<TexelRect> rects);
+constexpr std::size_t kMostMergedRects = 64;
 
 /// Does inner lie inside outer (edges may touch)?
 bool rectInside(const TexelRect& inner, const TexelRect& outer);

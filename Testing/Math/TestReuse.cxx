@@ -537,3 +537,34 @@ TEST(Reuse, ABoxSetsTheTexelsOfItsImage)
   const csm::TexelRect front = csm::boxTexels(perspective, box, size, 0);
   EXPECT_EQ(front, (csm::TexelRect{ 50, 25, 100, 50 }));
 }
+
+// The rectangles a kept map draws again: a caster's boxes before and after a small move overlap
+// and become one rectangle (its casters drawn once); rectangles far apart stay apart (the one
+// around them would draw many texels neither needs); merging goes on while a pair gains.
+TEST(Reuse, OverlappingPatchesAreDrawnAsOne)
+{
+  using csm::TexelRect;
+  // Before and after a move of 2 texels: 10 x 10 each, 12 x 10 around them (120 <= 200).
+  EXPECT_EQ(csm::mergeTexelRects({ { 10, 10, 10, 10 }, { 12, 10, 10, 10 } }),
+    (std::vector<TexelRect>{ { 10, 10, 12, 10 } }));
+  // Apart: 10 x 10 at 0 and at 50 would be 60 x 10 (600 > 200).
+  const std::vector<TexelRect> apart = { { 0, 0, 10, 10 }, { 50, 0, 10, 10 } };
+  EXPECT_EQ(csm::mergeTexelRects(apart), apart);
+  // Touching side by side: the rectangle around is their union.
+  EXPECT_EQ(csm::mergeTexelRects({ { 0, 0, 10, 10 }, { 10, 0, 5, 10 } }),
+    (std::vector<TexelRect>{ { 0, 0, 15, 10 } }));
+  // One inside another: the outer one.
+  EXPECT_EQ(csm::mergeTexelRects({ { 2, 2, 3, 3 }, { 0, 0, 10, 10 } }),
+    (std::vector<TexelRect>{ { 0, 0, 10, 10 } }));
+  // A chain: a and b apart (the rectangle around them 30 x 10 = 300 > 200), c over both's gap
+  // joins a (20 x 10 <= 100 + 100), then the pair joins b (30 x 10 <= 200 + 100).
+  EXPECT_EQ(csm::mergeTexelRects({ { 0, 0, 10, 10 }, { 20, 0, 10, 10 }, { 10, 0, 10, 10 } }),
+    (std::vector<TexelRect>{ { 0, 0, 30, 10 } }));
+  // Empty rectangles dropped.
+  EXPECT_EQ(csm::mergeTexelRects({ { 5, 5, 0, 4 }, { 1, 1, 2, 2 }, { 3, 3, 4, -1 } }),
+    (std::vector<TexelRect>{ { 1, 1, 2, 2 } }));
+  EXPECT_TRUE(csm::mergeTexelRects({}).empty());
+  // Past kMostMergedRects: as they are (but the empty ones).
+  std::vector<TexelRect> many(csm::kMostMergedRects + 1, TexelRect{ 0, 0, 4, 4 });
+  EXPECT_EQ(csm::mergeTexelRects(many), many);
+}

@@ -433,6 +433,34 @@ TEST(Changes, APartAddedAndOneRemovedDrawOnlyTheirTexels)
   }
 }
 
+// A part moved or deformed a little: its boxes before and after overlap on the kept map, which
+// draws them as one rectangle, so the casters that reach it are drawn once (drawn a rectangle
+// each, a deforming structure cost two caster passes a step); the frame a fresh chain's.
+TEST(Changes, APartMovedALittleDrawsItsCastersOnce)
+{
+  SixteenParts assembly;
+  vtkActor* part = assembly.Parts[5];          // an inner part: its shadow reaches no other
+  const auto trianglesOf = [](vtkActor* actor) // (the maps draw compact casters' triangles)
+  {
+    actor->GetMapper()->Update();
+    vtkCellArray* polys =
+      vtkPolyData::SafeDownCast(actor->GetMapper()->GetInputDataObject(0, 0))->GetPolys();
+    return static_cast<double>(polys->GetNumberOfConnectivityIds() - 2 * polys->GetNumberOfCells());
+  };
+  const double cells = trianglesOf(part) + trianglesOf(assembly.Scene.Ground);
+  assembly.Scene.Frame();
+  part->SetPosition(0.1, 0.0, 0.05);
+  auto moved = assembly.Scene.Frame();
+  const auto& statistics = assembly.Baker->GetLastFrameStatistics();
+  std::printf("patched %d, drawn %d, texels %.0f, cells %.0f of %.0f\n", statistics.CascadesPatched,
+    statistics.CascadesRendered, statistics.TexelsRendered, statistics.CellsDrawn, cells);
+  ASSERT_GT(statistics.CascadesPatched, 0);
+  EXPECT_EQ(statistics.CascadesRendered, 0);
+  EXPECT_GT(statistics.CellsDrawn, 0.0);
+  EXPECT_LE(statistics.CellsDrawn, cells * statistics.CascadesPatched);
+  EXPECT_EQ(DifferingValues(FreshFrame(assembly.Scene, assembly.Baker, assembly.Baker), moved), 0);
+}
+
 // Casters that change every frame (a deforming structure): no scene-fitted map (it would draw its
 // whole tile every frame) but maps fitted to the view, sized to what the error target needs, from
 // the first changed frame on where its changes would draw the kept scene-fitted map whole (a
