@@ -156,7 +156,8 @@ public:
   vtkBooleanMacro(VisibleFootprintFit, bool);
 
   /// glPolygonOffset factor and units while rendering the maps, finite (not on closed casters'
-  /// exit layer: Tried.md, "Closed casters"). 1.1, 2.
+  /// exit layer: Tried.md, "Closed casters"): what keeps the other surfaces off their own depth,
+  /// scaled by their slope (the lookup adds no slope-scaled bias there). 1.1, 2.
   void SetPolygonOffset(double factor, double units);
   vtkGetVector2Macro(PolygonOffset, double);
 

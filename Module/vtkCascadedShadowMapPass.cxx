@@ -188,7 +188,7 @@ void mappersViewToWorld(vtkRenderer* renderer, vtkMatrix4x4* viewToWorld)
 }
 
 /// Which of the renderer's props are so (for their shaders: drawn into the maps from behind,
-/// CSM_PLANE_TAPS; translucent, no CSM_SCREEN), as a digest for the shader signature.
+/// csmFromBehind; translucent, no CSM_SCREEN), as a digest for the shader signature.
 std::string propDigest(vtkRenderer* renderer, const std::function<bool(vtkProp*)>& so)
 {
   size_t digest = 0, count = 0;
@@ -494,11 +494,9 @@ bool vtkCascadedShadowMapPass::PostReplaceShaderValues(
   std::ostringstream decl;
   decl << vtkCascadedShadowMapPass::GetShaderDefinitions(static_cast<int>(this->Uniforms.Lights()),
     this->PCFKernel, this->DebugMode, this->ConstantKernelSize() ? this->PCFSize / 2 : -1);
-  // Surfaces drawn into the maps from behind compare each texel at its own depth (the signature
-  // of DrawShadowed rebuilds the shaders when that set changes).
-  const bool fromBehind =
-    this->ShadowMapBakerPass && prop && this->ShadowMapBakerPass->DrawsFromBehind(prop);
-  decl << "#define CSM_PLANE_TAPS " << (fromBehind ? 1 : 0) << "\n"
+  // Surfaces compare each texel with their plane's depth at its centre; impostors (whose
+  // surface is not what the maps hold) take hardware bilinear compares.
+  decl << "#define CSM_PLANE_TAPS " << (impostor ? 0 : 1) << "\n"
        << "#define CSM_SINGLE_MAP " << (this->SingleMapShaders() ? 1 : 0) << "\n";
   const int screen =
     impostor || !screenCapable(fragmentShader, prop) ? csmScreenCache::OFF : this->ScreenMode;

@@ -103,7 +103,11 @@ public:
   ///@}
 
   ///@{
-  /// Slope-scaled bias: times the receiver plane's depth change over one texel. Default 1.5.
+  /// Slope-scaled bias: times the receiver plane's depth change over one texel, on the faces
+  /// whose own depth the maps hold as it is: the faces turned away from the light of a closed
+  /// surface drawn from behind (lit at its terminator by an interpolated normal). The faces of
+  /// other surfaces meet their own depth pushed back by the baker's PolygonOffset, which scales
+  /// with their slope, and take the constant bias only. Default 1.5.
   vtkSetFiniteClampMacro(SlopeBias, double, 0.0, 100.0);
   vtkGetMacro(SlopeBias, double);
   ///@}
@@ -221,8 +225,8 @@ protected:
   {
     std::vector<int> LightIndex;  ///< per light: index among the switched-on lights
     std::vector<int> TextureUnit; ///< per light: its atlas
-    /// per light: its atlas again, read a texel a compare (the per-texel compares of surfaces
-    /// drawn from behind); the atlas's own unit where no sampler object or unit is free
+    /// per light: its atlas again, read a texel a compare (the per-texel compares of surfaces,
+    /// impostors aside); the atlas's own unit where no sampler object or unit is free
     std::vector<int> NearestUnit;
     std::vector<int> Count;                    ///< per light: cascades
     std::vector<float> SplitNear, Attenuation; ///< per light

@@ -9,8 +9,8 @@
 // _FACTOR), CSM_SCREEN (below), CSM_LIGHTS, CSM_MAX_CASCADES, and CSM_PCF_RADIUS when few
 // lights are shadowed; in a build with the comparison techniques, CSM_FACES and
 // CSM_CAMERA_SPACE where a light's maps need their lookup (csmComparisonFS.glsl, which the pass
-// puts before this file); CSM_PLANE_TAPS 1 in the shaders of surfaces drawn into the maps from
-// behind (each texel compared at its own receiver-plane depth), 0 or undefined elsewhere;
+// puts before this file); CSM_PLANE_TAPS 1 in the shaders of surfaces (each texel compared at its
+// own receiver-plane depth), 0 or undefined in impostors' (hardware bilinear compares);
 // CSM_SINGLE_MAP 1 while every shadowed light has at most one map (csmShadow). Every
 // fragment makes one map lookup: a software rasterizer runs both sides of a branch, so options
 // that a uniform would switch at run time are compiled in or out instead. The kernel radius is a
@@ -354,14 +354,19 @@ float csmVisibility(sampler2DShadow map, csmTexelSampler nearest, vec4 tile, vec
   // the map, only the far side of its solid (behind it, meeting it at a convex edge) or the face
   // that shadows it (in front of it, meeting it along a concave crease or where parts touch):
   // a bias would light the crease, so it takes no slope bias and csmClosedBiasShare of the
-  // constant one (coplanar contact against rounding), and each texel is compared with the plane
-  // at its own centre (exact). A face turned away (lit by an interpolated normal at the
-  // terminator) meets its own depth and takes both biases (compared texel by texel as well).
-  // The per-texel compares are compiled in for such surfaces only (CSM_PLANE_TAPS): a software
-  // rasterizer would pay for both sides of a branch in every fragment.
+  // constant one (coplanar contact against rounding). A face turned away (lit by an
+  // interpolated normal at the terminator) meets its own depth as it is and takes both biases.
+  // Every face of any other surface (open: both sides in the maps) meets its own depth pushed
+  // back by the polygon offset the maps are drawn with, which scales with its slope, so it takes
+  // the constant bias only: a slope-scaled one would light a strip along every edge where another
+  // face meets it in shadow (a sheet wall's foot, an inner corner of sheets: Results.md,
+  // "Open sheets"). Each texel is compared with the plane at its own centre (exact), on every
+  // surface but impostors (CSM_PLANE_TAPS: a software rasterizer pays for both sides of a
+  // branch in every fragment).
   bool facesLight = det * handedness < 0.0 && csmFromBehind != 0;
   float zRef = p.z - (facesLight ? csmClosedBiasShare * biasScale * csmConstantBias
-                                 : biasScale * csmConstantBias + csmSlopeBias * zSlopePerTexel);
+                                 : biasScale * csmConstantBias +
+                      (csmFromBehind != 0 ? csmSlopeBias * zSlopePerTexel : 0.0));
   bool exact = CSM_PLANE_TAPS != 0;
 #if CSM_KERNEL == CSM_KERNEL_GRID
   return csmGridPCF(map, nearest, tile, texel, p.xy, zRef, dz, exact);

@@ -5,7 +5,8 @@
 // upright leg and across the bend. The bracket is drawn into the maps from behind; its faces
 // turned away from the light touch the shadowed faces turned toward it along the fillet's
 // facets and the holes' walls, where a depth offset or bias on either side lets light through in
-// lines one pixel wide.
+// lines one pixel wide. And a room of single-sided sheets (open, in the maps with both sides),
+// seen from inside: its walls meet each other and the floor in shadow.
 #include "csmScenes.h"
 #include "csmTestHelpers.h"
 #include "csmTruth.h"
@@ -14,18 +15,26 @@
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
+#include "vtkCellArray.h"
+#include "vtkCubeSource.h"
 #include "vtkImageData.h"
 #include "vtkLight.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace
 {
@@ -37,18 +46,19 @@ vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
   return csmTest::Grab(window, true);
 }
 
-/// The bracket at its default view, plain white with diffuse light only (the truth's factor is
-/// the shadowed render over the plain one), under one directional light `elevation` degrees
-/// above the horizon, coming from -x and turned `azimuth` degrees toward +z.
+/// A scene at its default view (the bracket's unless given), plain white with diffuse light only
+/// (the truth's factor is the shadowed render over the plain one), under one directional light
+/// `elevation` degrees above the horizon, coming from -x and turned `azimuth` degrees toward +z.
 struct BracketView
 {
-  csmScenes::Scene Scene = csmScenes::Bracket();
+  csmScenes::Scene Scene;
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkRenderWindow> Window;
   vtkNew<vtkLight> Light;
   double Direction[3]; ///< the light's direction of travel
 
-  BracketView(double elevation, double azimuth)
+  BracketView(double elevation, double azimuth, csmScenes::Scene scene = csmScenes::Bracket())
+    : Scene(std::move(scene))
   {
     const double e = vtkMath::RadiansFromDegrees(elevation);
     const double a = vtkMath::RadiansFromDegrees(azimuth);
@@ -86,10 +96,78 @@ struct BracketView
     std::vector<char> occluded(surfaces.size(), 0);
     for (size_t k = 0; k < surfaces.size(); ++k)
       occluded[k] = comparable[k] && rays.Occluded(surfaces[k], this->Direction);
+    const auto edges = rays.ShadowEdges(
+      this->Renderer->GetActiveCamera(), W, H, surfaces, comparable, occluded, this->Direction);
     return csmTruth::Classify(
-      surfaces, comparable, occluded, csmTruth::FactorFromRenders(shadowed, plain));
+      surfaces, comparable, occluded, csmTruth::FactorFromRenders(shadowed, plain), &edges);
   }
 };
+
+/// One single-sided quad (two triangles, wound so that its normal is (b - a) x (c - a)).
+void AddQuad(vtkPoints* points, vtkCellArray* cells, const double a[3], const double b[3],
+  const double c[3], const double d[3])
+{
+  const vtkIdType first = points->GetNumberOfPoints();
+  for (const double* p : { a, b, c, d })
+  {
+    points->InsertNextPoint(p);
+  }
+  const vtkIdType corners[2][3] = { { first, first + 1, first + 2 },
+    { first, first + 2, first + 3 } };
+  cells->InsertNextCell(3, corners[0]);
+  cells->InsertNextCell(3, corners[1]);
+}
+
+/// A room 10 x 4 x 10 m of single-sided sheets facing in (a roof, four walls, one with a window
+/// of 2 x 1.5 m: its wall at x = 0, toward a light from -x) on a closed ground slab, seen from
+/// inside toward the corner of the window's wall and a side wall.
+csmScenes::Scene SheetRoom()
+{
+  const double w = 10.0, h = 4.0;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> cells;
+  auto quad = [&](std::array<double, 3> a, std::array<double, 3> b, std::array<double, 3> c,
+                std::array<double, 3> d)
+  { AddQuad(points, cells, a.data(), b.data(), c.data(), d.data()); };
+  quad({ 0, h, 0 }, { 0, h, w }, { w, h, w }, { w, h, 0 }); // roof, facing down
+  quad({ w, 0, 0 }, { w, 0, w }, { w, h, w }, { w, h, 0 }); // x = w, facing -x
+  quad({ 0, 0, 0 }, { w, 0, 0 }, { w, h, 0 }, { 0, h, 0 }); // z = 0, facing +z
+  quad({ 0, 0, w }, { 0, h, w }, { w, h, w }, { w, 0, w }); // z = w, facing -z
+  // x = 0, facing +x, around a window at z 4 .. 6, y 1.5 .. 3.
+  for (const auto& [z0, z1, y0, y1] :
+    { std::array<double, 4>{ 0, w, 0, 1.5 }, std::array<double, 4>{ 0, w, 3, h },
+      std::array<double, 4>{ 0, 4, 1.5, 3 }, std::array<double, 4>{ 6, w, 1.5, 3 } })
+  {
+    quad({ 0, y0, z0 }, { 0, y1, z0 }, { 0, y1, z1 }, { 0, y0, z1 });
+  }
+  vtkNew<vtkPolyData> sheets;
+  sheets->SetPoints(points);
+  sheets->SetPolys(cells);
+  vtkNew<vtkCubeSource> slab;
+  slab->SetBounds(-20, 30, -1, 0, -20, 30);
+  csmScenes::Scene scene;
+  scene.Name = "sheet room";
+  for (vtkAlgorithm* source :
+    { static_cast<vtkAlgorithm*>(nullptr), static_cast<vtkAlgorithm*>(slab.GetPointer()) })
+  {
+    vtkNew<vtkPolyDataMapper> mapper;
+    if (source)
+    {
+      mapper->SetInputConnection(source->GetOutputPort());
+    }
+    else
+    {
+      mapper->SetInputData(sheets);
+    }
+    auto actor = vtkSmartPointer<vtkActor>::New();
+    actor->SetMapper(mapper);
+    scene.Actors.push_back(actor);
+  }
+  const double eye[3] = { 9, 2, 9 }, focal[3] = { 0, 1, 1 };
+  std::copy(eye, eye + 3, scene.CameraPosition);
+  std::copy(focal, focal + 3, scene.FocalPoint);
+  return scene;
+}
 } // namespace
 
 TEST(Creases, TheBracketIsOneClosedSurface)
@@ -120,6 +198,31 @@ TEST(Creases, LightDoesNotLeakAlongConcaveCreasesInShadow)
   EXPECT_LE(c.MismatchPct(), 0.05);
   EXPECT_LE(c.FalseShadow, 5);
   // Without shadows the bend's shadow is all false light: the measure can fail.
+  const csmTruth::Classification none = view.Classify(plain, plain);
+  EXPECT_GT(none.FalseLight, 10000);
+}
+
+// Sheets meet each other and the floor in shadow: a wall's foot on the floor, two walls at an
+// inner corner. Their faces meet their own depth pushed back by the polygon offset, so the lookup
+// adds no slope-scaled bias there: with it (1.5 of the receiver plane's change a texel, widest on
+// walls nearly along the light) lines of light ran along the corners away from any shadow edge
+// (286 of 180,292 pixels, 0.31 % misclassified in all; now 8 and 0.15 %), and no face darkens.
+TEST(Creases, LightDoesNotLeakWhereSheetsMeetInShadow)
+{
+  BracketView view(30.0, 17.0, SheetRoom());
+  auto plain = Grab(view.Window);
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(view.Renderer);
+  auto shadowed = Grab(view.Window);
+  EXPECT_FALSE(pass->GetShadowMapBakerPass()->DrawsFromBehind(view.Scene.Actors[0])); // open
+  const csmTruth::Classification c = view.Classify(shadowed, plain);
+  std::printf("considered %ld, false shadow %ld, false light %ld (%ld off shadow edges): %.3f%% "
+              "misclassified\n",
+    c.Considered, c.FalseShadow, c.FalseLight, c.OffEdgeWrong, c.MismatchPct());
+  EXPECT_GT(c.Considered, 50000);
+  EXPECT_LE(c.OffEdgeWrong, c.Considered / 5000); // 0.02 %
+  EXPECT_LE(c.MismatchPct(), 0.2);
+  EXPECT_LE(c.FalseShadowPct(), 0.01);
+  // Without shadows the room's inside is all false light: the measure can fail.
   const csmTruth::Classification none = view.Classify(plain, plain);
   EXPECT_GT(none.FalseLight, 10000);
 }
