@@ -504,7 +504,10 @@ int csmCasterCollection::ClosureOf(vtkProp* prop, bool cullClosed)
   vtkPolyDataMapper* mapper = actor ? vtkPolyDataMapper::SafeDownCast(actor->GetMapper()) : nullptr;
   vtkPolyData* data = mapper ? mapper->GetInput() : nullptr;
   vtkProperty* property = actor ? actor->GetProperty() : nullptr;
-  if (!cullClosed || !data || !property || property->GetRepresentation() != VTK_SURFACE ||
+  // (A prop with translucent geometry is not drawn into the maps as a closed surface: its far
+  // faces show through its near ones, lit inside.)
+  if (!cullClosed || !data || !property || !prop->HasOpaqueGeometry() ||
+    prop->HasTranslucentPolygonalGeometry() || property->GetRepresentation() != VTK_SURFACE ||
     property->GetBackfaceCulling() || property->GetFrontfaceCulling() ||
     mapper->GetNumberOfClippingPlanes() > 0 || data->GetNumberOfVerts() > 0 ||
     data->GetNumberOfLines() > 0)

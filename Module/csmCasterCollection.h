@@ -138,7 +138,7 @@ public:
     csmFrameCasters& props);
 
   /// +1 / -1: the prop's data is closed, its counter-clockwise faces turned outward / inward in
-  /// world space; 0: draw both sides (or cullClosed is off).
+  /// world space; 0: draw both sides (open, translucent, or cullClosed is off).
   int ClosureOf(vtkProp* prop, bool cullClosed);
 
   /// The blocks and proxies drawn in this window (all of them for no window).

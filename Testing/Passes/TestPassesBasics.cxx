@@ -289,6 +289,33 @@ TEST(Passes, TranslucentActorsAreStillDrawn)
   EXPECT_GT(DifferingValues(shadowed, without), 1000);
 }
 
+// A translucent closed surface casts nothing and is lit inside: its far faces, seen through its
+// near ones, are not taken for the inside of a solid drawn into the maps from behind. With
+// nothing else casting, the frame is the one without shadows.
+TEST(Passes, ATranslucentClosedSurfaceIsLitInside)
+{
+  BoxOverPlane scene;
+  scene.Box->SetVisibility(false);
+  scene.Light->SetPosition(2, 10, 5);
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetCenter(0, 3, 0);
+  sphere->SetRadius(3);
+  sphere->SetThetaResolution(48);
+  sphere->SetPhiResolution(24);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(sphere->GetOutputPort());
+  vtkNew<vtkActor> glass;
+  glass->SetMapper(mapper);
+  glass->GetProperty()->SetColor(1.0, 0.3, 0.3);
+  glass->GetProperty()->SetOpacity(0.4);
+  scene.Renderer->AddActor(glass);
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  auto shadowed = scene.Render();
+  EXPECT_FALSE(pass->GetShadowMapBakerPass()->DrawsFromBehind(glass));
+  EXPECT_EQ(DifferingValues(shadowed, plain), 0);
+}
+
 TEST(Passes, HardwareSelectionStillWorks)
 {
   BoxOverPlane scene;
