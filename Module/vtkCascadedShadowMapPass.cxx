@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkCascadedShadowMapPass.h"
 
-#include "csmAtlas.h"         // csm::kAtlasFullMaps
-#include "csmClosedSurface.h" // csm::closedFaceTowardViewer
-#include "csmPages.h"         // csm::kPageTexels and the other page constants
-#include "csmProps.h"         // csmScreenSizes
-#include "csmSceneFit.h"      // csm::sceneFittedBiasShare
+#include "csmAtlas.h"    // csm::kAtlasFullMaps
+#include "csmPages.h"    // csm::kPageTexels and the other page constants
+#include "csmProps.h"    // csmScreenSizes
+#include "csmSceneFit.h" // csm::sceneFittedBiasShare
 #include "csmScreenCache.h"
 #include "csmSpotSetup.h" // csm::perspectiveBiasFactor
 #include "csmVTKMath.h"   // csmFromRowMajor
@@ -307,10 +306,6 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   std::string signature;
   ShaderUniforms& u = this->Uniforms;
   u = ShaderUniforms();
-  u.ViewDeterminant =
-    renderer->GetActiveCamera()
-      ->GetCompositeProjectionTransformMatrix(renderer->GetTiledAspectRatio(), -1.0, 1.0)
-      ->Determinant();
   this->GatherThisFrame = vtkCascadedShadowMapPass::GatherTexels();
   for (const auto& maps : baker->GetLightMaps(renderer))
   {
@@ -792,16 +787,14 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   {
     program->SetUniformi("csmPCFRadius", this->PCFSize / 2);
   }
-  // Per prop: a closed surface drawn into the maps from behind (its faces turned toward the light
-  // take a share of the constant bias, those seen from inside are in its shadow): which of the
-  // view's faces its outward ones are.
-  const int outwardFront = this->ShadowMapBakerPass
-    ? csm::closedFaceTowardViewer(
-        this->ShadowMapBakerPass->GetOutwardWinding(prop), this->Uniforms.ViewDeterminant)
-    : 0;
+  // Per prop: the faces turned toward the light of a closed surface drawn into the maps from
+  // behind are compared texel by texel with a share of the constant bias (the lookup tells which
+  // way each face turns).
+  const bool fromBehind =
+    this->ShadowMapBakerPass && this->ShadowMapBakerPass->DrawsFromBehind(prop);
   program->SetUniformf("csmConstantBias", static_cast<float>(this->ConstantBias));
   program->SetUniformf("csmSlopeBias", static_cast<float>(this->SlopeBias));
-  program->SetUniformi("csmFromBehind", outwardFront);
+  program->SetUniformi("csmFromBehind", fromBehind ? 1 : 0);
   program->SetUniformf("csmClosedBiasShare", static_cast<float>(this->ClosedSurfaceBiasFactor));
   program->SetUniformf("csmBlendBand", static_cast<float>(this->BlendBand));
   const ShaderUniforms& u = this->Uniforms;

@@ -242,8 +242,6 @@ protected:
     /// and t, a page's side in the atlas's [0, 1], the unit of the page table
     std::vector<int> PageLevels, PageUnit;
     std::vector<float> PageDepth, PageVirtual, PageTile;
-    /// the main view's world -> clip determinant (its sign: which way outward faces wind)
-    double ViewDeterminant = 0.0;
     bool Paged(size_t j) const { return j < this->PageUnit.size() && this->PageUnit[j] >= 0; }
     size_t Lights() const { return this->Count.size(); }
 #if CSM_COMPARISON_TECHNIQUES

@@ -260,12 +260,6 @@ bool walkTriangles(const std::vector<glm::dvec3>& positions,
 }
 } // namespace
 
-int closedFaceTowardViewer(int closure, double worldToClipDeterminant)
-{
-  return std::isfinite(worldToClipDeterminant) ? closure * (worldToClipDeterminant < 0.0 ? 1 : -1)
-                                               : 0;
-}
-
 SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
   const std::vector<std::array<std::int64_t, 3>>& triangles, const std::atomic<bool>* stop,
   SurfaceTopology* topology)

@@ -42,14 +42,6 @@ struct SurfaceClosure
   bool canShadowItself() const { return !planar && !(closed && convex); }
 };
 
-/// Of a closed surface (closure: +1 where its triangles wind counter-clockwise seen from outside
-/// as its matrix places them, -1 where clockwise, 0 not closed) drawn through a world -> clip
-/// matrix of the given determinant: +1 where its outward faces toward the viewer wind
-/// counter-clockwise in the window (the front faces), -1 where clockwise, 0 where it is not
-/// closed or the determinant is not finite. The usual projections (glFrustum's, glOrtho's, VTK's)
-/// have a negative determinant and keep the winding; a positive one mirrors it.
-int closedFaceTowardViewer(int closure, double worldToClipDeterminant);
-
 /// Tolerance of planar and convex, relative to the diagonal of the mesh's bounding box (the
 /// positions are often floats).
 constexpr double kShapeTolerance = 1e-6;

@@ -2,8 +2,6 @@
 // Closed surfaces: the meshes whose shadow maps may hold only the faces turned away from the light.
 #include "csmClosedSurface.h"
 
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/matrix.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -295,24 +293,4 @@ TEST(ClosedSurface, TheLastTopologyGivesTheFreshAnswers)
   p[3].y = std::numeric_limits<double>::quiet_NaN(); // bad input: open, nothing known
   EXPECT_FALSE(csm::classifySurface(p, t, nullptr, &topology).closed);
   EXPECT_FALSE(topology.known);
-}
-
-// Which of a view's faces a closed surface's outward ones are: a projection of negative
-// determinant (perspective, orthographic) keeps the winding, a positive one mirrors it; not closed
-// or a matrix that is not finite: no answer.
-TEST(ClosedSurface, TheOutwardFacesAreTheFrontFacesOfAUsualProjection)
-{
-  const glm::dmat4 perspective = glm::perspective(0.5, 1.5, 0.1, 100.0);
-  const glm::dmat4 orthographic = glm::ortho(-1.0, 1.0, -1.0, 1.0, 0.1, 100.0);
-  const glm::dmat4 mirrored = glm::scale(perspective, glm::dvec3(-1.0, 1.0, 1.0));
-  ASSERT_LT(glm::determinant(perspective), 0.0);
-  ASSERT_LT(glm::determinant(orthographic), 0.0);
-  EXPECT_EQ(csm::closedFaceTowardViewer(1, glm::determinant(perspective)), 1);
-  EXPECT_EQ(csm::closedFaceTowardViewer(1, glm::determinant(orthographic)), 1);
-  EXPECT_EQ(csm::closedFaceTowardViewer(-1, glm::determinant(perspective)), -1);
-  EXPECT_EQ(csm::closedFaceTowardViewer(1, glm::determinant(mirrored)), -1);
-  EXPECT_EQ(csm::closedFaceTowardViewer(-1, glm::determinant(mirrored)), 1);
-  EXPECT_EQ(csm::closedFaceTowardViewer(0, glm::determinant(perspective)), 0);
-  EXPECT_EQ(csm::closedFaceTowardViewer(1, std::numeric_limits<double>::quiet_NaN()), 0);
-  EXPECT_EQ(csm::closedFaceTowardViewer(1, std::numeric_limits<double>::infinity()), 0);
 }
