@@ -206,7 +206,8 @@ bool isConvex(const std::vector<glm::dvec3>& positions,
 struct WeldedEdges
 {
   std::vector<std::uint64_t> forward, backward;
-  double volume = 0.0;
+  std::vector<std::uint64_t> faces; ///< per triangle, its welded corners as a set (hashed)
+  double volume = 0.0, area = 0.0;
   size_t counted = 0;
 };
 
@@ -251,10 +252,18 @@ bool walkTriangles(const std::vector<glm::dvec3>& positions,
       (a < b ? edges.forward : edges.backward)
         .push_back((std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b)));
     }
+    if (listEdges)
+    {
+      std::sort(v, v + 3);
+      edges.faces.push_back((std::uint64_t(v[0]) * 0x9E3779B97F4A7C15ull) ^
+        ((std::uint64_t(v[1]) * 0xC2B2AE3D27D4EB4Full) >> 1) ^
+        ((std::uint64_t(v[2]) * 0x165667B19E3779F9ull) >> 2));
+    }
     const glm::dvec3 a = positions[static_cast<size_t>(t[0])] - origin;
     const glm::dvec3 b = positions[static_cast<size_t>(t[1])] - origin;
     const glm::dvec3 c = positions[static_cast<size_t>(t[2])] - origin;
     edges.volume += glm::dot(a, glm::cross(b, c)) / 6.0;
+    edges.area += 0.5 * glm::length(glm::cross(b - a, c - a));
   }
   return true;
 }
@@ -307,8 +316,21 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
       return SurfaceClosure();
     }
     closed = edges.forward == edges.backward;
+    if (closed)
+    {
+      // Two triangles on the same three corners (a sheet drawn as both its sides inside an
+      // otherwise closed mesh: a wall, a fin): no solid there (a digest's coincidence, as rare,
+      // only draws the mesh with both sides).
+      radixSort(edges.faces);
+      closed = std::adjacent_find(edges.faces.begin(), edges.faces.end()) == edges.faces.end();
+    }
   }
-  result.closed = closed;
+  // Balanced edges around no thickness (two coincident sheets facing apart: a wall drawn as both
+  // its sides) bound no solid: the mean thickness, volume over half the area, within the shape
+  // tolerance.
+  const bool thick =
+    std::abs(edges.volume) > 0.5 * edges.area * kShapeTolerance * meshSize(positions, triangles);
+  result.closed = closed && thick;
   result.volume = result.closed ? edges.volume : 0.0;
   if (result.closed && result.volume != 0.0 && !result.planar)
   {

@@ -25,7 +25,10 @@ namespace csm
 
 struct SurfaceClosure
 {
-  /// Every edge is traversed as often in each direction (at least one non-degenerate triangle).
+  /// Every edge is traversed as often in each direction (at least one non-degenerate triangle),
+  /// around a thickness: the enclosed volume over half the area above kShapeTolerance of the
+  /// mesh's size, and no two triangles on the same three (welded) corners (a sheet drawn as both
+  /// its sides, alone or beside a solid, is not closed).
   bool closed = false;
   /// The enclosed signed volume (positive when the triangles wind counter-clockwise seen from
   /// outside, as VTK's outward normals do); meaningful when closed.

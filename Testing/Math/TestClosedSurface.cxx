@@ -106,15 +106,42 @@ TEST(ClosedSurface, AMissingFaceASheetAndAFlippedTriangleAreOpen)
   Triangles flipped = t;
   std::swap(flipped[5][1], flipped[5][2]);
   EXPECT_FALSE(csm::classifySurface(p, flipped).closed);
-  // A sheet with both windings (a double-sided plate) has an empty boundary: a ray crosses it
-  // toward and away from the light, and its exit layer is the plate.
+  // A sheet with both windings (a double-sided plate, a wall drawn as both its sides) has an
+  // empty boundary but no thickness: not a solid (its exit layer would be the plate itself, at
+  // the depth of its lit side: a tie under grazing light). A box 1e-4 thick is one.
   Triangles twoSided = sheet;
   for (auto tri : sheet)
   {
     std::swap(tri[1], tri[2]);
     twoSided.push_back(tri);
   }
-  EXPECT_TRUE(csm::classifySurface(p, twoSided).closed);
+  EXPECT_FALSE(csm::classifySurface(p, twoSided).closed);
+  std::vector<glm::dvec3> q;
+  Triangles thin;
+  box(0.0, 1.0, false, q, thin);
+  for (glm::dvec3& corner : q)
+  {
+    corner.z *= 1e-4; // 1 x 1 x 1e-4: thickness 1e-4 of a size of 1.4
+  }
+  EXPECT_TRUE(csm::classifySurface(q, thin).closed);
+  // The box and, apart from it, the plate with both windings: balanced edges and the box's
+  // volume, but no solid at the plate.
+  std::vector<glm::dvec3> r = p;
+  Triangles boxAndPlate = t;
+  box(2.0, 3.0, false, r, boxAndPlate); // (the plate: this box's first face, both ways)
+  boxAndPlate.resize(t.size());
+  const Triangles plate(twoSided);
+  for (auto tri : plate)
+  {
+    for (auto& i : tri)
+    {
+      i += 8; // the second box's corners
+    }
+    boxAndPlate.push_back(tri);
+  }
+  EXPECT_FALSE(csm::classifySurface(r, boxAndPlate).closed);
+  boxAndPlate.resize(t.size());
+  EXPECT_TRUE(csm::classifySurface(r, boxAndPlate).closed); // (the box alone)
 }
 
 TEST(ClosedSurface, TwoBoxesSharingAnEdgeAndDegenerateTrianglesStayClosed)
