@@ -740,8 +740,10 @@ bool csmFrameCasters::CasterHasReceivers(const Caster& caster, const double* tra
   {
     return true;
   }
-  // A shadow shorter than a millionth of the scene is no shadow (the lookup's bias hides it).
-  const double* s = this->SceneBounds;
+  // A shadow shorter than a millionth of the caster is no shadow (the lookup's bias hides it);
+  // not of the scene, which a prop far off makes longer than the caster's distance to the
+  // ground under it.
+  const double* s = caster.Bounds.data();
   const double minimum = 1e-6 *
     std::sqrt((s[1] - s[0]) * (s[1] - s[0]) + (s[3] - s[2]) * (s[3] - s[2]) +
       (s[5] - s[4]) * (s[5] - s[4]));
