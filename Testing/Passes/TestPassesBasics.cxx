@@ -289,9 +289,9 @@ TEST(Passes, TranslucentActorsAreStillDrawn)
   EXPECT_GT(DifferingValues(shadowed, without), 1000);
 }
 
-// A translucent closed surface casts nothing and is lit inside: its far faces, seen through its
-// near ones, are not taken for the inside of a solid drawn into the maps from behind. With
-// nothing else casting, the frame is the one without shadows.
+// A translucent closed surface is not in the maps, so it is not a surface drawn into them from
+// behind (whose lit side takes almost no bias) and its far faces, seen through its near ones, are
+// lit inside. With nothing else casting, the frame is the one without shadows.
 TEST(Passes, ATranslucentClosedSurfaceIsLitInside)
 {
   BoxOverPlane scene;
