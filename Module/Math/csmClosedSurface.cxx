@@ -131,12 +131,12 @@ bool largestTriangle(const std::vector<glm::dvec3>& positions,
   return largest > 0.0;
 }
 
-/// Sets result.planar.
+/// Sets result.planar (tolerance: kShapeTolerance of the mesh's size).
 void classifyShape(const std::vector<glm::dvec3>& positions,
-  const std::vector<std::array<std::int64_t, 3>>& triangles, SurfaceClosure& result)
+  const std::vector<std::array<std::int64_t, 3>>& triangles, double tolerance,
+  SurfaceClosure& result)
 {
   glm::dvec3 normal, corner;
-  const double tolerance = kShapeTolerance * meshSize(positions, triangles);
   if (!largestTriangle(positions, triangles, normal, corner))
   {
     return;
@@ -153,10 +153,10 @@ void classifyShape(const std::vector<glm::dvec3>& positions,
 }
 
 /// Does every (welded) vertex lie on the inner side of every triangle's plane? outward: +1 when
-/// counter-clockwise triangles face outward, -1 when inward.
+/// counter-clockwise triangles face outward, -1 when inward (tolerance as classifyShape's).
 bool isConvex(const std::vector<glm::dvec3>& positions,
   const std::vector<std::array<std::int64_t, 3>>& triangles, const std::vector<std::uint32_t>& ids,
-  double outward)
+  double outward, double tolerance)
 {
   // One position per welded vertex.
   std::vector<glm::dvec3> vertices;
@@ -177,7 +177,6 @@ bool isConvex(const std::vector<glm::dvec3>& positions,
   {
     return false;
   }
-  const double tolerance = kShapeTolerance * meshSize(positions, triangles);
   for (const auto& t : triangles)
   {
     const glm::dvec3& a = positions[static_cast<size_t>(t[0])];
@@ -301,7 +300,8 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
   {
     return result;
   }
-  classifyShape(positions, triangles, result);
+  const double tolerance = kShapeTolerance * meshSize(positions, triangles);
+  classifyShape(positions, triangles, tolerance, result);
   if (stopped())
   {
     return SurfaceClosure();
@@ -328,13 +328,12 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
   // Balanced edges around no thickness (two coincident sheets facing apart: a wall drawn as both
   // its sides) bound no solid: the mean thickness, volume over half the area, within the shape
   // tolerance.
-  const bool thick =
-    std::abs(edges.volume) > 0.5 * edges.area * kShapeTolerance * meshSize(positions, triangles);
-  result.closed = closed && thick;
+  result.closed = closed && std::abs(edges.volume) > 0.5 * edges.area * tolerance;
   result.volume = result.closed ? edges.volume : 0.0;
   if (result.closed && result.volume != 0.0 && !result.planar)
   {
-    result.convex = isConvex(positions, triangles, ids, result.volume > 0.0 ? 1.0 : -1.0);
+    result.convex =
+      isConvex(positions, triangles, ids, result.volume > 0.0 ? 1.0 : -1.0, tolerance);
   }
   if (topology)
   {

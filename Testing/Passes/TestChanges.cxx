@@ -372,11 +372,11 @@ TEST(Changes, AFrameAsTheLastDrawsNothing)
 
 /// A frame after a change of some parts: the kept map patched with at most a quarter of the first
 /// frame's texels, none drawn whole, and the image a fresh chain's (baker: that chain's after).
-void ExpectOnlyTheirTexels(
-  BoxOverPlane& scene, vtkCascadedShadowMapBakerPass*& baker, double firstTexels, int step)
+void ExpectOnlyTheirTexels(SixteenParts& assembly, int step)
 {
-  auto changed = scene.Frame();
-  const auto& statistics = baker->GetLastFrameStatistics();
+  const double firstTexels = assembly.FirstTexels;
+  auto changed = assembly.Scene.Frame();
+  const auto& statistics = assembly.Baker->GetLastFrameStatistics();
   std::printf("step %d: maps drawn %d, patched %d, kept %d, texels %.0f of %.0f\n", step,
     statistics.CascadesRendered, statistics.CascadesPatched, statistics.CascadesKept,
     statistics.TexelsRendered, firstTexels);
@@ -384,7 +384,8 @@ void ExpectOnlyTheirTexels(
   EXPECT_EQ(statistics.CascadesRendered, 0) << step;
   EXPECT_GT(statistics.TexelsRendered, 0.0) << step;
   EXPECT_LE(statistics.TexelsRendered, 0.25 * firstTexels) << step;
-  EXPECT_EQ(DifferingValues(FreshFrame(scene, baker, baker), changed), 0) << step;
+  EXPECT_EQ(DifferingValues(FreshFrame(assembly.Scene, assembly.Baker, assembly.Baker), changed), 0)
+    << step;
 }
 
 // An assembly of 16 parts, one of them moved (within the others' extent): the kept map draws
@@ -393,19 +394,16 @@ void ExpectOnlyTheirTexels(
 TEST(Changes, OnePartOfSixteenMovedDrawsOnlyItsTexels)
 {
   SixteenParts assembly;
-  BoxOverPlane& scene = assembly.Scene;
-  vtkCascadedShadowMapBakerPass*& baker = assembly.Baker;
-  const double firstTexels = assembly.FirstTexels;
-  ASSERT_GT(firstTexels, 0.0);
+  ASSERT_GT(assembly.FirstTexels, 0.0);
   for (int still = 0; still < 3; ++still) // (the second frame too: nothing changed)
   {
-    scene.Frame();
-    EXPECT_EQ(baker->GetLastFrameStatistics().TexelsRendered, 0.0) << still;
+    assembly.Scene.Frame();
+    EXPECT_EQ(assembly.Baker->GetLastFrameStatistics().TexelsRendered, 0.0) << still;
   }
   for (int step = 0; step < 3; ++step)
   {
     assembly.Parts[5]->SetPosition(0.3 * (step + 1), 0.0, -0.3 * step); // an inner part, not higher
-    ExpectOnlyTheirTexels(scene, baker, firstTexels, step);
+    ExpectOnlyTheirTexels(assembly, step);
   }
 }
 
@@ -417,9 +415,7 @@ TEST(Changes, APartAddedAndOneRemovedDrawOnlyTheirTexels)
 {
   SixteenParts assembly;
   BoxOverPlane& scene = assembly.Scene;
-  vtkCascadedShadowMapBakerPass*& baker = assembly.Baker;
-  const double firstTexels = assembly.FirstTexels;
-  ASSERT_GT(firstTexels, 0.0);
+  ASSERT_GT(assembly.FirstTexels, 0.0);
   scene.Frame();
   for (int step = 0; step < 3; ++step)
   {
@@ -428,7 +424,7 @@ TEST(Changes, APartAddedAndOneRemovedDrawOnlyTheirTexels)
     auto added = csmTest::BoxActor(-1.8 + 0.2 * step, -1.0 + 0.2 * step, 1.0, 2.5, 0.0, 0.6);
     scene.Renderer->AddActor(added);
     assembly.Parts.push_back(added);
-    ExpectOnlyTheirTexels(scene, baker, firstTexels, step);
+    ExpectOnlyTheirTexels(assembly, step);
     scene.Frame();
   }
 }
