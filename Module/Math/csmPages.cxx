@@ -59,8 +59,11 @@ bool pageLevels(const glm::dmat4& wsToBaseClip, const MapSize& baseTexels, doubl
   levels.baseTexels = glm::dvec2(2.0 / (sRow * wsTexel), 2.0 / (tRow * wsTexel));
   levels.baseDepth = baseDepth;
   const double finest = levels.fineness(vsNearest);
-  levels.count =
-    finest > 0.0 ? static_cast<int>(std::ceil(std::min(finest, 1.0 * kMaxPageLevels))) : 0;
+  if (!(finest <= kMaxPageLevels))
+  {
+    return false; // nearer samples than the finest level serves
+  }
+  levels.count = finest > 0.0 ? static_cast<int>(std::ceil(finest)) : 0;
   return true;
 }
 

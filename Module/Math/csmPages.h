@@ -36,7 +36,8 @@ constexpr int kPageInterior = kPageTexels - 2 * kPageBorder;
 constexpr int kPageTableSide = 32;
 
 /// The most levels finer than the base map (float map coordinates keep a quarter of a texel
-/// at 2^12 times the base's texels a side).
+/// at 2^12 times the base's texels a side); a view that needs finer texels is served by the
+/// cascades.
 constexpr int kMaxPageLevels = 12;
 
 /// Share of the error target the levels are sized for where the pool holds their pages (else
@@ -82,9 +83,9 @@ struct PageLevels
 /// t at view depth d reads an error m = t / (d pixelAtUnitDepth) (Lloyd et al. 2006, Eq. 1, the
 /// texel face-on to the view, the largest over the ways it can turn; the receiver's own angle to
 /// the light aside, as in the cascades' error), so the base meets the target from D_0 =
-/// t_max / (targetError pixelAtUnitDepth) on, level k from D_0 / 2^k; the finest, at most
-/// kMaxPageLevels, serves what is nearer (as a cascade whose map cannot reach the target). False
-/// where the input is not finite or positive or the base is not orthographic.
+/// t_max / (targetError pixelAtUnitDepth) on, level k from D_0 / 2^k. False where the input is
+/// not finite or positive, the base is not orthographic, or vsNearest needs more than
+/// kMaxPageLevels levels (a base far wider than the view: the cascades serve).
 bool pageLevels(const glm::dmat4& wsToBaseClip, const MapSize& baseTexels, double pixelAtUnitDepth,
   double targetError, double vsNearest, PageLevels& levels);
 

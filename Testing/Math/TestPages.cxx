@@ -83,16 +83,18 @@ TEST(Pages, LevelsHalveTheTexelEachOctaveOfDepthDownToTheNearestSample)
   EXPECT_EQ(levels.count, 0);
 }
 
-TEST(Pages, LevelsAreRefusedForBadInputAndStopAtTheFinestLevel)
+TEST(Pages, LevelsAreRefusedForBadInputAndWhereTheFinestLevelCannotServe)
 {
   csm::PageLevels levels;
   const double baseDepth = (100.0 / 2048.0) / (0.7 * kPixel);
   EXPECT_TRUE(
     csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 4096.0, levels));
   EXPECT_EQ(levels.count, csm::kMaxPageLevels);
-  EXPECT_TRUE(
+  // A sample nearer than the finest level meets the target at (a base 2^12 times the view's
+  // scale: a prop far out in the scene): no levels, the cascades serve.
+  EXPECT_FALSE(
     csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 4800.0, levels));
-  EXPECT_EQ(levels.count, csm::kMaxPageLevels); // the finest serves what is nearer
+  EXPECT_EQ(levels.count, 0);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, nan, levels));
   EXPECT_FALSE(csm::pageLevels(baseClip(100.0), csm::MapSize(2048), nan, 0.7, 1.0, levels));
