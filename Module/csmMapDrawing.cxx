@@ -2,6 +2,7 @@
 #include "csmMapDrawing.h"
 
 #include "csmCasterCollection.h"
+#include "csmClosedSurface.h" // csm::closedFaceTowardViewer
 #include "csmPages.h"
 #include "csmProps.h"
 #include "csmVTKMath.h"
@@ -40,18 +41,6 @@ constexpr int kMoveBandRows = 256;
 // for the same triangle drawn by another shader to pass GL_LEQUAL.
 constexpr float kPrePassOffsetFactor = 1.0f;
 constexpr float kPrePassOffsetUnits = 4.0f;
-
-/// Of a closed caster (its closure, ±1 by its winding; 0: not closed) drawn through a world ->
-/// clip matrix of the given determinant: +1 where its outward faces toward the viewer are the GL's
-/// front faces, -1 where they are its back faces, 0 where it is not closed or the matrix is not
-/// finite. VTK's projections turn a counter-clockwise face toward the eye into a front face when
-/// their determinant is negative (as glFrustum's and glOrtho's are); a positive one swaps the
-/// sides.
-int closedFaceTowardViewer(int closure, double worldToClipDeterminant)
-{
-  return std::isfinite(worldToClipDeterminant) ? closure * (worldToClipDeterminant < 0.0 ? 1 : -1)
-                                               : 0;
-}
 
 /// Does the caster shadow anything in this light's maps (CullCastersWithoutReceivers)?
 /// Directional lights only; with several processes the receivers are everyone's boxes.
@@ -378,7 +367,7 @@ int csmMapDrawing::DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebuffer
   }
 
   // Only the casters whose bounds reach this cascade's light volume; for the closed ones, the
-  // face to cull: the one turned toward the light (closedFaceTowardViewer).
+  // face to cull: the one turned toward the light (csm::closedFaceTowardViewer).
   std::map<vtkProp*, unsigned int> cullFaces;
   const double mapDeterminant = vtkMatrix4x4::Determinant(maps.Cascades[c].WorldToMap);
   std::vector<vtkProp*> drawn;
@@ -426,7 +415,7 @@ int csmMapDrawing::DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebuffer
       statistics.CellsDrawn += caster.Cells;
     }
     drawn.push_back(caster.Prop);
-    const int outward = closedFaceTowardViewer(caster.Closure, mapDeterminant);
+    const int outward = csm::closedFaceTowardViewer(caster.Closure, mapDeterminant);
     if (outward != 0)
     {
       cullFaces[caster.Prop] = outward > 0 ? GL_FRONT : GL_BACK; // the face toward the light
@@ -535,7 +524,7 @@ ViewCasters viewCasters(vtkCamera* camera, double aspect, const csmFrameCasters&
       continue;
     }
     chosen.ScreenSizedDrawn = chosen.ScreenSizedDrawn || wide;
-    const int towardEye = closedFaceTowardViewer(caster.Closure, viewDeterminant);
+    const int towardEye = csm::closedFaceTowardViewer(caster.Closure, viewDeterminant);
     if (towardEye != 0 && csmViewSeesOnlyOutsideOf(camera, aspect, caster.Bounds.data()))
     {
       chosen.CullFaces[caster.Prop] = towardEye > 0 ? GL_BACK : GL_FRONT;

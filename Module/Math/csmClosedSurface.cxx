@@ -208,7 +208,50 @@ struct WeldedEdges
   std::vector<std::uint64_t> faces; ///< per triangle, its welded corners as a set (hashed)
   double volume = 0.0, area = 0.0;
   size_t counted = 0;
+  /// Per welded vertex: the volume and area of the triangles whose first corner it is, and
+  /// (listing the edges) its parent in the union of the vertices the triangles join.
+  std::vector<double> vertexVolume, vertexArea;
+  std::vector<std::uint32_t> parent;
 };
+
+std::uint32_t rootOf(std::vector<std::uint32_t>& parent, std::uint32_t v)
+{
+  while (parent[v] != v)
+  {
+    parent[v] = parent[parent[v]]; // (path halving)
+    v = parent[v];
+  }
+  return v;
+}
+
+void join(std::vector<std::uint32_t>& parent, std::uint32_t a, std::uint32_t b)
+{
+  a = rootOf(parent, a);
+  b = rootOf(parent, b);
+  parent[std::max(a, b)] = std::min(a, b);
+}
+
+/// Does every connected part of a closed mesh enclose a thickness: its volume over half its area
+/// above the tolerance (a sheet drawn as both its sides, triangulated either way, encloses none
+/// beside a solid)? component: per welded vertex, the least vertex of its part.
+bool everyPartThick(
+  const WeldedEdges& edges, const std::vector<std::uint32_t>& component, double tolerance)
+{
+  std::vector<double> volume(component.size(), 0.0), area(component.size(), 0.0);
+  for (size_t v = 0; v < component.size(); ++v)
+  {
+    volume[component[v]] += edges.vertexVolume[v];
+    area[component[v]] += edges.vertexArea[v];
+  }
+  for (size_t c = 0; c < component.size(); ++c)
+  {
+    if (area[c] > 0.0 && !(std::abs(volume[c]) > 0.5 * area[c] * tolerance))
+    {
+      return false;
+    }
+  }
+  return true;
+}
 
 /// Walks the triangles: checks their indices, counts the non-degenerate ones and sums their
 /// volume, and with listEdges lists their welded edges; false for an index out of range or when
@@ -218,10 +261,18 @@ bool walkTriangles(const std::vector<glm::dvec3>& positions,
   const std::vector<std::array<std::int64_t, 3>>& triangles, const std::vector<std::uint32_t>& ids,
   bool listEdges, const Stopped& stopped, WeldedEdges& edges)
 {
+  const size_t vertices = ids.empty() ? 0 : *std::max_element(ids.begin(), ids.end()) + size_t(1);
+  edges.vertexVolume.assign(vertices, 0.0);
+  edges.vertexArea.assign(vertices, 0.0);
   if (listEdges)
   {
     edges.forward.reserve(3 * triangles.size() / 2 + 1);
     edges.backward.reserve(3 * triangles.size() / 2 + 1);
+    edges.parent.resize(vertices);
+    for (size_t v = 0; v < vertices; ++v)
+    {
+      edges.parent[v] = static_cast<std::uint32_t>(v);
+    }
   }
   // (Volumes relative to a point of the mesh: no cancellation far from the world's origin.)
   const glm::dvec3 origin = positions[0];
@@ -253,20 +304,35 @@ bool walkTriangles(const std::vector<glm::dvec3>& positions,
     }
     if (listEdges)
     {
+      join(edges.parent, v[0], v[1]);
+      join(edges.parent, v[1], v[2]);
+    }
+    const glm::dvec3 a = positions[static_cast<size_t>(t[0])] - origin;
+    const glm::dvec3 b = positions[static_cast<size_t>(t[1])] - origin;
+    const glm::dvec3 c = positions[static_cast<size_t>(t[2])] - origin;
+    const double volume = glm::dot(a, glm::cross(b, c)) / 6.0;
+    const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+    edges.volume += volume;
+    edges.area += area;
+    edges.vertexVolume[v[0]] += volume;
+    edges.vertexArea[v[0]] += area;
+    if (listEdges)
+    {
       std::sort(v, v + 3);
       edges.faces.push_back((std::uint64_t(v[0]) * 0x9E3779B97F4A7C15ull) ^
         ((std::uint64_t(v[1]) * 0xC2B2AE3D27D4EB4Full) >> 1) ^
         ((std::uint64_t(v[2]) * 0x165667B19E3779F9ull) >> 2));
     }
-    const glm::dvec3 a = positions[static_cast<size_t>(t[0])] - origin;
-    const glm::dvec3 b = positions[static_cast<size_t>(t[1])] - origin;
-    const glm::dvec3 c = positions[static_cast<size_t>(t[2])] - origin;
-    edges.volume += glm::dot(a, glm::cross(b, c)) / 6.0;
-    edges.area += 0.5 * glm::length(glm::cross(b - a, c - a));
   }
   return true;
 }
 } // namespace
+
+int closedFaceTowardViewer(int closure, double worldToClipDeterminant)
+{
+  return std::isfinite(worldToClipDeterminant) ? closure * (worldToClipDeterminant < 0.0 ? 1 : -1)
+                                               : 0;
+}
 
 SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
   const std::vector<std::array<std::int64_t, 3>>& triangles, const std::atomic<bool>* stop,
@@ -326,9 +392,23 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
     }
   }
   // Balanced edges around no thickness (two coincident sheets facing apart: a wall drawn as both
-  // its sides) bound no solid: the mean thickness, volume over half the area, within the shape
-  // tolerance.
-  result.closed = closed && std::abs(edges.volume) > 0.5 * edges.area * tolerance;
+  // its sides, alone or as a part of the mesh) bound no solid: the mean thickness, volume over
+  // half the area, within the shape tolerance, of the whole and of each connected part.
+  std::vector<std::uint32_t> component;
+  if (sameEdges)
+  {
+    component = std::move(topology->components);
+  }
+  else if (closed)
+  {
+    component.resize(edges.parent.size());
+    for (size_t v = 0; v < component.size(); ++v)
+    {
+      component[v] = rootOf(edges.parent, static_cast<std::uint32_t>(v));
+    }
+  }
+  result.closed = closed && std::abs(edges.volume) > 0.5 * edges.area * tolerance &&
+    component.size() == edges.vertexVolume.size() && everyPartThick(edges, component, tolerance);
   result.volume = result.closed ? edges.volume : 0.0;
   if (result.closed && result.volume != 0.0 && !result.planar)
   {
@@ -340,6 +420,7 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
     topology->ids = std::move(ids);
     topology->triangleDigest = digest;
     topology->closed = closed;
+    topology->components = std::move(component);
     topology->known = true;
   }
   return result;

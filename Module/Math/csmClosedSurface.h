@@ -27,8 +27,9 @@ struct SurfaceClosure
 {
   /// Every edge is traversed as often in each direction (at least one non-degenerate triangle),
   /// around a thickness: the enclosed volume over half the area above kShapeTolerance of the
-  /// mesh's size, and no two triangles on the same three (welded) corners (a sheet drawn as both
-  /// its sides, alone or beside a solid, is not closed).
+  /// mesh's size, of the whole mesh and of each of its connected parts, and no two triangles on
+  /// the same three (welded) corners (a sheet drawn as both its sides, alone or beside a solid,
+  /// however its faces are triangulated, is not closed).
   bool closed = false;
   /// The enclosed signed volume (positive when the triangles wind counter-clockwise seen from
   /// outside, as VTK's outward normals do); meaningful when closed.
@@ -44,6 +45,14 @@ struct SurfaceClosure
   /// turned away from the light, which its diffuse light leaves dark anyway).
   bool canShadowItself() const { return !planar && !(closed && convex); }
 };
+
+/// Of a closed surface (closure: +1 where its triangles wind counter-clockwise seen from outside
+/// as its matrix places them, -1 where clockwise, 0 not closed) drawn through a world -> clip
+/// matrix of the given determinant: +1 where its outward faces toward the viewer wind
+/// counter-clockwise in the window (the front faces), -1 where clockwise, 0 where it is not
+/// closed or the determinant is not finite. The usual projections (glFrustum's, glOrtho's, VTK's)
+/// have a negative determinant and keep the winding; a positive one mirrors it.
+int closedFaceTowardViewer(int closure, double worldToClipDeterminant);
 
 /// Tolerance of planar and convex, relative to the diagonal of the mesh's bounding box (the
 /// positions are often floats).
@@ -67,7 +76,9 @@ struct SurfaceTopology
   std::vector<std::uint32_t> ids;   ///< the weld (weldPositions) of the last classification
   std::uint64_t triangleDigest = 0; ///< a digest of its triangles' indices
   bool closed = false;              ///< its welded edges balance (at least one triangle counted)
-  bool known = false;               ///< the fields above describe a finished classification
+  /// where closed: per welded vertex, the least vertex of its connected part
+  std::vector<std::uint32_t> components;
+  bool known = false; ///< the fields above describe a finished classification
 };
 
 /// Classify a triangle mesh (closed, volume, planar, convex). Vertices at bitwise-equal positions

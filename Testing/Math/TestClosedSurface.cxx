@@ -2,6 +2,8 @@
 // Closed surfaces: the meshes whose shadow maps may hold only the faces turned away from the light.
 #include "csmClosedSurface.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -142,6 +144,33 @@ TEST(ClosedSurface, AMissingFaceASheetAndAFlippedTriangleAreOpen)
   EXPECT_FALSE(csm::classifySurface(r, boxAndPlate).closed);
   boxAndPlate.resize(t.size());
   EXPECT_TRUE(csm::classifySurface(r, boxAndPlate).closed); // (the box alone)
+  // The plate's back triangulated along its other diagonal (its quad 0 2 3 1 reversed as 1 3 2 0,
+  // fanned from its first corner): no two triangles on the same corners, the whole mesh thick,
+  // but the plate is a part that encloses nothing.
+  const Triangles front(sheet);
+  const Triangles back = { { 1, 3, 2 }, { 1, 2, 0 } };
+  for (const Triangles& side : { front, back })
+  {
+    for (auto tri : side)
+    {
+      for (auto& i : tri)
+      {
+        i += 8;
+      }
+      boxAndPlate.push_back(tri);
+    }
+  }
+  EXPECT_FALSE(csm::classifySurface(r, boxAndPlate).closed);
+  csm::SurfaceTopology topology;
+  EXPECT_FALSE(csm::classifySurface(r, boxAndPlate, nullptr, &topology).closed);
+  for (glm::dvec3& corner : r)
+  {
+    corner.y += 0.5; // the same welds and triangles: the parts come from the topology kept
+  }
+  EXPECT_FALSE(csm::classifySurface(r, boxAndPlate, nullptr, &topology).closed);
+  boxAndPlate.resize(t.size());
+  EXPECT_TRUE(csm::classifySurface(r, boxAndPlate, nullptr, &topology).closed);
+  EXPECT_TRUE(csm::classifySurface(r, boxAndPlate, nullptr, &topology).closed); // (kept)
 }
 
 TEST(ClosedSurface, TwoBoxesSharingAnEdgeAndDegenerateTrianglesStayClosed)
@@ -320,4 +349,24 @@ TEST(ClosedSurface, TheLastTopologyGivesTheFreshAnswers)
   p[3].y = std::numeric_limits<double>::quiet_NaN(); // bad input: open, nothing known
   EXPECT_FALSE(csm::classifySurface(p, t, nullptr, &topology).closed);
   EXPECT_FALSE(topology.known);
+}
+
+// Which of a view's faces a closed surface's outward ones are: a projection of negative
+// determinant (perspective, orthographic) keeps the winding, a positive one mirrors it; not closed
+// or a matrix that is not finite: no answer.
+TEST(ClosedSurface, TheOutwardFacesAreTheFrontFacesOfAUsualProjection)
+{
+  const glm::dmat4 perspective = glm::perspective(0.5, 1.5, 0.1, 100.0);
+  const glm::dmat4 orthographic = glm::ortho(-1.0, 1.0, -1.0, 1.0, 0.1, 100.0);
+  const glm::dmat4 mirrored = glm::scale(perspective, glm::dvec3(-1.0, 1.0, 1.0));
+  ASSERT_LT(glm::determinant(perspective), 0.0);
+  ASSERT_LT(glm::determinant(orthographic), 0.0);
+  EXPECT_EQ(csm::closedFaceTowardViewer(1, glm::determinant(perspective)), 1);
+  EXPECT_EQ(csm::closedFaceTowardViewer(1, glm::determinant(orthographic)), 1);
+  EXPECT_EQ(csm::closedFaceTowardViewer(-1, glm::determinant(perspective)), -1);
+  EXPECT_EQ(csm::closedFaceTowardViewer(1, glm::determinant(mirrored)), -1);
+  EXPECT_EQ(csm::closedFaceTowardViewer(-1, glm::determinant(mirrored)), 1);
+  EXPECT_EQ(csm::closedFaceTowardViewer(0, glm::determinant(perspective)), 0);
+  EXPECT_EQ(csm::closedFaceTowardViewer(1, std::numeric_limits<double>::quiet_NaN()), 0);
+  EXPECT_EQ(csm::closedFaceTowardViewer(1, std::numeric_limits<double>::infinity()), 0);
 }
