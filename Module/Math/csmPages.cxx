@@ -59,11 +59,12 @@ bool pageLevels(const glm::dmat4& wsToBaseClip, const MapSize& baseTexels, doubl
   levels.baseTexels = glm::dvec2(2.0 / (sRow * wsTexel), 2.0 / (tRow * wsTexel));
   levels.baseDepth = baseDepth;
   const double finest = levels.fineness(vsNearest);
-  if (!(finest <= kMaxPageLevels))
+  if (!(finest <= kMaxPageLevels + 1))
   {
-    return false; // nearer samples than the finest level serves
+    return false; // samples nearer than the finest level serves within twice the target
   }
-  levels.count = finest > 0.0 ? static_cast<int>(std::ceil(finest)) : 0;
+  levels.count =
+    finest > 0.0 ? static_cast<int>(std::ceil(std::min(finest, 1.0 * kMaxPageLevels))) : 0;
   return true;
 }
 

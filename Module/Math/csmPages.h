@@ -36,8 +36,9 @@ constexpr int kPageInterior = kPageTexels - 2 * kPageBorder;
 constexpr int kPageTableSide = 32;
 
 /// The most levels finer than the base map (float map coordinates keep a quarter of a texel
-/// at 2^12 times the base's texels a side); a view that needs finer texels is served by the
-/// cascades.
+/// at 2^12 times the base's texels a side). The finest serves one octave of view depth more,
+/// within twice the target (as a map at its ceiling); a view that needs finer texels than that
+/// is served by the cascades.
 constexpr int kMaxPageLevels = 12;
 
 /// Share of the error target the levels are sized for where the pool holds their pages (else
@@ -83,9 +84,10 @@ struct PageLevels
 /// t at view depth d reads an error m = t / (d pixelAtUnitDepth) (Lloyd et al. 2006, Eq. 1, the
 /// texel face-on to the view, the largest over the ways it can turn; the receiver's own angle to
 /// the light aside, as in the cascades' error), so the base meets the target from D_0 =
-/// t_max / (targetError pixelAtUnitDepth) on, level k from D_0 / 2^k. False where the input is
-/// not finite or positive, the base is not orthographic, or vsNearest needs more than
-/// kMaxPageLevels levels (a base far wider than the view: the cascades serve).
+/// t_max / (targetError pixelAtUnitDepth) on, level k from D_0 / 2^k; the finest, at most
+/// kMaxPageLevels, serves what is nearer down to D_0 / 2^(kMaxPageLevels + 1). False where the
+/// input is not finite or positive, the base is not orthographic, or vsNearest is nearer still
+/// (a base far wider than the view: the cascades serve).
 bool pageLevels(const glm::dmat4& wsToBaseClip, const MapSize& baseTexels, double pixelAtUnitDepth,
   double targetError, double vsNearest, PageLevels& levels);
 

@@ -90,10 +90,14 @@ TEST(Pages, LevelsAreRefusedForBadInputAndWhereTheFinestLevelCannotServe)
   EXPECT_TRUE(
     csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 4096.0, levels));
   EXPECT_EQ(levels.count, csm::kMaxPageLevels);
-  // A sample nearer than the finest level meets the target at (a base 2^12 times the view's
-  // scale: a prop far out in the scene): no levels, the cascades serve.
+  // The finest level serves one octave more, within twice the target; a sample nearer still (a
+  // base thousands of times the view's scale: a prop far out in the scene): no levels, the
+  // cascades serve.
+  EXPECT_TRUE(
+    csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 8192.0, levels));
+  EXPECT_EQ(levels.count, csm::kMaxPageLevels);
   EXPECT_FALSE(
-    csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 4800.0, levels));
+    csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, baseDepth / 8300.0, levels));
   EXPECT_EQ(levels.count, 0);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(csm::pageLevels(baseClip(100.0), csm::MapSize(2048), kPixel, 0.7, nan, levels));
