@@ -94,6 +94,43 @@ void vtkOSMesaHeadlessRenderWindow::MakeCurrent()
   }
 }
 
+void vtkOSMesaHeadlessRenderWindow::PushContext()
+{
+  Current before;
+  OSMesaContext current = OSMesaGetCurrentContext();
+  before.Context = current;
+  if (current)
+  {
+    GLint width = 0, height = 0, format = 0;
+    void* buffer = nullptr;
+    OSMesaGetColorBuffer(current, &width, &height, &format, &buffer);
+    before.Buffer = buffer;
+    before.Width = width;
+    before.Height = height;
+  }
+  this->ContextStack.push_back(before);
+  if (current != static_cast<OSMesaContext>(this->Context))
+  {
+    this->MakeCurrent();
+  }
+}
+
+void vtkOSMesaHeadlessRenderWindow::PopContext()
+{
+  if (this->ContextStack.empty())
+  {
+    return;
+  }
+  const Current before = this->ContextStack.back();
+  this->ContextStack.pop_back();
+  OSMesaContext target = static_cast<OSMesaContext>(before.Context);
+  if (target && target != OSMesaGetCurrentContext() && before.Buffer)
+  {
+    // (The colour buffer's type: VTK's windows draw into GL_UNSIGNED_BYTE buffers.)
+    OSMesaMakeCurrent(target, before.Buffer, GL_UNSIGNED_BYTE, before.Width, before.Height);
+  }
+}
+
 void vtkOSMesaHeadlessRenderWindow::ReleaseCurrent()
 {
   if (this->Context && OSMesaGetCurrentContext() == static_cast<OSMesaContext>(this->Context))

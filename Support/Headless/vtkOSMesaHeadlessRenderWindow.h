@@ -45,6 +45,11 @@ public:
   void MakeCurrent() override;
   void ReleaseCurrent() override;
   bool IsCurrent() override;
+  /// This window's context made current for a while (VTK releases a mapper's buffers in the
+  /// window that made them when another window draws it), and the context current before, with
+  /// its buffer, made current again after.
+  void PushContext() override;
+  void PopContext() override;
   int SupportsOpenGL() override;
   vtkTypeBool IsDirect() override;
   /// VTK's frame (render framebuffer to display framebuffer), no blit to the OSMesa buffer.
@@ -66,6 +71,13 @@ private:
   std::vector<unsigned char> Buffer; // the context's own colour buffer (RGBA), never read
   int BufferSize[2] = { 0, 0 };
   bool Refused = false; // wrong link order or no context: reported once, nothing rendered
+  struct Current
+  {
+    void* Context = nullptr; // OSMesaContext
+    void* Buffer = nullptr;
+    int Width = 0, Height = 0;
+  };
+  std::vector<Current> ContextStack; // PushContext()'s
   std::string Report;
 
   vtkOSMesaHeadlessRenderWindow(const vtkOSMesaHeadlessRenderWindow&) = delete;

@@ -33,6 +33,7 @@ namespace
 {
 using csmTest::BoxOverPlane;
 using csmTest::DarkenedPixels;
+using csmTest::DifferingPixels;
 using csmTest::DifferingValues;
 using csmTest::ErrorCounter;
 } // namespace
@@ -545,5 +546,37 @@ TEST(Passes, AStillCameraDoesNotFlicker)
   for (int frame = 0; frame < 3; ++frame)
   {
     EXPECT_EQ(DifferingValues(scene.Frame(), first, 0), 0) << "frame " << frame;
+  }
+}
+
+// One actor shown in two windows (VTK builds its mapper's buffers in the window that draws it
+// and releases them in the one that made them, its context made current for a while): each
+// window draws it as a window of its own would, with shadows or without, frame after frame.
+// The headless window left the other's context current after that release, and the next draw
+// crashed inside the rasterizer.
+TEST(Passes, AnActorShownInTwoWindowsIsDrawnInBoth)
+{
+  BoxOverPlane own;
+  vtkCascadedShadowMapPass::UseShadowsOn(own.Renderer);
+  const auto expected = own.Render();
+  own.Renderer->SetPass(nullptr);
+  const auto expectedPlain = own.Render();
+  for (const bool bothShadowed : { false, true })
+  {
+    BoxOverPlane first, second;
+    second.Renderer->RemoveActor(second.Box);
+    second.Renderer->AddActor(first.Box);
+    if (bothShadowed)
+    {
+      vtkCascadedShadowMapPass::UseShadowsOn(first.Renderer);
+    }
+    first.Render();
+    vtkCascadedShadowMapPass::UseShadowsOn(second.Renderer);
+    for (int frame = 0; frame < 3; ++frame)
+    {
+      EXPECT_EQ(DifferingPixels(second.Render(), expected, 0), 0) << bothShadowed << frame;
+      EXPECT_EQ(DifferingPixels(first.Render(), bothShadowed ? expected : expectedPlain, 0), 0)
+        << bothShadowed << frame;
+    }
   }
 }
