@@ -1,14 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "csmVTKMath.h"
 
-#include "csmClosedSurface.h" // csm::closedFaceTowardViewer
 #include "csmCulling.h"
 #include "csmGeometry.h"
 #include "csmReuse.h"
 
 #include "vtkCamera.h"
 #include "vtkMath.h"
-#include "vtkMatrix4x4.h"
 
 #include <cmath>
 
@@ -110,16 +108,6 @@ bool csmViewSeesOnlyOutsideOf(vtkCamera* camera, double aspect, const double bou
   csm::Camera cam;
   return bounds && csmToCamera(camera, aspect, cam) &&
     csm::eyeSeesOnlyOutsideOf(cam, csm::Bounds::fromMinMaxPairs(bounds));
-}
-
-int csmOutwardFacingWhereCut(vtkCamera* camera, double aspect, int winding, const double bounds[6])
-{
-  if (winding == 0 || !camera || !bounds || csmViewSeesOnlyOutsideOf(camera, aspect, bounds))
-  {
-    return 0;
-  }
-  return csm::closedFaceTowardViewer(
-    winding, camera->GetCompositeProjectionTransformMatrix(aspect, -1.0, 1.0)->Determinant());
 }
 
 bool csmCasterBoxReachesBox(const double lightDirection[3], const double casterBounds[6],

@@ -44,13 +44,6 @@ bool csmCasterBoxReachesBox(const double lightDirection[3], const double casterB
 /// box)? False for parallel cameras and bad input.
 bool csmViewSeesOnlyOutsideOf(vtkCamera* camera, double aspect, const double bounds[6]);
 
-/// Of a closed surface (winding: +1 where its triangles wind counter-clockwise seen from outside
-/// as its matrix places them, -1 clockwise, 0 not closed) in a world box: where the camera's near
-/// plane may cut it (csmViewSeesOnlyOutsideOf false), which of the view's faces its outward ones
-/// are (csm::closedFaceTowardViewer: +1 the front faces, -1 the back faces); 0 where the view
-/// sees only its outside, it is not closed, or the input is bad.
-int csmOutwardFacingWhereCut(vtkCamera* camera, double aspect, int winding, const double bounds[6]);
-
 /// Did the camera take a small step from `before` (a smooth path: csm::smallCameraStep),
 /// measured against a view depth (the far end of a cascade)?
 bool csmIsSmallCameraStep(vtkCamera* before, vtkCamera* now, double aspect, double depth);

@@ -194,9 +194,6 @@ public:
 
   /// Is the prop's lit side out of the maps (a closed surface drawn from behind)?
   bool DrawsFromBehind(vtkProp* prop) { return this->ClosureOf(prop) != 0; }
-  /// Of a prop drawn from behind, how its triangles wind seen from outside as its matrix places
-  /// them: +1 counter-clockwise, -1 clockwise (csm::closedFaceTowardViewer); 0 for any other.
-  int GetOutwardWinding(vtkProp* prop) { return this->ClosureOf(prop); }
 
   /// What the last Render() did, for tests and benchmarks (seconds only with MeasureTimes).
   const FrameStatistics& GetLastFrameStatistics() const { return this->Statistics; }

@@ -7,7 +7,7 @@
 #include "csmSceneFit.h" // csm::sceneFittedBiasShare
 #include "csmScreenCache.h"
 #include "csmSpotSetup.h" // csm::perspectiveBiasFactor
-#include "csmVTKMath.h"   // csmFromRowMajor, csmOutwardFacingWhereCut
+#include "csmVTKMath.h"   // csmFromRowMajor
 
 #include "vtkAbstractMapper.h"
 #include "vtkActor.h"
@@ -306,8 +306,6 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
   std::string signature;
   ShaderUniforms& u = this->Uniforms;
   u = ShaderUniforms();
-  u.ViewCamera = renderer->GetActiveCamera();
-  u.ViewAspect = renderer->GetTiledAspectRatio();
   this->GatherThisFrame = vtkCascadedShadowMapPass::GatherTexels();
   for (const auto& maps : baker->GetLightMaps(renderer))
   {
@@ -789,17 +787,14 @@ bool vtkCascadedShadowMapPass::SetShaderParameters(
   {
     program->SetUniformi("csmPCFRadius", this->PCFSize / 2);
   }
-  // Per prop: a closed surface drawn into the maps from behind (its faces turned toward the light
-  // take a share of the constant bias); where the near plane reaches its box, which of the
-  // view's faces its outward ones are (those seen from inside are in its shadow).
-  const int winding =
-    this->ShadowMapBakerPass ? this->ShadowMapBakerPass->GetOutwardWinding(prop) : 0;
+  // Per prop: the faces turned toward the light of a closed surface drawn into the maps from
+  // behind are compared texel by texel with a share of the constant bias (the lookup tells which
+  // way each face turns).
+  const bool fromBehind =
+    this->ShadowMapBakerPass && this->ShadowMapBakerPass->DrawsFromBehind(prop);
   program->SetUniformf("csmConstantBias", static_cast<float>(this->ConstantBias));
   program->SetUniformf("csmSlopeBias", static_cast<float>(this->SlopeBias));
-  program->SetUniformi("csmFromBehind", winding != 0 ? 1 : 0);
-  program->SetUniformi("csmOutwardFacing",
-    csmOutwardFacingWhereCut(
-      this->Uniforms.ViewCamera, this->Uniforms.ViewAspect, winding, prop->GetBounds()));
+  program->SetUniformi("csmFromBehind", fromBehind ? 1 : 0);
   program->SetUniformf("csmClosedBiasShare", static_cast<float>(this->ClosedSurfaceBiasFactor));
   program->SetUniformf("csmBlendBand", static_cast<float>(this->BlendBand));
   const ShaderUniforms& u = this->Uniforms;

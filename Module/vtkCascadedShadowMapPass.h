@@ -37,7 +37,6 @@
 
 #include "vtkCascadedShadowMapBakerPass.h" // for GetShadowMapBakerPass() options
 class csmScreenCache;
-class vtkCamera;
 class vtkMatrix4x4;
 class vtkOpenGLRenderWindow;
 class vtkRenderer;
@@ -243,9 +242,6 @@ protected:
     /// and t, a page's side in the atlas's [0, 1], the unit of the page table
     std::vector<int> PageLevels, PageUnit;
     std::vector<float> PageDepth, PageVirtual, PageTile;
-    /// the main view's camera and aspect
-    vtkCamera* ViewCamera = nullptr;
-    double ViewAspect = 1.0;
     bool Paged(size_t j) const { return j < this->PageUnit.size() && this->PageUnit[j] >= 0; }
     size_t Lights() const { return this->Count.size(); }
 #if CSM_COMPARISON_TECHNIQUES

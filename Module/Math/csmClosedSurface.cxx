@@ -231,11 +231,14 @@ void join(std::vector<std::uint32_t>& parent, std::uint32_t a, std::uint32_t b)
   parent[std::max(a, b)] = std::min(a, b);
 }
 
-/// Does every connected part of a closed mesh enclose a thickness: its volume over half its area
-/// above the tolerance (a sheet drawn as both its sides, triangulated either way, encloses none
-/// beside a solid)? component: per welded vertex, the least vertex of its part.
-bool everyPartThick(
-  const WeldedEdges& edges, const std::vector<std::uint32_t>& component, double tolerance)
+/// Does every connected part of a closed mesh bound a solid: its volume over half its area above
+/// the tolerance (a sheet drawn as both its sides, triangulated either way, encloses none beside
+/// a solid), wound as the whole mesh is or inside a part that is (a cavity; a part wound inside
+/// out elsewhere would be drawn from its lit side)? component: per welded vertex, the least
+/// vertex of its part.
+bool everyPartBoundsASolid(const std::vector<glm::dvec3>& positions,
+  const std::vector<std::uint32_t>& ids, const WeldedEdges& edges,
+  const std::vector<std::uint32_t>& component, double tolerance)
 {
   std::vector<double> volume(component.size(), 0.0), area(component.size(), 0.0);
   for (size_t v = 0; v < component.size(); ++v)
@@ -243,9 +246,39 @@ bool everyPartThick(
     volume[component[v]] += edges.vertexVolume[v];
     area[component[v]] += edges.vertexArea[v];
   }
+  std::vector<size_t> turned; // parts wound against the whole
   for (size_t c = 0; c < component.size(); ++c)
   {
     if (area[c] > 0.0 && !(std::abs(volume[c]) > 0.5 * area[c] * tolerance))
+    {
+      return false;
+    }
+    if (area[c] > 0.0 && (volume[c] > 0.0) != (edges.volume > 0.0))
+    {
+      turned.push_back(c);
+    }
+  }
+  if (turned.empty())
+  {
+    return true;
+  }
+  std::vector<glm::dvec3> lower(component.size(), glm::dvec3(HUGE_VAL)),
+    upper(component.size(), glm::dvec3(-HUGE_VAL));
+  for (size_t i = 0; i < positions.size(); ++i)
+  {
+    const std::uint32_t c = component[ids[i]];
+    lower[c] = glm::min(lower[c], positions[i]);
+    upper[c] = glm::max(upper[c], positions[i]);
+  }
+  for (const size_t c : turned)
+  {
+    bool inside = false;
+    for (size_t d = 0; d < component.size() && !inside; ++d)
+    {
+      inside = area[d] > 0.0 && (volume[d] > 0.0) == (edges.volume > 0.0) &&
+        glm::all(glm::lessThan(lower[d], lower[c])) && glm::all(glm::lessThan(upper[c], upper[d]));
+    }
+    if (!inside)
     {
       return false;
     }
@@ -381,7 +414,10 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
     {
       return SurfaceClosure();
     }
-    closed = edges.forward == edges.backward;
+    // Each edge once each way: an edge that more faces meet (a fin on a solid, a sheet drawn as
+    // both its sides, solids touching along an edge) bounds no solid there to tell apart.
+    closed = edges.forward == edges.backward &&
+      std::adjacent_find(edges.forward.begin(), edges.forward.end()) == edges.forward.end();
     if (closed)
     {
       // Two triangles on the same three corners (a sheet drawn as both its sides inside an
@@ -408,7 +444,8 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
     }
   }
   result.closed = closed && std::abs(edges.volume) > 0.5 * edges.area * tolerance &&
-    component.size() == edges.vertexVolume.size() && everyPartThick(edges, component, tolerance);
+    component.size() == edges.vertexVolume.size() &&
+    everyPartBoundsASolid(positions, ids, edges, component, tolerance);
   result.volume = result.closed ? edges.volume : 0.0;
   if (result.closed && result.volume != 0.0 && !result.planar)
   {

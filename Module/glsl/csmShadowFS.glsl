@@ -132,10 +132,6 @@ uniform float csmSlopeBias;    // times the receiver-plane depth change over one
 // 1 for a surface drawn into the maps from behind (a closed surface, only its faces turned away
 // from the light: vtkCascadedShadowMapBakerPass::DrawsFromBehind), 0 for every other surface.
 uniform int csmFromBehind;
-// For such a surface whose box the view's near plane reaches (the view may see it from inside):
-// 1 where its outward faces are the view's front faces (gl_FrontFacing), -1 where they are its
-// back faces; 0 for every other surface (seen only from outside: its back faces are hidden).
-uniform int csmOutwardFacing;
 // Share of the constant bias for the faces of such a surface turned toward the light, which take
 // no slope-scaled bias (vtkCascadedShadowMapPass::ClosedSurfaceBiasFactor).
 uniform float csmClosedBiasShare;
@@ -208,8 +204,8 @@ float csmPlaneTap(csmTexelSampler nearest, vec4 tile, vec2 texel, vec2 uv, float
   return mix(mix(lit.x, lit.y, f.x), mix(lit.z, lit.w, f.x), f.y);
 }
 
-// One compare of a kernel's tap: the hardware's bilinear compare at the tap's own depth, or, on a
-// surface's faces (exact; impostors take the former), the compare with each texel's own depth.
+// One compare of a kernel's tap: the hardware's bilinear compare at the tap's own depth, or, for
+// a face whose own depth is not in the map (exact), the compare with each texel's own depth.
 float csmKernelTap(sampler2DShadow map, csmTexelSampler nearest, vec4 tile, vec2 texel, vec2 uv,
   float z, vec2 dz, float maxStep, bool exact)
 {
@@ -217,7 +213,7 @@ float csmKernelTap(sampler2DShadow map, csmTexelSampler nearest, vec4 tile, vec2
                : csmTap(map, tile, texel, uv, z);
 }
 
-// The grid kernel below for a surface's faces (exact): the (2r+2)^2 texels its
+// The grid kernel below for a face whose own depth is not in the map: the (2r+2)^2 texels its
 // bilinear compares touch, each compared once with the receiver plane at its own centre and
 // weighed as the box of compares weighs it ([1-f, 1, ..., 1, f] along each axis), four at a time.
 float csmGridPCFTexels(csmTexelSampler nearest, vec4 tile, vec2 texel, vec2 uv, float zRef, vec2 dz)
@@ -373,17 +369,11 @@ float csmVisibility(sampler2DShadow map, csmTexelSampler nearest, vec4 tile, vec
                       (csmFromBehind != 0 ? csmSlopeBias * zSlopePerTexel : 0.0));
   bool exact = CSM_PLANE_TAPS != 0;
 #if CSM_KERNEL == CSM_KERNEL_GRID
-  float visibility = csmGridPCF(map, nearest, tile, texel, p.xy, zRef, dz, exact);
+  return csmGridPCF(map, nearest, tile, texel, p.xy, zRef, dz, exact);
 #else
-  float visibility = CSM_PCF_RADIUS == 0
-    ? csmGridPCF(map, nearest, tile, texel, p.xy, zRef, dz, exact)
-    : csmJitteredPCF(map, nearest, tile, texel, p.xy, zRef, dz, exact);
+  return CSM_PCF_RADIUS == 0 ? csmGridPCF(map, nearest, tile, texel, p.xy, zRef, dz, exact)
+                           : csmJitteredPCF(map, nearest, tile, texel, p.xy, zRef, dz, exact);
 #endif
-  // A surface drawn from behind seen from inside (where the near plane cuts it) is in its own
-  // solid, which no light enters; the maps hold only its side turned away from the light, which
-  // this side would meet as its own depth.
-  bool seenFromInside = csmOutwardFacing != 0 && (gl_FrontFacing ? 1 : -1) != csmOutwardFacing;
-  return seenFromInside ? 0.0 : visibility;
 }
 
 // A threshold in [0, 1) per pixel that tiles the screen without visible pattern (interleaved

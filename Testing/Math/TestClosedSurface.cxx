@@ -370,3 +370,57 @@ TEST(ClosedSurface, TheOutwardFacesAreTheFrontFacesOfAUsualProjection)
   EXPECT_EQ(csm::closedFaceTowardViewer(1, std::numeric_limits<double>::quiet_NaN()), 0);
   EXPECT_EQ(csm::closedFaceTowardViewer(1, std::numeric_limits<double>::infinity()), 0);
 }
+
+// Where a solid's boundary is not one sheet around it: a fin drawn as both its sides on a box's
+// edge (four faces meet there), two boxes along a shared edge, a box wound inside out beside a
+// box: not closed. A box inside a larger one, wound inside out (a cavity): closed.
+TEST(ClosedSurface, AFinAnEdgeOfTwoSolidsAndAPartWoundInsideOutAreOpen)
+{
+  std::vector<glm::dvec3> p;
+  Triangles t;
+  box(0.0, 1.0, false, p, t); // corners 0..7: corner i at (i & 1, i & 2, i & 4)
+  // The fin on the edge from corner 2 (0, 1, 0) to corner 6 (0, 1, 1): a quad up to 8, 9, both
+  // ways, each side along its own diagonal.
+  p.push_back({ 0.0, 2.0, 0.0 }); // 8
+  p.push_back({ 0.0, 2.0, 1.0 }); // 9
+  Triangles edgeFin = t;
+  edgeFin.push_back({ 2, 6, 9 });
+  edgeFin.push_back({ 2, 9, 8 });
+  edgeFin.push_back({ 6, 2, 8 });
+  edgeFin.push_back({ 6, 8, 9 });
+  EXPECT_FALSE(csm::classifySurface(p, edgeFin).closed);
+  // Two boxes along a shared edge (the second from (1, 1, 0) to (2, 2, 1): corners welded).
+  std::vector<glm::dvec3> q;
+  Triangles two;
+  box(0.0, 1.0, false, q, two);
+  const size_t second = q.size();
+  box(1.0, 2.0, false, q, two);
+  for (size_t i = second; i < q.size(); ++i)
+  {
+    q[i].z -= 1.0; // (1..2, 1..2, 0..1): its edge x = 1, y = 1 is the first's
+  }
+  EXPECT_FALSE(csm::classifySurface(q, two).closed);
+  // A box wound inside out beside a box; inside a larger box, a cavity.
+  std::vector<glm::dvec3> r;
+  Triangles pair;
+  box(0.0, 1.0, false, r, pair);
+  const size_t other = pair.size();
+  box(2.0, 4.0, false, r, pair); // (of another volume: the two do not cancel)
+  for (size_t k = other; k < pair.size(); ++k)
+  {
+    std::swap(pair[k][1], pair[k][2]);
+  }
+  EXPECT_FALSE(csm::classifySurface(r, pair).closed);
+  std::vector<glm::dvec3> s;
+  Triangles hollow;
+  box(0.0, 3.0, false, s, hollow);
+  const size_t cavity = hollow.size();
+  box(1.0, 2.0, false, s, hollow);
+  for (size_t k = cavity; k < hollow.size(); ++k)
+  {
+    std::swap(hollow[k][1], hollow[k][2]);
+  }
+  const csm::SurfaceClosure shell = csm::classifySurface(s, hollow);
+  EXPECT_TRUE(shell.closed);
+  EXPECT_NEAR(std::abs(shell.volume), 27.0 - 1.0, 1e-9);
+}
