@@ -39,9 +39,6 @@
 #include "csmScreenProbeFS.h" // Module/glsl/csmScreenProbeFS.glsl
 #include "csmScreenProbeVS.h" // Module/glsl/csmScreenProbeVS.glsl
 #include "csmShadowFS.h"      // the GLSL of Module/glsl/csmShadowFS.glsl
-#if CSM_COMPARISON_TECHNIQUES
-#include "csmComparisonFS.h" // the comparison techniques' lookup, Module/glsl/csmComparisonFS.glsl
-#endif
 
 #include <algorithm>
 #include <functional>
@@ -677,71 +674,6 @@ std::string vtkCascadedShadowMapPass::GetShaderDefinitions(
   return decl.str();
 }
 
-#if CSM_COMPARISON_TECHNIQUES
-void vtkCascadedShadowMapPass::PackComparison(
-  const vtkCascadedShadowMapBakerPass::LightMaps& maps, vtkMatrix4x4* viewToWorld)
-{
-  ShaderUniforms& u = this->Uniforms;
-  const int count = maps.GetNumberOfCascades();
-  for (int c = 0; c < kMaxCascades; ++c)
-  {
-    static const vtkCascadedShadowMapBakerPass::CascadeMap none;
-    const vtkCascadedShadowMapBakerPass::CascadeMap& map = c < count ? maps.Cascades[c] : none;
-    // A face partition's half-spaces in view space: the world plane (a row) times view -> world.
-    for (int k = 0; k < 4; ++k)
-    {
-      const double* plane = map.Planes + 4 * k;
-      const bool used = maps.SelectedByPlanes() && c < count;
-      for (int column = 0; column < 4; ++column)
-      {
-        double value = 0.0;
-        for (int row = 0; row < 4; ++row)
-        {
-          value += plane[row] * viewToWorld->GetElement(row, column);
-        }
-        u.Planes.push_back(static_cast<float>(used ? value : (column == 3 ? 1.0 : 0.0)));
-      }
-    }
-    u.DepthW.push_back(static_cast<float>(map.DepthW));
-    u.CameraSpace = u.CameraSpace || map.DepthW > 0.0;
-  }
-  u.Faces = u.Faces || maps.SelectedByPlanes();
-}
-
-std::string vtkCascadedShadowMapPass::ComparisonDefinitions() const
-{
-  if (!this->Uniforms.Faces && !this->Uniforms.CameraSpace)
-  {
-    return std::string();
-  }
-  std::ostringstream decl;
-  if (this->Uniforms.Faces)
-  {
-    decl << "#define CSM_FACES\n"; // maps selected by their half-spaces (face partitions)
-  }
-  if (this->Uniforms.CameraSpace)
-  {
-    decl << "#define CSM_CAMERA_SPACE\n"; // a depth bias that follows each ray's w
-  }
-  decl << csmComparisonFS << "\n";
-  return decl.str();
-}
-
-void vtkCascadedShadowMapPass::SetComparisonUniforms(vtkShaderProgram* program) const
-{
-  const ShaderUniforms& u = this->Uniforms;
-  const int lights = static_cast<int>(u.Lights());
-  if (u.Faces)
-  {
-    program->SetUniform4fv("csmPlanes", lights * kMaxCascades * 4, u.Planes.data());
-  }
-  if (u.CameraSpace)
-  {
-    program->SetUniform1fv("csmDepthW", lights * kMaxCascades, u.DepthW.data());
-  }
-}
-#endif
-
 bool vtkCascadedShadowMapPass::GetLastFrameReusedShadowFactors() const
 {
   return this->ScreenMode == csmScreenCache::READ;
@@ -842,6 +774,18 @@ vtkCascadedShadowMapPass* vtkCascadedShadowMapPass::UseShadowsOn(vtkRenderer* re
   if (!renderer)
   {
     return nullptr;
+  }
+  // Already on (a chain an earlier call installed): that pass, its options kept.
+  vtkCameraPass* installed = vtkCameraPass::SafeDownCast(renderer->GetPass());
+  vtkSequencePass* sequenceOn =
+    installed ? vtkSequencePass::SafeDownCast(installed->GetDelegatePass()) : nullptr;
+  vtkRenderPassCollection* on = sequenceOn ? sequenceOn->GetPasses() : nullptr;
+  for (int i = 0; on && i < on->GetNumberOfItems(); ++i)
+  {
+    if (auto* pass = vtkCascadedShadowMapPass::SafeDownCast(on->GetItemAsObject(i)))
+    {
+      return pass;
+    }
   }
   vtkNew<vtkCascadedShadowMapPass> shadows;
   vtkNew<vtkRenderPassCollection> passes;

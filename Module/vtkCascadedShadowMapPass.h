@@ -188,7 +188,8 @@ public:
   /**
    * The equivalent of vtkRenderer::UseShadowsOn() for cascaded shadows: installs
    * camera pass -> sequence{ baker, shadow pass } on the renderer and returns the shadow pass
-   * (owned by the renderer's pass chain). UseShadowsOff() removes the chain.
+   * (owned by the renderer's pass chain); where an earlier call installed it, returns that
+   * pass, its options kept. UseShadowsOff() removes the chain.
    */
   static vtkCascadedShadowMapPass* UseShadowsOn(vtkRenderer* renderer);
   static void UseShadowsOff(vtkRenderer* renderer);

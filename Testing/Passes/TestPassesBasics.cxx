@@ -580,3 +580,21 @@ TEST(Passes, AnActorShownInTwoWindowsIsDrawnInBoth)
     }
   }
 }
+
+// UseShadowsOn on a renderer that has them returns the pass it has, its options kept; after
+// UseShadowsOff, a new one.
+TEST(Passes, UseShadowsOnTwiceKeepsThePassAndItsOptions)
+{
+  BoxOverPlane scene;
+  vtkCascadedShadowMapPass* first = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  ASSERT_NE(first, nullptr);
+  first->SetPCFSize(5);
+  scene.Render();
+  EXPECT_EQ(vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer), first);
+  EXPECT_EQ(first->GetPCFSize(), 5);
+  vtkCascadedShadowMapPass::UseShadowsOff(scene.Renderer);
+  vtkCascadedShadowMapPass* again = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  ASSERT_NE(again, nullptr);
+  EXPECT_EQ(again->GetPCFSize(), 3);
+  EXPECT_EQ(vtkCascadedShadowMapPass::UseShadowsOn(nullptr), nullptr);
+}
