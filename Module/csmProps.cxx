@@ -17,6 +17,7 @@
 #include "vtkPropAssembly.h"
 #include "vtkProperty.h"
 #include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
 
 #include <cmath>
 #include <cstdint>
@@ -145,4 +146,22 @@ bool csmLightCastsShadows(vtkLight* light)
 bool csmIsInteracting(vtkRenderWindow* window)
 {
   return window && window->GetDesiredUpdateRate() >= kInteractiveUpdateRate;
+}
+
+std::string csmPropDigest(vtkRenderer* renderer, const std::function<bool(vtkProp*)>& so)
+{
+  size_t digest = 0, count = 0;
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (so(prop))
+    {
+      digest ^=
+        std::hash<const void*>()(prop) + 0x9e3779b97f4a7c15ULL + (digest << 6) + (digest >> 2);
+      ++count;
+    }
+  }
+  return std::to_string(count) + ":" + std::to_string(digest);
 }

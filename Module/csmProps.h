@@ -6,11 +6,14 @@
 
 #include "vtkRenderingCascadedShadowsModule.h" // for export macro
 
+#include <functional>
+#include <string>
 #include <vector>
 
 class vtkLight;
 class vtkProp;
 class vtkRenderWindow;
+class vtkRenderer;
 
 /// The line width and point size VTK draws a prop with, in pixels (1 where not finite).
 VTKRENDERINGCASCADEDSHADOWS_EXPORT void csmScreenSizes(vtkProp* prop, float sizes[2]);
@@ -26,6 +29,10 @@ std::vector<double> csmCastingState(vtkProp* prop);
 /// Does VTK shadow this light? Scene and camera lights that are on, directional or spot with
 /// cone angle < 90 degrees (vtkShadowMapBakerPass's rule), with ShadowAttenuation above 0.
 bool csmLightCastsShadows(vtkLight* light);
+
+/// Which of the renderer's props are so, as a digest ("count:hash" of their addresses): what a
+/// shader signature holds of per-prop choices compiled into the shaders.
+std::string csmPropDigest(vtkRenderer* renderer, const std::function<bool(vtkProp*)>& so);
 
 /// Is the user dragging? (The window's desired update rate is at least 1 a second, VTK's
 /// interactor convention.)

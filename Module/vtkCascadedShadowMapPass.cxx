@@ -3,7 +3,7 @@
 
 #include "csmAtlas.h"    // csm::kAtlasFullMaps
 #include "csmPages.h"    // csm::kPageTexels and the other page constants
-#include "csmProps.h"    // csmScreenSizes
+#include "csmProps.h"    // csmScreenSizes, csmPropDigest
 #include "csmSceneFit.h" // csm::sceneFittedBiasShare
 #include "csmScreenCache.h"
 #include "csmSpotSetup.h" // csm::perspectiveBiasFactor
@@ -39,9 +39,11 @@
 #include "csmScreenProbeFS.h" // Module/glsl/csmScreenProbeFS.glsl
 #include "csmScreenProbeVS.h" // Module/glsl/csmScreenProbeVS.glsl
 #include "csmShadowFS.h"      // the GLSL of Module/glsl/csmShadowFS.glsl
+#if CSM_COMPARISON_TECHNIQUES
+#include "csmComparisonFS.h" // the comparison techniques' lookup, Module/glsl/csmComparisonFS.glsl
+#endif
 
 #include <algorithm>
-#include <functional>
 #include <sstream>
 #include <vector>
 
@@ -183,26 +185,6 @@ void mappersViewToWorld(vtkRenderer* renderer, vtkMatrix4x4* viewToWorld)
     vtkMatrix4x4::Invert(renderer->GetActiveCamera()->GetModelViewTransformMatrix(), viewToWorld);
   }
 }
-
-/// Which of the renderer's props are so (for their shaders: drawn into the maps from behind,
-/// csmFromBehind; translucent, no CSM_SCREEN), as a digest for the shader signature.
-std::string propDigest(vtkRenderer* renderer, const std::function<bool(vtkProp*)>& so)
-{
-  size_t digest = 0, count = 0;
-  vtkPropCollection* props = renderer->GetViewProps();
-  vtkCollectionSimpleIterator it;
-  props->InitTraversal(it);
-  while (vtkProp* prop = props->GetNextProp(it))
-  {
-    if (so(prop))
-    {
-      digest ^=
-        std::hash<const void*>()(prop) + 0x9e3779b97f4a7c15ULL + (digest << 6) + (digest >> 2);
-      ++count;
-    }
-  }
-  return std::to_string(count) + ":" + std::to_string(digest);
-}
 } // namespace
 
 namespace
@@ -341,9 +323,9 @@ void vtkCascadedShadowMapPass::DrawShadowed(const vtkRenderState* s)
     signature += " radius " + std::to_string(this->PCFSize / 2);
   }
   signature += " from behind " +
-    propDigest(renderer, [baker](vtkProp* prop) { return baker->DrawsFromBehind(prop); });
+    csmPropDigest(renderer, [baker](vtkProp* prop) { return baker->DrawsFromBehind(prop); });
   signature += " translucent " +
-    propDigest(
+    csmPropDigest(
       renderer, [](vtkProp* prop) { return prop->HasTranslucentPolygonalGeometry() != 0; });
   // A frame drawn as the last one reads the factors that frame stored at its pixels: the same
   // shaders, options and shadow darkness.
@@ -673,6 +655,71 @@ std::string vtkCascadedShadowMapPass::GetShaderDefinitions(
   }
   return decl.str();
 }
+
+#if CSM_COMPARISON_TECHNIQUES
+void vtkCascadedShadowMapPass::PackComparison(
+  const vtkCascadedShadowMapBakerPass::LightMaps& maps, vtkMatrix4x4* viewToWorld)
+{
+  ShaderUniforms& u = this->Uniforms;
+  const int count = maps.GetNumberOfCascades();
+  for (int c = 0; c < kMaxCascades; ++c)
+  {
+    static const vtkCascadedShadowMapBakerPass::CascadeMap none;
+    const vtkCascadedShadowMapBakerPass::CascadeMap& map = c < count ? maps.Cascades[c] : none;
+    // A face partition's half-spaces in view space: the world plane (a row) times view -> world.
+    for (int k = 0; k < 4; ++k)
+    {
+      const double* plane = map.Planes + 4 * k;
+      const bool used = maps.SelectedByPlanes() && c < count;
+      for (int column = 0; column < 4; ++column)
+      {
+        double value = 0.0;
+        for (int row = 0; row < 4; ++row)
+        {
+          value += plane[row] * viewToWorld->GetElement(row, column);
+        }
+        u.Planes.push_back(static_cast<float>(used ? value : (column == 3 ? 1.0 : 0.0)));
+      }
+    }
+    u.DepthW.push_back(static_cast<float>(map.DepthW));
+    u.CameraSpace = u.CameraSpace || map.DepthW > 0.0;
+  }
+  u.Faces = u.Faces || maps.SelectedByPlanes();
+}
+
+std::string vtkCascadedShadowMapPass::ComparisonDefinitions() const
+{
+  if (!this->Uniforms.Faces && !this->Uniforms.CameraSpace)
+  {
+    return std::string();
+  }
+  std::ostringstream decl;
+  if (this->Uniforms.Faces)
+  {
+    decl << "#define CSM_FACES\n"; // maps selected by their half-spaces (face partitions)
+  }
+  if (this->Uniforms.CameraSpace)
+  {
+    decl << "#define CSM_CAMERA_SPACE\n"; // a depth bias that follows each ray's w
+  }
+  decl << csmComparisonFS << "\n";
+  return decl.str();
+}
+
+void vtkCascadedShadowMapPass::SetComparisonUniforms(vtkShaderProgram* program) const
+{
+  const ShaderUniforms& u = this->Uniforms;
+  const int lights = static_cast<int>(u.Lights());
+  if (u.Faces)
+  {
+    program->SetUniform4fv("csmPlanes", lights * kMaxCascades * 4, u.Planes.data());
+  }
+  if (u.CameraSpace)
+  {
+    program->SetUniform1fv("csmDepthW", lights * kMaxCascades, u.DepthW.data());
+  }
+}
+#endif
 
 bool vtkCascadedShadowMapPass::GetLastFrameReusedShadowFactors() const
 {

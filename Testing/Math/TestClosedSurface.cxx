@@ -400,27 +400,23 @@ TEST(ClosedSurface, AFinAnEdgeOfTwoSolidsAndAPartWoundInsideOutAreOpen)
     q[i].z -= 1.0; // (1..2, 1..2, 0..1): its edge x = 1, y = 1 is the first's
   }
   EXPECT_FALSE(csm::classifySurface(q, two).closed);
-  // A box wound inside out beside a box; inside a larger box, a cavity.
-  std::vector<glm::dvec3> r;
-  Triangles pair;
-  box(0.0, 1.0, false, r, pair);
-  const size_t other = pair.size();
-  box(2.0, 4.0, false, r, pair); // (of another volume: the two do not cancel)
-  for (size_t k = other; k < pair.size(); ++k)
+  // A box wound inside out beside a box (of another volume: the two do not cancel); inside a
+  // larger box, a cavity.
+  const auto withInsideOut = [](double lo, double hi, double innerLo, double innerHi)
   {
-    std::swap(pair[k][1], pair[k][2]);
-  }
-  EXPECT_FALSE(csm::classifySurface(r, pair).closed);
-  std::vector<glm::dvec3> s;
-  Triangles hollow;
-  box(0.0, 3.0, false, s, hollow);
-  const size_t cavity = hollow.size();
-  box(1.0, 2.0, false, s, hollow);
-  for (size_t k = cavity; k < hollow.size(); ++k)
-  {
-    std::swap(hollow[k][1], hollow[k][2]);
-  }
-  const csm::SurfaceClosure shell = csm::classifySurface(s, hollow);
+    std::vector<glm::dvec3> corners;
+    Triangles both;
+    box(lo, hi, false, corners, both);
+    const size_t inner = both.size();
+    box(innerLo, innerHi, false, corners, both);
+    for (size_t k = inner; k < both.size(); ++k)
+    {
+      std::swap(both[k][1], both[k][2]);
+    }
+    return csm::classifySurface(corners, both);
+  };
+  EXPECT_FALSE(withInsideOut(0.0, 1.0, 2.0, 4.0).closed);
+  const csm::SurfaceClosure shell = withInsideOut(0.0, 3.0, 1.0, 2.0);
   EXPECT_TRUE(shell.closed);
   EXPECT_NEAR(std::abs(shell.volume), 27.0 - 1.0, 1e-9);
 }
