@@ -414,10 +414,7 @@ SurfaceClosure classifySurface(const std::vector<glm::dvec3>& positions,
     {
       return SurfaceClosure();
     }
-    // Each edge once each way: an edge that more faces meet (a fin on a solid, a sheet drawn as
-    // both its sides, solids touching along an edge) bounds no solid there to tell apart.
-    closed = edges.forward == edges.backward &&
-      std::adjacent_find(edges.forward.begin(), edges.forward.end()) == edges.forward.end();
+    closed = edges.forward == edges.backward;
     if (closed)
     {
       // Two triangles on the same three corners (a sheet drawn as both its sides inside an

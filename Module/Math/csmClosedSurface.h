@@ -25,12 +25,11 @@ namespace csm
 
 struct SurfaceClosure
 {
-  /// Every edge is traversed once in each direction (at least one non-degenerate triangle; an
-  /// edge more faces meet, as a fin on a solid or two solids touching along it, is not closed),
+  /// Every edge is traversed as often in each direction (at least one non-degenerate triangle),
   /// around a thickness: the enclosed volume over half the area above kShapeTolerance of the
   /// mesh's size, of the whole mesh and of each of its connected parts; each part wound as the
   /// whole or inside the box of a part that is (a cavity); and no two triangles on the same
-  /// three (welded) corners (a sheet drawn as both its sides, alone or beside a solid, however
+  /// three (welded) corners (a flat sheet drawn as both its sides, alone or beside a solid, however
   /// its faces are triangulated, is not closed).
   bool closed = false;
   /// The enclosed signed volume (positive when the triangles wind counter-clockwise seen from
