@@ -246,14 +246,19 @@ bool everyPartBoundsASolid(const std::vector<glm::dvec3>& positions,
     volume[component[v]] += edges.vertexVolume[v];
     area[component[v]] += edges.vertexArea[v];
   }
-  std::vector<size_t> turned; // parts wound against the whole
+  std::vector<size_t> parts, turned; // (each part by its root), those wound against the whole
   for (size_t c = 0; c < component.size(); ++c)
   {
-    if (area[c] > 0.0 && !(std::abs(volume[c]) > 0.5 * area[c] * tolerance))
+    if (!(area[c] > 0.0))
+    {
+      continue;
+    }
+    if (!(std::abs(volume[c]) > 0.5 * area[c] * tolerance))
     {
       return false;
     }
-    if (area[c] > 0.0 && (volume[c] > 0.0) != (edges.volume > 0.0))
+    parts.push_back(c);
+    if ((volume[c] > 0.0) != (edges.volume > 0.0))
     {
       turned.push_back(c);
     }
@@ -261,6 +266,10 @@ bool everyPartBoundsASolid(const std::vector<glm::dvec3>& positions,
   if (turned.empty())
   {
     return true;
+  }
+  if (static_cast<double>(turned.size()) * static_cast<double>(parts.size()) > kMaximumNestingWork)
+  {
+    return false; // (too many to place: the safe answer)
   }
   std::vector<glm::dvec3> lower(component.size(), glm::dvec3(HUGE_VAL)),
     upper(component.size(), glm::dvec3(-HUGE_VAL));
@@ -272,12 +281,13 @@ bool everyPartBoundsASolid(const std::vector<glm::dvec3>& positions,
   }
   for (const size_t c : turned)
   {
-    bool inside = false;
-    for (size_t d = 0; d < component.size() && !inside; ++d)
-    {
-      inside = area[d] > 0.0 && (volume[d] > 0.0) == (edges.volume > 0.0) &&
-        glm::all(glm::lessThan(lower[d], lower[c])) && glm::all(glm::lessThan(upper[c], upper[d]));
-    }
+    const bool inside = std::any_of(parts.begin(), parts.end(),
+      [&](size_t d)
+      {
+        return (volume[d] > 0.0) == (edges.volume > 0.0) &&
+          glm::all(glm::lessThan(lower[d], lower[c])) &&
+          glm::all(glm::lessThan(upper[c], upper[d]));
+      });
     if (!inside)
     {
       return false;

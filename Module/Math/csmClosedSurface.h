@@ -60,6 +60,9 @@ int closedFaceTowardViewer(int closure, double worldToClipDeterminant);
 constexpr double kShapeTolerance = 1e-6;
 /// Most vertex-triangle pairs the convexity test examines.
 constexpr double kMaximumConvexityWork = 1.0e6;
+/// Most pairs of a part wound against the whole and a part that may hold it (a cavity) the
+/// closure test examines; beyond, the mesh is open.
+constexpr double kMaximumNestingWork = 1.0e7;
 
 /// One id per distinct position (numbered in the order the positions first appear; bitwise-equal
 /// positions, +0 and -0 alike, share one), found by hashing: a mesh whose points move every frame

@@ -399,6 +399,19 @@ TEST(ClosedSurface, APartWoundInsideOutIsOpenACavityIsNot)
     return csm::classifySurface(corners, both);
   };
   EXPECT_FALSE(withInsideOut(0.0, 1.0, 2.0, 4.0).closed);
+  // Many boxes wound either way, more of them one way (no cavities to find): open, at once.
+  std::vector<glm::dvec3> many;
+  Triangles mixed;
+  for (int k = 0; k < 4001; ++k)
+  {
+    const size_t first = mixed.size();
+    box(2.0 * k, 2.0 * k + 1.0, false, many, mixed);
+    for (size_t i = first; k % 2 == 1 && i < mixed.size(); ++i)
+    {
+      std::swap(mixed[i][1], mixed[i][2]);
+    }
+  }
+  EXPECT_FALSE(csm::classifySurface(many, mixed).closed);
   const csm::SurfaceClosure shell = withInsideOut(0.0, 3.0, 1.0, 2.0);
   EXPECT_TRUE(shell.closed);
   EXPECT_NEAR(std::abs(shell.volume), 27.0 - 1.0, 1e-9);
