@@ -146,6 +146,13 @@ bool vtkCascadedShadowCasterPass::PostReplaceShaderValues(std::string& vertexSha
   {
     fragmentEndCode += "  gl_FragDepth = gl_FragCoord.z;\n";
   }
+  if (fragmentShader.find("offsetVCVSOutput") != std::string::npos)
+  {
+    // vtkPointGaussianMapper's splats: VTK fades each one's triangle by its opacity (a Gaussian
+    // by default), which a depth cannot; the map holds the splat where it is at least half
+    // opaque (the default's disc of sqrt(2 ln 2) = 1.18 standard deviations), not the triangle.
+    fragmentEndCode += "  if (opacity < 0.5) { discard; }\n";
+  }
   fragmentShader.insert(fragmentEnd, fragmentEndCode);
   if (sphere)
   {

@@ -8,6 +8,7 @@
 #include "vtkCamera.h"
 #include "vtkCascadedShadowMapBakerPass.h"
 #include "vtkCascadedShadowMapPass.h"
+#include "vtkCascadedShadowMapPlanner.h"
 #include "vtkCompositePolyDataMapper2.h"
 #include "vtkCubeSource.h"
 #include "vtkGlyph3DMapper.h"
@@ -37,11 +38,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -630,4 +633,59 @@ TEST(Passes, SplatsGlyphsAndCompositeDataCastShadows)
     std::printf("%s: %ld pixels darkened\n", named.first, darkened);
     EXPECT_GT(darkened, 500) << named.first;
   }
+}
+
+// VTK fades a point-Gaussian splat's triangle by a Gaussian opacity (its default, no splat code):
+// the map holds the disc where the splat is at least half opaque (radius sqrt(2 ln 2) standard
+// deviations), not the triangle that holds it (its circle of TriangleScale, 3, of them). Counted
+// in an unwarped map: the texels nearer the light than the ground.
+TEST(Passes, ADefaultSplatCastsTheShadowOfItsHalfOpaqueDisc)
+{
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0.0, 3.0, 0.0);
+  vtkNew<vtkPolyData> centre;
+  centre->SetPoints(points);
+  // The splat code of each case: VTK's default, its disc of half opacity cut out, its whole
+  // triangle (nothing cut out).
+  const std::pair<const char*, const char*> codes[] = { { "default", nullptr },
+    { "disc",
+      "//VTK::Color::Impl\n"
+      "if (dot(offsetVCVSOutput.xy, offsetVCVSOutput.xy) > 2.0 * log(2.0)) { discard; }\n" },
+    { "triangle", "//VTK::Color::Impl\n" } };
+  std::array<long, 3> texels{};
+  for (size_t i = 0; i < texels.size(); ++i)
+  {
+    vtkNew<vtkPointGaussianMapper> splat;
+    splat->SetInputData(centre);
+    splat->SetScaleFactor(1.0);
+    splat->EmissiveOff();
+    if (codes[i].second)
+    {
+      splat->SetSplatShaderCode(codes[i].second);
+    }
+    BoxOverPlane scene;
+    scene.Box->SetMapper(splat);
+    vtkCascadedShadowMapBakerPass* baker =
+      vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)->GetShadowMapBakerPass();
+    baker->LightSpacePagesOff();
+    baker->CullCastersWithoutReceiversOff(); // (the ground's depth in the map: the reference)
+    baker->GetPlanner()->SetNumberOfCascades(1);
+    baker->GetPlanner()->AdaptiveCascadesOff();
+    baker->GetPlanner()->SetWarpMode(vtkCascadedShadowMapPlanner::WARP_NONE); // (depth linear)
+    baker->GetPlanner()->DepthClampOff();
+    scene.Frame();
+    const std::vector<float> depths =
+      csmTest::CascadeDepths(scene.Window, baker->GetLightMaps(scene.Renderer).at(0), 0);
+    ASSERT_FALSE(depths.empty());
+    const float ground = *std::max_element(depths.begin(), depths.end(),
+      [](float a, float b) { return (a < 1.0f ? a : -1.0f) < (b < 1.0f ? b : -1.0f); });
+    const float nearest = *std::min_element(depths.begin(), depths.end());
+    const float between = 0.5f * (nearest + ground);
+    texels[i] = std::count_if(depths.begin(), depths.end(), [&](float d) { return d < between; });
+    std::printf("%s: %ld texels of the splat\n", codes[i].first, texels[i]);
+  }
+  EXPECT_GT(texels[1], 100);
+  EXPECT_NEAR(double(texels[0]), double(texels[1]), 0.05 * double(texels[1]));
+  // (The triangle: (3 / 1.18)^2 the disc's area times a triangle's over its circle's, 1.65.)
+  EXPECT_GT(texels[2], 8 * texels[1]);
 }
