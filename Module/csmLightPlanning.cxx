@@ -180,6 +180,23 @@ int forEachShadowedLight(vtkRenderer* renderer, int maximumLights, F&& shadowed)
   return shadowingLights;
 }
 
+/// A point light (positional, a cone of 90 degrees or more) casts no shadows: said once.
+void reportPointLights(vtkRenderer* renderer, const csmLightPlanning::Reporter& report)
+{
+  vtkCollectionSimpleIterator lit;
+  renderer->GetLights()->InitTraversal(lit);
+  while (vtkLight* light = renderer->GetLights()->GetNextLight(lit))
+  {
+    if (report && light->GetSwitch() && light->GetPositional() && light->GetConeAngle() >= 90.0)
+    {
+      report(false,
+        "A point light (positional, a cone angle of 90 degrees or more) casts no shadows; "
+        "directional lights and spot lights of cones under 90 degrees do");
+      return;
+    }
+  }
+}
+
 /// The entries of v in the order of `order` (an index past v: a default entry).
 template <typename T>
 void permuted(std::vector<T>& v, const std::vector<size_t>& order)
@@ -381,6 +398,7 @@ int csmLightPlanning::PlanLights(vtkRenderer* renderer, vtkOpenGLRenderWindow* w
   const int shadowingLights = forEachShadowedLight(renderer, maximumLights,
     [&](vtkLight* light, int index)
     { this->PlanLight(renderer, state, props, frame, light, index, planned); });
+  reportPointLights(renderer, this->Report);
   if (!state.LastCamera)
   {
     state.LastCamera = vtkSmartPointer<vtkCamera>::New();

@@ -186,6 +186,39 @@ TEST(Passes, NaNLightDirectionGivesNoShadowsAndNoGarbage)
   EXPECT_GT(drawn, 10000);
 }
 
+// A point light (positional, a cone of 90 degrees or more) casts no shadow, and says so once
+// (a warning of the baker's, not one a frame); a directional light beside it keeps its shadow.
+TEST(Passes, APointLightSaysOnceThatItCastsNoShadow)
+{
+  BoxOverPlane scene;
+  scene.Light->SetIntensity(0.5);
+  vtkNew<vtkLight> point;
+  point->SetLightTypeToSceneLight();
+  point->SetPositional(true);
+  point->SetConeAngle(120.0);
+  point->SetPosition(0, 6, 0);
+  point->SetFocalPoint(0, 0, 0);
+  point->SetIntensity(0.5);
+  scene.Renderer->AddLight(point);
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  vtkNew<vtkCallbackCommand> countWarnings;
+  int warnings = 0;
+  countWarnings->SetClientData(&warnings);
+  countWarnings->SetCallback(
+    [](vtkObject*, unsigned long, void* n, void*) { ++*static_cast<int*>(n); });
+  pass->GetShadowMapBakerPass()->AddObserver(vtkCommand::WarningEvent, countWarnings);
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    scene.Renderer->GetActiveCamera()->Azimuth(5);
+    scene.Render();
+  }
+  EXPECT_EQ(warnings, 1);
+  EXPECT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps(scene.Renderer).size(), 1u);
+  scene.Renderer->GetActiveCamera()->Azimuth(-15);
+  EXPECT_GT(DarkenedPixels(scene.Render(), plain), 300);
+}
+
 // A spot light far above the box casts the shadow a directional light from the same direction
 // casts: its map's depths are fitted to the scene, not to its distance, so the constant bias
 // stays a small share of the scene's depth (with margins of 1 % of the distance it ate the whole
