@@ -37,10 +37,30 @@ namespace
 // Rows of a moved map copied at a time (csmMapDrawing::MoveMap's buffer: the atlas's width).
 constexpr int kMoveBandRows = 256;
 
-// The depth pre-pass's offset behind the surfaces (glPolygonOffset factor and units): enough
-// for the same triangle drawn by another shader to pass GL_LEQUAL.
-constexpr float kPrePassOffsetFactor = 1.0f;
-constexpr float kPrePassOffsetUnits = 4.0f;
+// Steps of the depth buffer the view's depth pass writes its depths behind the surfaces by,
+// beyond their change across the pixel (vtkCascadedShadowCasterPass::SetViewDepthNudge).
+constexpr int kViewDepthNudgeSteps = 4;
+
+/// kViewDepthNudgeSteps steps of the depth buffer being drawn, in window depth: 2^-n a step of
+/// an n-bit buffer, and of a float one's 24-bit mantissa at depths from 1/2 to 1 (finer nearer);
+/// at most 24 bits, a float's own resolution near 1, and 16 where the GL does not say.
+float viewDepthNudge(vtkOpenGLState* state)
+{
+  vtkOpenGLClearErrorMacro();
+  unsigned int drawBinding = 0, drawBuffer = 0;
+  state->GetCurrentDrawFramebufferState(drawBinding, drawBuffer);
+  const GLenum attachment = drawBinding == 0 ? GL_DEPTH : GL_DEPTH_ATTACHMENT;
+  GLint bits = 0, type = GL_NONE;
+  glGetFramebufferAttachmentParameteriv(
+    GL_DRAW_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
+  glGetFramebufferAttachmentParameteriv(
+    GL_DRAW_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
+  if (glGetError() != GL_NO_ERROR || bits < 1)
+  {
+    bits = 16;
+  }
+  return std::ldexp(float(kViewDepthNudgeSteps), -std::min(type == GL_FLOAT ? 24 : bits, 24));
+}
 
 /// Does the caster shadow anything in this light's maps (CullCastersWithoutReceivers)?
 /// Directional lights only; with several processes the receivers are everyone's boxes.
@@ -430,6 +450,7 @@ int csmMapDrawing::DrawCascade(vtkOpenGLRenderer* renderer, vtkOpenGLFramebuffer
   }
   vtkSmartPointer<vtkCamera> realCamera = renderer->GetActiveCamera();
   this->SetUpLightCamera(maps, c);
+  this->CasterPass->SetViewDepthNudge(0.0f);
   this->CasterPass->BeginCascade(
     ostate, casterUniformsFor(maps, c, x, y, w, h), std::move(cullFaces));
   renderer->SetActiveCamera(this->LightCamera);
@@ -581,12 +602,11 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglEnable(GL_DEPTH_TEST);
   // The depth stays for the frame's own geometry pass, which then shades only the fragments
-  // it keeps (the lookup is its costliest part): a little farther than the surfaces, so that
-  // the same surface drawn by other shaders passes the depth test (GL_LEQUAL).
-  ostate->vtkglEnable(GL_POLYGON_OFFSET_FILL);
-  ostate->vtkglEnable(GL_POLYGON_OFFSET_LINE);
-  ostate->vtkglEnable(GL_POLYGON_OFFSET_POINT);
-  glPolygonOffset(kPrePassOffsetFactor, kPrePassOffsetUnits);
+  // it keeps (the lookup is its costliest part): each fragment's written a few steps farther
+  // than its surface's farthest sample in the pixel, so that the same surface drawn by other
+  // shaders passes VTK's depth test (GL_LESS), and of surfaces at one depth the first drawn
+  // shows, as without shadows. (No polygon offset: llvmpipe moves no depth by its units.)
+  glPolygonOffset(0.0f, 0.0f);
   // Screen-sized casters as wide as this view draws them: the "map" is the view itself.
   double key[18];
   csmMapDrawing::MainView(renderer, camera, key);
@@ -605,6 +625,7 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   u.Viewport[1] = static_cast<float>(y);
   u.Viewport[2] = static_cast<float>(width);
   u.Viewport[3] = static_cast<float>(height);
+  this->CasterPass->SetViewDepthNudge(viewDepthNudge(ostate));
   this->CasterPass->BeginCascade(ostate, u, std::move(casters.CullFaces), true);
   this->CasterPass->DrawCasters(renderer, s->GetFrameBuffer(), casters.Drawn);
   this->CasterPass->EndCascade();

@@ -19,6 +19,9 @@
 #include "vtkShaderProgram.h"
 #include "vtk_glew.h"
 
+#include <cmath>
+#include <regex>
+#include <sstream>
 #include <utility>
 
 vtkStandardNewMacro(vtkCascadedShadowCasterPass);
@@ -48,6 +51,22 @@ int vtkCascadedShadowCasterPass::DrawCasters(
   return rendered;
 }
 
+void vtkCascadedShadowCasterPass::SetViewDepthNudge(float viewDepthNudge)
+{
+  const float nudge =
+    std::isfinite(viewDepthNudge) && viewDepthNudge > 0.0f ? viewDepthNudge : 0.0f;
+  if ((nudge > 0.0f) != (this->ViewDepthNudge > 0.0f))
+  {
+    this->ShaderStageTime.Modified();
+  }
+  this->ViewDepthNudge = nudge;
+}
+
+vtkMTimeType vtkCascadedShadowCasterPass::GetShaderStageMTime()
+{
+  return this->ShaderStageTime.GetMTime();
+}
+
 void vtkCascadedShadowCasterPass::EndCascade()
 {
   if (this->CullState && !this->CullFaces.empty())
@@ -68,6 +87,22 @@ namespace
 /// Does the mapper draw nothing but lines for the prop, wider than one pixel (a polydata of
 /// lines, or any surface as wireframe; no vertices or points)? The GL draws such lines itself
 /// (in texels of the map); the map pass widens them in its geometry shader instead.
+/// Does GLSL source assign gl_FragDepth (outside // comments)?
+bool writesDepth(const std::string& source)
+{
+  static const std::regex assignment(R"(\bgl_FragDepth\s*=(?!=))");
+  std::istringstream lines(source);
+  std::string line;
+  while (std::getline(lines, line))
+  {
+    if (std::regex_search(line.substr(0, line.find("//")), assignment))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool drawsOnlyWideLines(vtkAbstractMapper* mapper, vtkProp* prop)
 {
   vtkActor* actor = vtkActor::SafeDownCast(prop);
@@ -153,7 +188,21 @@ bool vtkCascadedShadowCasterPass::PostReplaceShaderValues(std::string& vertexSha
     // opaque (the default's disc of sqrt(2 ln 2) = 1.18 standard deviations), not the triangle.
     fragmentEndCode += "  if (opacity < 0.5) { discard; }\n";
   }
+  if (this->ViewDepthNudge > 0.0f)
+  {
+    // Behind the surface's depth at every sample the fragment covers (its depth changes by
+    // at most half the fwidth from the pixel's centre), after any depth the mapper writes
+    // itself (VTK's coincident-topology offsets).
+    const bool written = writesDepth(fragmentShader) || writesDepth(fragmentEndCode);
+    fragmentEndCode += std::string("  gl_FragDepth = ") +
+      (written ? "gl_FragDepth" : "gl_FragCoord.z") +
+      " + fwidth(gl_FragCoord.z) + csmViewDepthNudge;\n";
+  }
   fragmentShader.insert(fragmentEnd, fragmentEndCode);
+  if (this->ViewDepthNudge > 0.0f)
+  {
+    fragmentShader.insert(fragmentMain, "uniform float csmViewDepthNudge;\n");
+  }
   if (sphere)
   {
     fragmentShader.insert(
@@ -182,6 +231,10 @@ bool vtkCascadedShadowCasterPass::SetShaderParameters(
   else if (this->CullState && !this->CullFaces.empty())
   {
     this->CullState->vtkglEnable(GL_POLYGON_OFFSET_FILL);
+  }
+  if (program->IsUniformUsed("csmViewDepthNudge"))
+  {
+    program->SetUniformf("csmViewDepthNudge", this->ViewDepthNudge);
   }
   if (!program->IsUniformUsed("csmCasterWidth"))
   {

@@ -15,6 +15,7 @@
 #define vtkCascadedShadowCasterPass_h
 
 #include "vtkOpenGLRenderPass.h"
+#include "vtkTimeStamp.h" // for members
 
 #include <map>    // for members
 #include <set>    // for members
@@ -54,6 +55,15 @@ public:
   /// frame's own geometry must pass).
   void BeginCascade(vtkOpenGLState* state, const CasterUniforms& uniforms,
     std::map<vtkProp*, unsigned int> cullFaces, bool culledKeepOffset = false);
+  /// The view's depth pass: each fragment's depth is written its change across the pixel and
+  /// viewDepthNudge (window depth) farther than the surface, so that the frame's own geometry
+  /// passes it at every sample under VTK's depth test (GL_LESS: of surfaces at one depth the
+  /// first drawn shows, as without shadows) whatever the surface's slope; 0 for the maps (the
+  /// depth as drawn). The shaders change between the two.
+  void SetViewDepthNudge(float viewDepthNudge);
+
+  /// Changes when the shaders' source does (the view depth nudge switched on or off).
+  vtkMTimeType GetShaderStageMTime() override;
   /// Draws the props' opaque geometry with this pass's hooks into the framebuffer (null: the
   /// one bound); returns how many rendered something.
   int DrawCasters(
@@ -79,6 +89,8 @@ protected:
   std::map<vtkProp*, unsigned int> CullFaces;
   vtkOpenGLState* CullState = nullptr;
   bool CulledKeepOffset = false;
+  float ViewDepthNudge = 0.0f;
+  vtkTimeStamp ShaderStageTime;
   std::set<std::string> Reported;
 
 private:

@@ -136,24 +136,11 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
   {
     this->ReportOnce("no shadow map baker pass set (SetShadowMapBakerPass): no shadows");
   }
-  // The view's depth the baker drew this frame stays in the depth buffer, a polygon offset
-  // farther than the surfaces (its visible-depth pass): the same surfaces pass it at equal depth.
-  // (Under VTK's GL_LESS a face square to the view, whose offset is the constant one alone,
-  // would fail it and vanish.) A shadowed frame draws so whether the view's depth was drawn or
-  // not, so that a frame drawn as the last one (which reads its factors, no depth drawn) is that
-  // frame to the pixel where two faces meet at one depth.
-  vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
-  if (!window)
-  {
-    return;
-  }
-  vtkOpenGLState::ScopedglDepthFunc depthFunc(window->GetState());
+  // The view's depth the baker drew this frame stays in the depth buffer, a few steps farther
+  // than the surfaces (its visible-depth pass, csmMapDrawing::DrawViewDepth): the frame's
+  // geometry passes it under VTK's own depth test, which keeps the first drawn of surfaces at
+  // one depth, as a frame without shadows and one drawn as the last one (no depth drawn) do.
   const bool shadowed = !renderer->GetSelector() && baker && !baker->GetLightMaps(renderer).empty();
-  if (shadowed ||
-    (!renderer->GetSelector() && baker && baker->GetLastFrameStatistics().ViewDepthDrawn))
-  {
-    window->GetState()->vtkglDepthFunc(GL_LEQUAL);
-  }
   if (!shadowed)
   {
     // Picking, or nothing shadowed: the renderer's own geometry pass (over the view's depth

@@ -397,6 +397,57 @@ TEST(Passes, AViewSquareToTheGroundStillDrawsIt)
   }
 }
 
+// Two actors showing one plate at one depth: the first drawn shows, as without shadows, in a
+// frame that draws the view's depth first and in a still frame that reads its factors, with and
+// without multisampling (under GL_LEQUAL against the view's depth the second one showed).
+TEST(Passes, OfTwoSurfacesAtOneDepthTheFirstDrawnShows)
+{
+  for (const int samples : { 0, 4 })
+  {
+    BoxOverPlane scene;
+    scene.Window->SetMultiSamples(samples);
+    vtkNew<vtkCubeSource> plate;
+    plate->SetBounds(-3, 3, 1, 1, -3, 3); // (a square at y = 1, its faces coincident)
+    for (const double green : { 0.0, 1.0 })
+    {
+      vtkNew<vtkPolyDataMapper> mapper;
+      mapper->SetInputConnection(plate->GetOutputPort());
+      vtkNew<vtkActor> actor;
+      actor->SetMapper(mapper);
+      actor->GetProperty()->SetColor(1.0 - green, green, 0.0);
+      actor->GetProperty()->SetAmbient(0.5);
+      scene.Renderer->AddActor(actor);
+    }
+    const auto count = [](vtkImageData* image, int channel)
+    {
+      long n = 0;
+      for (int y = 0; y < 240; ++y)
+        for (int x = 0; x < 320; ++x)
+          n += image->GetScalarComponentAsDouble(x, y, 0, channel) > 100.0 &&
+              image->GetScalarComponentAsDouble(x, y, 0, 1 - channel) < 30.0
+            ? 1
+            : 0;
+      return n;
+    };
+    auto plain = scene.Frame();
+    ASSERT_GT(count(plain, 0), 2000) << samples; // red
+    ASSERT_EQ(count(plain, 1), 0) << samples;    // no green
+    vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+    scene.Renderer->GetActiveCamera()->Azimuth(3.0);
+    auto moved = scene.Frame();
+    ASSERT_TRUE(vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer)
+                  ->GetShadowMapBakerPass()
+                  ->GetLastFrameStatistics()
+                  .ViewDepthDrawn)
+      << samples;
+    auto still = scene.Frame();
+    EXPECT_GT(count(moved, 0), 2000) << samples;
+    EXPECT_EQ(count(moved, 1), 0) << samples;
+    EXPECT_EQ(count(still, 1), 0) << samples;
+    EXPECT_EQ(DifferingValues(moved, still), 0) << samples;
+  }
+}
+
 // A magnified screenshot (vtkWindowToImageFilter's scale: tiles, each drawn with the camera's
 // window centre shifted and its view angle narrowed) has the shadows of the same view rendered
 // at that size: the maps hold the tile's shifted frustum (planned about the axis, the frustum
