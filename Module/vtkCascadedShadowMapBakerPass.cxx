@@ -128,6 +128,11 @@ csmRendererMaps& vtkCascadedShadowMapBakerPass::MapsOf(
   return *this->Renderers.back();
 }
 
+vtkRenderer* vtkCascadedShadowMapBakerPass::GetLastRenderer() const
+{
+  return this->LastRenderer.GetPointer();
+}
+
 const std::vector<vtkCascadedShadowMapBakerPass::LightMaps>&
 vtkCascadedShadowMapBakerPass::GetLightMaps(vtkRenderer* renderer) const
 {

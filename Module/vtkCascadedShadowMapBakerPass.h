@@ -186,6 +186,9 @@ public:
 
   /// The shadowed lights of a renderer as of its last Render() (null: the last renderer).
   const std::vector<LightMaps>& GetLightMaps(vtkRenderer* renderer = nullptr) const;
+  /// The renderer the last Render() planned for (null before any): in a pass sequence the baker
+  /// renders each renderer just before the shadow pass does.
+  vtkRenderer* GetLastRenderer() const;
 
   /// The renderer whose last frame's shadow factors vtkCascadedShadowMapPass holds at its
   /// pixels (null: none; the pass sets it after each frame): a frame of it planned as that one

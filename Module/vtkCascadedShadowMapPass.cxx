@@ -132,9 +132,18 @@ void vtkCascadedShadowMapPass::Render(const vtkRenderState* s)
   this->UpdateLightGeometry(renderer);
   this->UpdateLights(renderer);
   vtkCascadedShadowMapBakerPass* baker = this->ShadowMapBakerPass;
+  int size[2] = { 0, 0 }, origin[2] = { 0, 0 };
+  renderer->GetTiledSizeAndOrigin(size, size + 1, origin, origin + 1);
   if (!baker)
   {
     this->ReportOnce("no shadow map baker pass set (SetShadowMapBakerPass): no shadows");
+  }
+  else if (!renderer->GetSelector() && size[0] > 0 && size[1] > 0 &&
+    baker->GetLastRenderer() != renderer)
+  {
+    this->ReportOnce("the shadow map baker pass did not render this renderer before this pass "
+                     "(it goes before it in the renderer's pass sequence, as UseShadowsOn puts "
+                     "it): no shadows");
   }
   // The view's depth the baker drew this frame stays in the depth buffer, a few steps farther
   // than the surfaces (its visible-depth pass, csmMapDrawing::DrawViewDepth): the frame's

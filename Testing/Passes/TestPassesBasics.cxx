@@ -419,6 +419,28 @@ TEST(Passes, NoBakerSaysSoOnce)
   EXPECT_EQ(DifferingValues(image, plain, 2), 0);
 }
 
+// A baker set on the shadow pass but not in the renderer's pass sequence renders nothing: the
+// pass says so once and draws the frame as without shadows.
+TEST(Passes, ABakerOutsideTheSequenceSaysSoOnce)
+{
+  BoxOverPlane scene;
+  auto plain = scene.Render();
+  vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
+  scene.Frame();
+  ErrorCounter warnings(pass, vtkCommand::WarningEvent), errors(pass);
+  scene.Renderer->GetActiveCamera()->Azimuth(5.0);
+  scene.Frame(); // (its own baker: no message)
+  EXPECT_EQ(warnings.Count, 0);
+  vtkNew<vtkCascadedShadowMapBakerPass> outside;
+  pass->SetShadowMapBakerPass(outside);
+  scene.Renderer->GetActiveCamera()->Azimuth(-5.0);
+  scene.Frame();
+  auto image = scene.Frame();
+  EXPECT_EQ(warnings.Count, 1);
+  EXPECT_EQ(errors.Count, 0);
+  EXPECT_EQ(DifferingValues(image, plain, 2), 0);
+}
+
 TEST(Passes, EmptyRendererAndNoShadowingLight)
 {
   BoxOverPlane scene;
