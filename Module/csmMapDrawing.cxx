@@ -626,7 +626,7 @@ bool csmMapDrawing::DrawViewDepth(vtkOpenGLRenderer* renderer, const vtkRenderSt
   u.Viewport[2] = static_cast<float>(width);
   u.Viewport[3] = static_cast<float>(height);
   this->CasterPass->SetViewDepthNudge(viewDepthNudge(ostate));
-  this->CasterPass->BeginCascade(ostate, u, std::move(casters.CullFaces), true);
+  this->CasterPass->BeginCascade(ostate, u, std::move(casters.CullFaces));
   this->CasterPass->DrawCasters(renderer, s->GetFrameBuffer(), casters.Drawn);
   this->CasterPass->EndCascade();
   standInCount = static_cast<int>(casters.StandIns.size());

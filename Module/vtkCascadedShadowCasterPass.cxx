@@ -26,11 +26,10 @@
 
 vtkStandardNewMacro(vtkCascadedShadowCasterPass);
 
-void vtkCascadedShadowCasterPass::BeginCascade(vtkOpenGLState* state,
-  const CasterUniforms& uniforms, std::map<vtkProp*, unsigned int> cullFaces, bool culledKeepOffset)
+void vtkCascadedShadowCasterPass::BeginCascade(
+  vtkOpenGLState* state, const CasterUniforms& uniforms, std::map<vtkProp*, unsigned int> cullFaces)
 {
   this->CullState = state;
-  this->CulledKeepOffset = culledKeepOffset;
   this->Uniforms = uniforms;
   this->CullFaces = std::move(cullFaces);
 }
@@ -84,9 +83,6 @@ void vtkCascadedShadowCasterPass::ReportOnce(bool error, const std::string& mess
 
 namespace
 {
-/// Does the mapper draw nothing but lines for the prop, wider than one pixel (a polydata of
-/// lines, or any surface as wireframe; no vertices or points)? The GL draws such lines itself
-/// (in texels of the map); the map pass widens them in its geometry shader instead.
 /// Does GLSL source assign gl_FragDepth (outside // comments)?
 bool writesDepth(const std::string& source)
 {
@@ -103,6 +99,9 @@ bool writesDepth(const std::string& source)
   return false;
 }
 
+/// Does the mapper draw nothing but lines for the prop, wider than one pixel (a polydata of
+/// lines, or any surface as wireframe; no vertices or points)? The GL draws such lines itself
+/// (in texels of the map); the map pass widens them in its geometry shader instead.
 bool drawsOnlyWideLines(vtkAbstractMapper* mapper, vtkProp* prop)
 {
   vtkActor* actor = vtkActor::SafeDownCast(prop);
@@ -223,10 +222,7 @@ bool vtkCascadedShadowCasterPass::SetShaderParameters(
   {
     this->CullState->vtkglCullFace(cull->second);
     this->CullState->vtkglEnable(GL_CULL_FACE);
-    if (!this->CulledKeepOffset)
-    {
-      this->CullState->vtkglDisable(GL_POLYGON_OFFSET_FILL);
-    }
+    this->CullState->vtkglDisable(GL_POLYGON_OFFSET_FILL);
   }
   else if (this->CullState && !this->CullFaces.empty())
   {

@@ -51,10 +51,9 @@ public:
   /// For the cascade about to render: its uniforms, the face (GL_FRONT / GL_BACK) to cull per
   /// closed caster, and the state to cull it with (SetShaderParameters runs after the property
   /// set its own culling). A culled caster is drawn without the polygon offset (a map holds its
-  /// exit layer at its own depth) unless culledKeepOffset (the view's depth pass, whose depth the
-  /// frame's own geometry must pass).
+  /// exit layer at its own depth).
   void BeginCascade(vtkOpenGLState* state, const CasterUniforms& uniforms,
-    std::map<vtkProp*, unsigned int> cullFaces, bool culledKeepOffset = false);
+    std::map<vtkProp*, unsigned int> cullFaces);
   /// The view's depth pass: each fragment's depth is written its change across the pixel and
   /// viewDepthNudge (window depth) farther than the surface, so that the frame's own geometry
   /// passes it at every sample under VTK's depth test (GL_LESS: of surfaces at one depth the
@@ -88,7 +87,6 @@ protected:
   CasterUniforms Uniforms;
   std::map<vtkProp*, unsigned int> CullFaces;
   vtkOpenGLState* CullState = nullptr;
-  bool CulledKeepOffset = false;
   float ViewDepthNudge = 0.0f;
   vtkTimeStamp ShaderStageTime;
   std::set<std::string> Reported;
