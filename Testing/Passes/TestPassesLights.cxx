@@ -202,18 +202,13 @@ TEST(Passes, APointLightSaysOnceThatItCastsNoShadow)
   scene.Renderer->AddLight(point);
   auto plain = scene.Render();
   vtkCascadedShadowMapPass* pass = vtkCascadedShadowMapPass::UseShadowsOn(scene.Renderer);
-  vtkNew<vtkCallbackCommand> countWarnings;
-  int warnings = 0;
-  countWarnings->SetClientData(&warnings);
-  countWarnings->SetCallback(
-    [](vtkObject*, unsigned long, void* n, void*) { ++*static_cast<int*>(n); });
-  pass->GetShadowMapBakerPass()->AddObserver(vtkCommand::WarningEvent, countWarnings);
+  ErrorCounter warnings(pass->GetShadowMapBakerPass(), vtkCommand::WarningEvent);
   for (int frame = 0; frame < 3; ++frame)
   {
     scene.Renderer->GetActiveCamera()->Azimuth(5);
     scene.Render();
   }
-  EXPECT_EQ(warnings, 1);
+  EXPECT_EQ(warnings.Count, 1);
   EXPECT_EQ(pass->GetShadowMapBakerPass()->GetLightMaps(scene.Renderer).size(), 1u);
   scene.Renderer->GetActiveCamera()->Azimuth(-15);
   EXPECT_GT(DarkenedPixels(scene.Render(), plain), 300);
