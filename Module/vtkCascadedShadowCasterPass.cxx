@@ -187,25 +187,19 @@ bool vtkCascadedShadowCasterPass::PostReplaceShaderValues(std::string& vertexSha
     // opaque (the default's disc of sqrt(2 ln 2) = 1.18 standard deviations), not the triangle.
     fragmentEndCode += "  if (opacity < 0.5) { discard; }\n";
   }
+  std::string fragmentDefines = sphere ? "#define CSM_CASTER_SPHERE_FRAGMENT\n" : "";
   if (this->ViewDepthNudge > 0.0f)
   {
-    // Behind the surface's depth at every sample the fragment covers (its depth changes by
-    // at most half the fwidth from the pixel's centre), after any depth the mapper writes
-    // itself (VTK's coincident-topology offsets).
+    // (After any depth the mapper writes itself: VTK's coincident-topology offsets.)
     const bool written = writesDepth(fragmentShader) || writesDepth(fragmentEndCode);
-    fragmentEndCode += std::string("  gl_FragDepth = ") +
-      (written ? "gl_FragDepth" : "gl_FragCoord.z") +
-      " + fwidth(gl_FragCoord.z) + csmViewDepthNudge;\n";
+    fragmentEndCode += std::string("  gl_FragDepth = csmViewDepth(") +
+      (written ? "gl_FragDepth" : "gl_FragCoord.z") + ");\n";
+    fragmentDefines += "#define CSM_CASTER_VIEW_DEPTH\n";
   }
   fragmentShader.insert(fragmentEnd, fragmentEndCode);
-  if (this->ViewDepthNudge > 0.0f)
+  if (!fragmentDefines.empty())
   {
-    fragmentShader.insert(fragmentMain, "uniform float csmViewDepthNudge;\n");
-  }
-  if (sphere)
-  {
-    fragmentShader.insert(
-      fragmentMain, std::string("#define CSM_CASTER_SPHERE_FRAGMENT\n") + csmCaster + "\n");
+    fragmentShader.insert(fragmentMain, fragmentDefines + csmCaster + "\n");
   }
   return true;
 }

@@ -4,6 +4,7 @@
 // grows with their depth in the main view; the maps draw them with that world radius, seen from
 // the light. Injected into the map pass's shaders by vtkCascadedShadowMapBakerPass; the map's
 // depth stays the centre line's (or centre's), which the impostor's lit side lies in front of.
+// The same pass draws the view's depth before the frame (CSM_CASTER_VIEW_DEPTH, below).
 
 uniform mat4 csmMapToView;   // this cascade's light clip coordinates -> main camera view space
 uniform mat4 csmViewToMap;   // main camera view space -> this cascade's light clip coordinates
@@ -102,5 +103,16 @@ bool csmOutsideSphere()
   vec3 d = csmSphereView.xyz - q;
   vec3 offAxis = d - dot(d, l) * l; // the centre's distance from the light ray through q
   return dot(offAxis, offAxis) > csmSphereView.w * csmSphereView.w;
+}
+#endif
+
+#ifdef CSM_CASTER_VIEW_DEPTH
+uniform float csmViewDepthNudge; // window depth: a few steps of the depth buffer
+// The view's depth pass (vtkCascadedShadowCasterPass::SetViewDepthNudge): a surface's depth
+// written behind its depth at every sample the fragment covers (which differs from the pixel
+// centre's by at most half the fwidth), so that the frame's own geometry passes it.
+float csmViewDepth(float depth)
+{
+  return depth + fwidth(gl_FragCoord.z) + csmViewDepthNudge;
 }
 #endif
